@@ -1,0 +1,6 @@
+//! The headless commands.
+
+pub mod camera_path;
+pub mod params;
+pub mod render;
+pub mod setup;

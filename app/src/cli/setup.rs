@@ -1,0 +1,74 @@
+//! Turning command-line settings into a renderer: scene, size, parameters, preset.
+
+use std::path::PathBuf;
+
+use anyhow::{Context, bail};
+use restir_render::effects::EffectSet;
+use restir_render::settings::preset;
+use restir_render::{Gpu, Renderer, Settings, load_scene};
+
+/// Parses `WxH`.
+pub fn parse_size(text: &str) -> anyhow::Result<(u32, u32)> {
+    let (w, h) = text
+        .split_once(['x', 'X'])
+        .with_context(|| format!("--size '{text}': expected WxH, e.g. 640x360"))?;
+    let parse = |s: &str| {
+        s.trim()
+            .parse::<u32>()
+            .with_context(|| format!("--size '{text}': '{s}' is not a whole number"))
+    };
+    let (w, h) = (parse(w)?, parse(h)?);
+    if w == 0
+        || h == 0
+        || w > restir_render::renderer::MAX_SIZE
+        || h > restir_render::renderer::MAX_SIZE
+    {
+        bail!(
+            "--size '{text}': each side must be 1..={}",
+            restir_render::renderer::MAX_SIZE
+        );
+    }
+    Ok((w, h))
+}
+
+/// Default settings, then the preset, then each `--set` in order (warnings are logged).
+pub fn settings_from(
+    preset_file: Option<&PathBuf>,
+    assignments: &[String],
+) -> anyhow::Result<Settings> {
+    let mut settings = Settings::default();
+    if let Some(path) = preset_file {
+        let (s, warnings) = preset::load(path, &settings)?;
+        for w in warnings {
+            eprintln!("warning: {}: {w}", path.display());
+        }
+        settings = s;
+    }
+    for w in settings
+        .apply_assignments(assignments.iter().map(String::as_str))
+        .map_err(|e| anyhow::anyhow!("--set {e}"))?
+    {
+        eprintln!("warning: --set {w}");
+    }
+    Ok(settings)
+}
+
+/// `--effects auto|all|LIST`.
+pub fn parse_effects(text: &str) -> anyhow::Result<Option<EffectSet>> {
+    if text == "auto" {
+        return Ok(None);
+    }
+    EffectSet::parse_list(text)
+        .map(Some)
+        .map_err(|e| anyhow::anyhow!("--effects: {e}"))
+}
+
+pub fn build_renderer(
+    scene: &str,
+    size: (u32, u32),
+    settings: Settings,
+) -> anyhow::Result<Renderer> {
+    let scene = load_scene(scene)?;
+    let gpu = Gpu::new_headless()?;
+    Renderer::new(gpu, &scene, size.0, size.1, settings)
+}

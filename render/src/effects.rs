@@ -1,0 +1,305 @@
+//! Which effects a scene (and the current settings) call for. Each effect is a WGSL
+//! `#ifdef` name: pipelines are compiled with exactly the set in use, so a Lambertian
+//! Cornell box never compiles GGX, punctual-light or texture code (issue
+//! "specialisation"). Chosen over WGSL `override` constants because overrides leave the
+//! dead code in the module (and in the lavapipe/driver compile), and over naga_oil
+//! because one 100-line preprocessor is easier to read than a composition framework.
+
+use std::collections::BTreeSet;
+use std::fmt;
+
+use crate::scene::{AlphaMode, Scene};
+use crate::settings::Settings;
+
+/// What effect detection needs to know about a scene, counted once at load time.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct SceneFeatures {
+    pub emissive_triangles: usize,
+    pub emissive_textured_materials: usize,
+    pub punctual_lights: usize,
+    pub specular_materials: usize,
+    pub metallic_materials: usize,
+    pub base_color_textured_materials: usize,
+    pub metallic_roughness_textured_materials: usize,
+    pub alpha_masked_materials: usize,
+}
+
+impl SceneFeatures {
+    /// Counts over the materials that some triangle actually uses.
+    pub fn of(scene: &Scene) -> SceneFeatures {
+        let mut used = vec![false; scene.materials.len()];
+        for t in &scene.triangles {
+            if let Some(u) = used.get_mut(t.material as usize) {
+                *u = true;
+            }
+        }
+        let mats: Vec<_> = scene
+            .materials
+            .iter()
+            .zip(&used)
+            .filter(|(_, u)| **u)
+            .map(|(m, _)| m)
+            .collect();
+        let count =
+            |f: &dyn Fn(&crate::scene::Material) -> bool| mats.iter().filter(|m| f(m)).count();
+        let specular = |m: &crate::scene::Material| m.metallic > 0.0 || m.specular > 0.0;
+        SceneFeatures {
+            emissive_triangles: scene.emissive_triangle_count(),
+            emissive_textured_materials: count(&|m| {
+                m.is_emissive() && m.emissive_texture.is_some()
+            }),
+            punctual_lights: scene.punctual_lights.len(),
+            specular_materials: count(&specular),
+            metallic_materials: count(&|m| m.metallic > 0.0),
+            base_color_textured_materials: count(&|m| m.base_color_texture.is_some()),
+            metallic_roughness_textured_materials: count(&|m| {
+                m.metallic_roughness_texture.is_some() && specular(m)
+            }),
+            alpha_masked_materials: count(&|m| matches!(m.alpha_mode, AlphaMode::Mask(_))),
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Effect {
+    AreaLights,
+    EmissiveTextures,
+    PunctualLights,
+    Specular,
+    Metallic,
+    BaseColorTextures,
+    MetallicRoughnessTextures,
+    AlphaMask,
+    Shadows,
+    Motion,
+    BsdfCandidates,
+}
+
+impl Effect {
+    pub const ALL: [Effect; 11] = [
+        Effect::AreaLights,
+        Effect::EmissiveTextures,
+        Effect::PunctualLights,
+        Effect::Specular,
+        Effect::Metallic,
+        Effect::BaseColorTextures,
+        Effect::MetallicRoughnessTextures,
+        Effect::AlphaMask,
+        Effect::Shadows,
+        Effect::Motion,
+        Effect::BsdfCandidates,
+    ];
+
+    /// The WGSL define.
+    pub fn define(self) -> &'static str {
+        match self {
+            Effect::AreaLights => "AREA_LIGHTS",
+            Effect::EmissiveTextures => "EMISSIVE_TEXTURES",
+            Effect::PunctualLights => "PUNCTUAL_LIGHTS",
+            Effect::Specular => "SPECULAR",
+            Effect::Metallic => "METALLIC",
+            Effect::BaseColorTextures => "BASE_COLOR_TEXTURES",
+            Effect::MetallicRoughnessTextures => "METALLIC_ROUGHNESS_TEXTURES",
+            Effect::AlphaMask => "ALPHA_MASK",
+            Effect::Shadows => "SHADOWS",
+            Effect::Motion => "MOTION",
+            Effect::BsdfCandidates => "BSDF_CANDIDATES",
+        }
+    }
+
+    /// Lower-case name used on the command line (`--effects`) and in stats.
+    pub fn name(self) -> &'static str {
+        match self {
+            Effect::AreaLights => "area-lights",
+            Effect::EmissiveTextures => "emissive-textures",
+            Effect::PunctualLights => "punctual-lights",
+            Effect::Specular => "specular",
+            Effect::Metallic => "metallic",
+            Effect::BaseColorTextures => "base-color-textures",
+            Effect::MetallicRoughnessTextures => "metallic-roughness-textures",
+            Effect::AlphaMask => "alpha-mask",
+            Effect::Shadows => "shadows",
+            Effect::Motion => "motion",
+            Effect::BsdfCandidates => "bsdf-candidates",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<Effect> {
+        Effect::ALL.into_iter().find(|e| e.name() == name)
+    }
+}
+
+/// A set of effects plus, for each, why it is on or off.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct EffectSet {
+    pub enabled: BTreeSet<Effect>,
+    pub reasons: Vec<(Effect, String)>,
+}
+
+impl fmt::Display for EffectSet {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let names: Vec<_> = self.enabled.iter().map(|e| e.name()).collect();
+        write!(f, "{}", names.join(","))
+    }
+}
+
+impl EffectSet {
+    /// The general pipeline: every code path compiled in.
+    pub fn all() -> EffectSet {
+        EffectSet {
+            enabled: Effect::ALL.into_iter().collect(),
+            reasons: Effect::ALL
+                .iter()
+                .map(|e| (*e, "forced (--effects all)".to_string()))
+                .collect(),
+        }
+    }
+
+    pub fn contains(&self, e: Effect) -> bool {
+        self.enabled.contains(&e)
+    }
+
+    /// The defines to compile with. `ANY_TEXTURES` guards the shared texture sampler.
+    pub fn defines(&self) -> BTreeSet<String> {
+        let mut d: BTreeSet<String> = self
+            .enabled
+            .iter()
+            .map(|e| e.define().to_string())
+            .collect();
+        if self.contains(Effect::BaseColorTextures)
+            || self.contains(Effect::MetallicRoughnessTextures)
+            || self.contains(Effect::EmissiveTextures)
+        {
+            d.insert("ANY_TEXTURES".to_string());
+        }
+        d
+    }
+
+    /// Derives what a scene needs under `settings`; `camera_moves` is false while the
+    /// camera (and scene) stay still, which drops motion-vector work.
+    pub fn detect(scene: &SceneFeatures, settings: &Settings, camera_moves: bool) -> EffectSet {
+        let mut set = EffectSet {
+            enabled: BTreeSet::new(),
+            reasons: Vec::new(),
+        };
+        let mut decide = |e: Effect, on: bool, yes: String, no: String| {
+            if on {
+                set.enabled.insert(e);
+            }
+            set.reasons.push((e, if on { yes } else { no }));
+        };
+        let f = scene;
+        decide(
+            Effect::AreaLights,
+            f.emissive_triangles > 0,
+            format!("{} emissive triangles", f.emissive_triangles),
+            "no material emits".into(),
+        );
+        decide(
+            Effect::EmissiveTextures,
+            f.emissive_textured_materials > 0,
+            format!(
+                "{} emissive materials have an emissive texture",
+                f.emissive_textured_materials
+            ),
+            "no emissive texture".into(),
+        );
+        decide(
+            Effect::PunctualLights,
+            f.punctual_lights > 0,
+            format!("{} KHR_lights_punctual lights", f.punctual_lights),
+            "no punctual lights".into(),
+        );
+        decide(
+            Effect::Specular,
+            f.specular_materials > 0,
+            format!(
+                "{} materials have a GGX lobe (specularFactor > 0 or metallic > 0)",
+                f.specular_materials
+            ),
+            "every material has specularFactor 0 and metallic 0 (Lambertian)".into(),
+        );
+        decide(
+            Effect::Metallic,
+            f.metallic_materials > 0,
+            format!("{} materials are (partly) metallic", f.metallic_materials),
+            "no material has metallic > 0".into(),
+        );
+        decide(
+            Effect::BaseColorTextures,
+            f.base_color_textured_materials > 0,
+            format!(
+                "{} materials have a base-colour texture",
+                f.base_color_textured_materials
+            ),
+            "no base-colour texture".into(),
+        );
+        decide(
+            Effect::MetallicRoughnessTextures,
+            f.metallic_roughness_textured_materials > 0,
+            format!(
+                "{} specular materials have a metallic-roughness texture",
+                f.metallic_roughness_textured_materials
+            ),
+            "no metallic-roughness texture on a specular material".into(),
+        );
+        decide(
+            Effect::AlphaMask,
+            f.alpha_masked_materials > 0,
+            format!("{} materials use alphaMode MASK", f.alpha_masked_materials),
+            "no alpha-masked material".into(),
+        );
+        let has_lights = f.emissive_triangles > 0 || f.punctual_lights > 0;
+        decide(
+            Effect::Shadows,
+            has_lights,
+            "occlusion cannot be ruled out, so every light sample gets a shadow ray".into(),
+            "no lights: nothing to shadow".into(),
+        );
+        decide(
+            Effect::Motion,
+            camera_moves,
+            "the camera moved: motion vectors reproject history".into(),
+            "static camera and scene: a point stays in its pixel".into(),
+        );
+        decide(
+            Effect::BsdfCandidates,
+            settings.bsdf_candidates > 0 && f.emissive_triangles > 0,
+            format!("{} BSDF candidates per pixel", settings.bsdf_candidates),
+            if settings.bsdf_candidates == 0 {
+                "BSDF candidates set to 0".into()
+            } else {
+                "no emissive triangles for BSDF rays to hit".into()
+            },
+        );
+        set
+    }
+
+    /// Parses `--effects`: `all`, or a comma-separated list of effect names.
+    pub fn parse_list(text: &str) -> Result<EffectSet, String> {
+        if text == "all" {
+            return Ok(EffectSet::all());
+        }
+        let mut enabled = BTreeSet::new();
+        for name in text.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+            let e = Effect::from_name(name).ok_or_else(|| {
+                let known: Vec<_> = Effect::ALL.iter().map(|e| e.name()).collect();
+                format!("unknown effect '{name}' (known: {})", known.join(", "))
+            })?;
+            enabled.insert(e);
+        }
+        let reasons = Effect::ALL
+            .iter()
+            .map(|e| {
+                (
+                    *e,
+                    format!(
+                        "forced by --effects ({})",
+                        if enabled.contains(e) { "on" } else { "off" }
+                    ),
+                )
+            })
+            .collect();
+        Ok(EffectSet { enabled, reasons })
+    }
+}

@@ -1,0 +1,144 @@
+//! Adapter and device creation with the features and limits the passes need, and a clear
+//! error when there is no adapter at all (e.g. a machine without lavapipe).
+
+use std::sync::{Arc, Mutex};
+
+/// Storage buffers one shader stage binds at most (scene group + pass group + stats).
+const STORAGE_BUFFERS_PER_STAGE: u32 = 16;
+
+#[derive(Debug, thiserror::Error)]
+pub enum GpuError {
+    #[error(
+        "no GPU adapter found ({0}). On a machine without a GPU install Mesa's lavapipe \
+         (Debian/Ubuntu: apt-get install mesa-vulkan-drivers) and run again"
+    )]
+    NoAdapter(String),
+    #[error("the GPU adapter '{adapter}' is not capable enough: {problem}")]
+    Unsupported { adapter: String, problem: String },
+    #[error("cannot create the GPU device: {0}")]
+    Device(String),
+    #[error("GPU error: {0}")]
+    Validation(String),
+}
+
+/// A device and queue plus what the renderer needs to know about them.
+#[derive(Clone)]
+pub struct Gpu {
+    pub instance: wgpu::Instance,
+    pub adapter: wgpu::Adapter,
+    pub device: wgpu::Device,
+    pub queue: wgpu::Queue,
+    /// Whether passes can be timed with timestamp queries.
+    pub timestamps: bool,
+    /// The first uncaptured GPU error since the last `take_error` (instead of a panic).
+    errors: Arc<Mutex<Option<String>>>,
+}
+
+impl Gpu {
+    /// A device without a window (tests, `render`, `bench`).
+    pub fn new_headless() -> Result<Gpu, GpuError> {
+        let instance = new_instance();
+        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+            power_preference: wgpu::PowerPreference::HighPerformance,
+            force_fallback_adapter: false,
+            compatible_surface: None,
+            apply_limit_buckets: false,
+        }))
+        .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
+        Gpu::from_adapter(instance, adapter)
+    }
+
+    /// Requests the device on an adapter chosen by the caller (the viewer picks one that
+    /// can present to its window).
+    pub fn from_adapter(instance: wgpu::Instance, adapter: wgpu::Adapter) -> Result<Gpu, GpuError> {
+        let info = adapter.get_info();
+        let adapter_limits = adapter.limits();
+        if adapter_limits.max_storage_buffers_per_shader_stage < STORAGE_BUFFERS_PER_STAGE {
+            return Err(GpuError::Unsupported {
+                adapter: info.name.clone(),
+                problem: format!(
+                    "{} storage buffers per shader stage, {STORAGE_BUFFERS_PER_STAGE} needed",
+                    adapter_limits.max_storage_buffers_per_shader_stage
+                ),
+            });
+        }
+        let timestamps = adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
+        let mut features = wgpu::Features::empty();
+        if timestamps {
+            features |= wgpu::Features::TIMESTAMP_QUERY;
+        }
+        let limits = wgpu::Limits {
+            max_storage_buffers_per_shader_stage: STORAGE_BUFFERS_PER_STAGE,
+            max_storage_buffer_binding_size: adapter_limits.max_storage_buffer_binding_size,
+            max_buffer_size: adapter_limits.max_buffer_size,
+            max_texture_dimension_2d: adapter_limits.max_texture_dimension_2d,
+            ..wgpu::Limits::default()
+        };
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("restir"),
+            required_features: features,
+            required_limits: limits,
+            experimental_features: wgpu::ExperimentalFeatures::disabled(),
+            memory_hints: wgpu::MemoryHints::Performance,
+            trace: wgpu::Trace::Off,
+        }))
+        .map_err(|e| GpuError::Device(e.to_string()))?;
+        let errors = Arc::new(Mutex::new(None));
+        let sink = errors.clone();
+        // wgpu's default handler panics; keep the first error and let the caller report it.
+        device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
+            log::error!("GPU error: {e}");
+            let mut slot = sink.lock().unwrap_or_else(|p| p.into_inner());
+            slot.get_or_insert_with(|| e.to_string());
+        }));
+        log::info!(
+            "GPU: {} ({:?}, {:?})",
+            info.name,
+            info.backend,
+            info.device_type
+        );
+        Ok(Gpu {
+            instance,
+            adapter,
+            device,
+            queue,
+            timestamps,
+            errors,
+        })
+    }
+
+    pub fn adapter_name(&self) -> String {
+        let info = self.adapter.get_info();
+        format!("{} ({:?})", info.name, info.backend)
+    }
+
+    /// True when the adapter is a CPU implementation (lavapipe): timings are CPU timings.
+    pub fn is_cpu(&self) -> bool {
+        self.adapter.get_info().device_type == wgpu::DeviceType::Cpu
+    }
+
+    /// The first GPU error since the last call, if any.
+    pub fn take_error(&self) -> Option<String> {
+        self.errors.lock().unwrap_or_else(|p| p.into_inner()).take()
+    }
+
+    /// Fails with the pending GPU error, if any.
+    pub fn check(&self) -> Result<(), GpuError> {
+        match self.take_error() {
+            Some(e) => Err(GpuError::Validation(e)),
+            None => Ok(()),
+        }
+    }
+
+    /// Blocks until all submitted work is done.
+    pub fn wait_idle(&self) {
+        let _ = self.device.poll(wgpu::PollType::wait_indefinitely());
+    }
+}
+
+/// An instance over the native backends (WGPU_BACKEND overrides, e.g. `vulkan`).
+pub fn new_instance() -> wgpu::Instance {
+    let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+    desc.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::PRIMARY);
+    wgpu::Instance::new(desc)
+}

@@ -1,0 +1,135 @@
+//! GPU timestamp queries around each pass, when the adapter supports them. Results come
+//! back through a `ReadbackRing`, so the viewer never waits on the GPU for them.
+
+use std::collections::HashMap;
+
+use super::readback::ReadbackRing;
+
+const MAX_PASSES: u32 = 24;
+
+/// Per-pass GPU milliseconds of one frame, in recording order.
+pub type PassTimes = Vec<(&'static str, f64)>;
+
+pub struct PassTimer {
+    query_set: Option<wgpu::QuerySet>,
+    resolve: wgpu::Buffer,
+    ring: ReadbackRing,
+    labels: Vec<&'static str>,
+    in_flight: HashMap<u64, Vec<&'static str>>,
+    /// Nanoseconds per timestamp tick.
+    period: f64,
+}
+
+impl PassTimer {
+    pub fn new(gpu: &super::Gpu) -> PassTimer {
+        let size = (MAX_PASSES * 2) as u64 * 8;
+        let query_set = gpu.timestamps.then(|| {
+            gpu.device.create_query_set(&wgpu::QuerySetDescriptor {
+                label: Some("pass timestamps"),
+                ty: wgpu::QueryType::Timestamp,
+                count: MAX_PASSES * 2,
+            })
+        });
+        let resolve = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("timestamp resolve"),
+            size,
+            usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        PassTimer {
+            query_set,
+            resolve,
+            ring: ReadbackRing::new(&gpu.device, size, 4, "timestamp readback"),
+            labels: Vec::new(),
+            in_flight: HashMap::new(),
+            period: gpu.queue.get_timestamp_period() as f64,
+        }
+    }
+
+    pub fn enabled(&self) -> bool {
+        self.query_set.is_some()
+    }
+
+    fn allocate(&mut self, label: &'static str) -> Option<(&wgpu::QuerySet, u32)> {
+        let qs = self.query_set.as_ref()?;
+        if self.labels.len() as u32 >= MAX_PASSES {
+            return None;
+        }
+        let index = self.labels.len() as u32 * 2;
+        self.labels.push(label);
+        Some((qs, index))
+    }
+
+    pub fn compute_writes(
+        &mut self,
+        label: &'static str,
+    ) -> Option<wgpu::ComputePassTimestampWrites<'_>> {
+        self.allocate(label)
+            .map(|(qs, i)| wgpu::ComputePassTimestampWrites {
+                query_set: qs,
+                beginning_of_pass_write_index: Some(i),
+                end_of_pass_write_index: Some(i + 1),
+            })
+    }
+
+    pub fn render_writes(
+        &mut self,
+        label: &'static str,
+    ) -> Option<wgpu::RenderPassTimestampWrites<'_>> {
+        self.allocate(label)
+            .map(|(qs, i)| wgpu::RenderPassTimestampWrites {
+                query_set: qs,
+                beginning_of_pass_write_index: Some(i),
+                end_of_pass_write_index: Some(i + 1),
+            })
+    }
+
+    /// Forgets the queries allocated since the last resolve (work that is not a frame).
+    pub fn discard(&mut self) {
+        self.labels.clear();
+    }
+
+    /// Resolves this frame's queries (tagged with the frame index) for later collection.
+    pub fn resolve(&mut self, encoder: &mut wgpu::CommandEncoder, frame: u64) {
+        let labels = std::mem::take(&mut self.labels);
+        let Some(qs) = &self.query_set else { return };
+        if labels.is_empty() {
+            return;
+        }
+        let count = labels.len() as u32 * 2;
+        encoder.resolve_query_set(qs, 0..count, &self.resolve, 0);
+        if self
+            .ring
+            .copy_from(encoder, &self.resolve, count as u64 * 8, frame)
+        {
+            self.in_flight.insert(frame, labels);
+        }
+    }
+
+    pub fn after_submit(&mut self) {
+        self.ring.after_submit();
+    }
+
+    /// (frame, per-pass times) of every frame whose timings have arrived, oldest first.
+    pub fn collect(&mut self) -> Vec<(u64, PassTimes)> {
+        let period = self.period;
+        self.ring
+            .collect()
+            .into_iter()
+            .filter_map(|(frame, bytes)| {
+                let labels = self.in_flight.remove(&frame)?;
+                let ticks: Vec<u64> = bytemuck::pod_collect_to_vec(&bytes);
+                let times = labels
+                    .iter()
+                    .zip(ticks.chunks_exact(2))
+                    .map(|(label, t)| (*label, t[1].saturating_sub(t[0]) as f64 * period * 1e-6))
+                    .collect();
+                Some((frame, times))
+            })
+            .collect()
+    }
+
+    pub fn in_flight(&self) -> bool {
+        self.ring.in_flight()
+    }
+}

@@ -1,0 +1,213 @@
+//! Uploading a CPU `Scene`: BVH build, triangle reordering, light table, materials and
+//! textures, into the eight storage buffers of bind group 1 (scene_bindings.wgsl).
+
+use std::time::Instant;
+
+use glam::Vec3;
+use wgpu::util::DeviceExt;
+
+use crate::gpu::Gpu;
+use crate::gpu_types::*;
+use crate::scene::bvh::Bvh;
+use crate::scene::lights::LightTable;
+use crate::scene::{Aabb, AlphaMode, Scene, Wrap};
+
+/// Facts about an uploaded scene (the viewer's Scene panel, `--stats`).
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct SceneInfo {
+    pub name: String,
+    pub triangles: usize,
+    pub emissive_triangles: usize,
+    pub punctual_lights: usize,
+    pub light_table_entries: usize,
+    /// Smallest and largest light power in the table (W·sr-ish luminance units).
+    pub power_range: Option<(f32, f32)>,
+    pub total_power: f64,
+    pub bvh_nodes: usize,
+    pub bvh_depth: usize,
+    pub bvh_build_ms: f64,
+    pub bounds_min: [f32; 3],
+    pub bounds_max: [f32; 3],
+}
+
+pub struct GpuScene {
+    pub bind_group: wgpu::BindGroup,
+    pub triangle_count: u32,
+    pub light_count: u32,
+    pub punctual_count: u32,
+    pub bounds: Aabb,
+    /// Length of the bounds' diagonal (the unit of scale-relative thresholds).
+    pub scale: f32,
+    pub info: SceneInfo,
+    /// Triangle positions in BVH order (kept for CPU-side picking and tests).
+    pub bvh: Bvh,
+}
+
+/// Octahedral encoding into two snorm16, bit-identical to `oct_encode` in math.wgsl.
+pub fn oct_encode(n: Vec3) -> u32 {
+    let l1 = n.x.abs() + n.y.abs() + n.z.abs();
+    let mut p = glam::Vec2::new(n.x, n.y) / l1.max(1e-20);
+    if n.z < 0.0 {
+        let s = glam::Vec2::new(
+            if p.x >= 0.0 { 1.0 } else { -1.0 },
+            if p.y >= 0.0 { 1.0 } else { -1.0 },
+        );
+        p = (glam::Vec2::ONE - glam::Vec2::new(p.y.abs(), p.x.abs())) * s;
+    }
+    let snorm = |x: f32| ((x.clamp(-1.0, 1.0) * 32767.0).round() as i16) as u16 as u32;
+    snorm(p.x) | (snorm(p.y) << 16)
+}
+
+fn wrap_code(w: Wrap) -> u32 {
+    match w {
+        Wrap::Repeat => 0,
+        Wrap::ClampToEdge => 1,
+        Wrap::MirroredRepeat => 2,
+    }
+}
+
+/// A storage buffer with at least one element (WebGPU forbids empty bindings).
+fn storage_buffer<T: bytemuck::Pod + Default>(gpu: &Gpu, label: &str, data: &[T]) -> wgpu::Buffer {
+    let fallback = [T::default()];
+    let contents: &[T] = if data.is_empty() { &fallback } else { data };
+    gpu.device
+        .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents: bytemuck::cast_slice(contents),
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        })
+}
+
+impl GpuScene {
+    pub fn upload(
+        gpu: &Gpu,
+        scene: &Scene,
+        layout: &wgpu::BindGroupLayout,
+    ) -> anyhow::Result<GpuScene> {
+        let positions: Vec<[Vec3; 3]> = (0..scene.triangles.len())
+            .map(|t| scene.triangle_positions(t))
+            .collect();
+        let start = Instant::now();
+        let mut bvh = Bvh::build(&positions);
+        if bvh.nodes.is_empty() {
+            // No triangles (the loaders refuse this, but stay safe): one empty-handed leaf
+            // over the zero fallback triangle, so traversal ends at once.
+            bvh.nodes.push(GpuBvhNode {
+                count: 1,
+                ..Default::default()
+            });
+        }
+        let bvh_build_ms = start.elapsed().as_secs_f64() * 1e3;
+        let lights = LightTable::build(scene, &bvh.triangle_order);
+
+        let mut triangles = Vec::with_capacity(positions.len());
+        let mut shading = Vec::with_capacity(positions.len());
+        for (bvh_index, &source) in bvh.triangle_order.iter().enumerate() {
+            let tri = &scene.triangles[source as usize];
+            let [p0, p1, p2] = positions[source as usize];
+            let verts = tri.indices.map(|i| scene.vertices[i as usize]);
+            let has_normals = verts.iter().all(|v| v.normal.length_squared() > 0.0);
+            triangles.push(GpuTriangle {
+                p0: p0.into(),
+                material: tri.material,
+                p1: p1.into(),
+                light: lights.triangle_light[bvh_index],
+                p2: p2.into(),
+                source_index: source,
+            });
+            shading.push(GpuTriangleShading {
+                normals: verts.map(|v| {
+                    if has_normals {
+                        oct_encode(v.normal.normalize())
+                    } else {
+                        0
+                    }
+                }),
+                has_normals: has_normals as u32,
+                uvs: verts.map(|v| v.uv.into()),
+            });
+        }
+
+        let mut texels: Vec<u32> = Vec::new();
+        let mut textures = Vec::with_capacity(scene.textures.len());
+        for t in &scene.textures {
+            textures.push(GpuTexture {
+                offset: texels.len() as u32,
+                width: t.width,
+                height: t.height,
+                wrap: wrap_code(t.wrap_u) | (wrap_code(t.wrap_v) << 4),
+            });
+            texels.extend(t.texels.iter().map(|c| u32::from_le_bytes(*c)));
+        }
+        let tex_index = |r: Option<crate::scene::TextureRef>| r.map_or(NO_TEXTURE, |r| r.texture);
+        let materials: Vec<GpuMaterial> = scene
+            .materials
+            .iter()
+            .map(|m| {
+                let mut flags = 0;
+                if m.double_sided {
+                    flags |= MATERIAL_DOUBLE_SIDED;
+                }
+                let mut alpha_cutoff = 0.0;
+                if let AlphaMode::Mask(cutoff) = m.alpha_mode {
+                    flags |= MATERIAL_ALPHA_MASK;
+                    alpha_cutoff = cutoff;
+                }
+                GpuMaterial {
+                    base_color: m.base_color.into(),
+                    emission: m.emission.into(),
+                    metallic: m.metallic,
+                    roughness: m.roughness,
+                    specular: m.specular,
+                    alpha_cutoff,
+                    flags,
+                    base_color_texture: tex_index(m.base_color_texture),
+                    metallic_roughness_texture: tex_index(m.metallic_roughness_texture),
+                    emissive_texture: tex_index(m.emissive_texture),
+                    _pad: 0,
+                }
+            })
+            .collect();
+
+        let buffers = [
+            storage_buffer(gpu, "triangles", &triangles),
+            storage_buffer(gpu, "triangle shading", &shading),
+            storage_buffer(gpu, "materials", &materials),
+            storage_buffer(gpu, "textures", &textures),
+            storage_buffer(gpu, "texels", &texels),
+            storage_buffer(gpu, "lights", &lights.lights),
+            storage_buffer(gpu, "punctual lights", &lights.punctual),
+            storage_buffer(gpu, "bvh nodes", &bvh.nodes),
+        ];
+        let refs: Vec<&wgpu::Buffer> = buffers.iter().collect();
+        let bind_group = crate::passes::buffer_bind_group(gpu, "scene", layout, &refs);
+        gpu.check()?;
+
+        let bounds = scene.bounds();
+        let scale = bounds.extent().length().max(1e-30);
+        let info = SceneInfo {
+            name: scene.name.clone(),
+            triangles: triangles.len(),
+            emissive_triangles: scene.emissive_triangle_count(),
+            punctual_lights: scene.punctual_lights.len(),
+            light_table_entries: lights.lights.len(),
+            power_range: lights.power_range,
+            total_power: lights.total_power,
+            bvh_nodes: bvh.nodes.len(),
+            bvh_depth: bvh.depth(),
+            bvh_build_ms,
+            bounds_min: bounds.min.into(),
+            bounds_max: bounds.max.into(),
+        };
+        Ok(GpuScene {
+            bind_group,
+            triangle_count: triangles.len() as u32,
+            light_count: lights.lights.len() as u32,
+            punctual_count: lights.punctual.len() as u32,
+            bounds,
+            scale,
+            info,
+            bvh,
+        })
+    }
+}

@@ -1,0 +1,263 @@
+//! Host-side twins of the structs in `shaders/common/types.wgsl`.
+//!
+//! Each struct here is `#[repr(C)]` + `Pod` and has exactly the size and field offsets of
+//! its WGSL namesake; `tests/gpu_layout.rs` checks that with naga's layouter, so a field
+//! added on one side only fails the build's tests instead of corrupting a buffer.
+
+use bytemuck::{Pod, Zeroable};
+
+/// Marks "no light" in a reservoir and "not an emitter" in `GpuTriangle::light`.
+pub const NO_LIGHT: u32 = u32::MAX;
+/// Marks an absent texture slot in `GpuMaterial`.
+pub const NO_TEXTURE: u32 = u32::MAX;
+
+/// Triangle positions in BVH order (what rays and the rasteriser read).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuTriangle {
+    pub p0: [f32; 3],
+    pub material: u32,
+    pub p1: [f32; 3],
+    /// Index into the light table when this triangle emits, else `NO_LIGHT`.
+    pub light: u32,
+    pub p2: [f32; 3],
+    /// Index of the triangle in the source scene (before BVH reordering).
+    pub source_index: u32,
+}
+
+/// Per-vertex shading attributes of a triangle, same order as `GpuTriangle`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuTriangleShading {
+    /// Octahedral-encoded vertex normals (`pack2x16snorm`).
+    pub normals: [u32; 3],
+    /// 0 when the source had no normals: shaders use the geometric normal.
+    pub has_normals: u32,
+    pub uvs: [[f32; 2]; 3],
+}
+
+pub const MATERIAL_DOUBLE_SIDED: u32 = 1;
+pub const MATERIAL_ALPHA_MASK: u32 = 2;
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuMaterial {
+    pub base_color: [f32; 4],
+    pub emission: [f32; 3],
+    pub metallic: f32,
+    pub roughness: f32,
+    pub specular: f32,
+    pub alpha_cutoff: f32,
+    pub flags: u32,
+    pub base_color_texture: u32,
+    pub metallic_roughness_texture: u32,
+    pub emissive_texture: u32,
+    pub _pad: u32,
+}
+
+/// Where a texture's RGBA8 texels start in the shared texel buffer.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuTexture {
+    pub offset: u32,
+    pub width: u32,
+    pub height: u32,
+    /// `wrap_u | wrap_v << 4`, each 0 repeat, 1 clamp, 2 mirrored repeat.
+    pub wrap: u32,
+}
+
+pub const LIGHT_KIND_TRIANGLE: u32 = 0;
+pub const LIGHT_KIND_PUNCTUAL: u32 = 1;
+/// The light kind lives in the top two bits of `GpuLight::kind_prim`.
+pub const LIGHT_KIND_SHIFT: u32 = 30;
+pub const LIGHT_PRIM_MASK: u32 = (1 << LIGHT_KIND_SHIFT) - 1;
+
+/// One entry of the power-proportional light table, with its alias-table slot.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuLight {
+    /// `kind << 30 | index`: a triangle index (BVH order) or a punctual light index.
+    pub kind_prim: u32,
+    /// Probability of picking this light (its power over the total).
+    pub select_pdf: f32,
+    /// Alias method: keep this slot when u < threshold, else take `alias`.
+    pub alias_threshold: f32,
+    pub alias_index: u32,
+}
+
+pub const PUNCTUAL_POINT: u32 = 0;
+pub const PUNCTUAL_SPOT: u32 = 1;
+pub const PUNCTUAL_DIRECTIONAL: u32 = 2;
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuPunctualLight {
+    pub position: [f32; 3],
+    pub kind: u32,
+    /// Unit direction the light points to.
+    pub direction: [f32; 3],
+    /// 0 means infinite range.
+    pub range: f32,
+    pub intensity: [f32; 3],
+    pub cos_outer: f32,
+    pub cos_inner: f32,
+    pub _pad: [f32; 3],
+}
+
+/// A flattened BVH node. `count > 0`: leaf holding triangles `first..first+count`;
+/// `count == 0`: interior node whose children are `first` and `first + 1`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuBvhNode {
+    pub min: [f32; 3],
+    pub first: u32,
+    pub max: [f32; 3],
+    pub count: u32,
+}
+
+/// A streaming reservoir (notes §1): the selected light sample and its weights.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuReservoir {
+    /// Light table index of the sample, `NO_LIGHT` for the null sample.
+    pub light: u32,
+    /// p̂ of the sample at the pixel that finalised this reservoir (used only by the
+    /// temporal target-ratio test, never as the current target).
+    pub p_hat: f32,
+    /// Barycentric (u, v) of the point on a triangle light; unused for punctual lights.
+    pub uv: [f32; 2],
+    pub w_sum: f32,
+    /// W = w_sum / (M · p̂): the unbiased contribution weight of the sample.
+    pub weight: f32,
+    /// Confidence M: 1 for a fresh initial reservoir, summed by reuse, capped by `m_cap`.
+    pub m: f32,
+    /// Which stage's candidate survived: one of `SOURCE_*`.
+    pub source: u32,
+}
+
+/// Per-pixel surface written by the G-buffer resolve pass and kept one frame for
+/// temporal validation (notes §2.6).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuSurface {
+    pub position: [f32; 3],
+    /// Linear view depth; 0 means the pixel sees no surface.
+    pub depth: f32,
+    /// Octahedral shading normal, flipped to face the camera.
+    pub normal: u32,
+    /// Octahedral geometric normal, facing the camera (ray offsets, sidedness).
+    pub geo_normal: u32,
+    pub material: u32,
+    /// `pack4x8unorm(linear base colour, metallic)`.
+    pub base_color_metallic: u32,
+    pub roughness: f32,
+    pub specular: f32,
+    /// Where this surface point was in the previous frame, in pixels (x, y);
+    /// negative when it was behind the previous camera.
+    pub motion: [f32; 2],
+    /// Radiance the surface emits toward the camera.
+    pub emission: [f32; 3],
+    pub _pad: f32,
+}
+
+/// Per-pixel debug record (issue "part 2": selection source, M per stage, masks).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuPixelDebug {
+    pub source: u32,
+    /// Bits `REJECT_*` of the temporal candidate.
+    pub temporal_mask: u32,
+    /// Union of the `REJECT_*` bits of all spatial neighbours.
+    pub spatial_mask: u32,
+    /// `DEBUG_FLAG_*` bits.
+    pub flags: u32,
+    pub m_initial: f32,
+    pub m_temporal: f32,
+    pub m_spatial: f32,
+    /// W and p̂ of the survivor at shading time.
+    pub weight: f32,
+    pub p_hat: f32,
+    pub spatial_accepted: u32,
+    pub _pad: [u32; 2],
+}
+
+/// Uniforms that change every frame.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuFrame {
+    /// Unjittered world → clip of the current camera.
+    pub view_proj: [[f32; 4]; 4],
+    pub inv_view_proj: [[f32; 4]; 4],
+    /// Unjittered world → clip of the previous frame's camera.
+    pub prev_view_proj: [[f32; 4]; 4],
+    pub camera_position: [f32; 3],
+    pub frame_index: u32,
+    pub prev_camera_position: [f32; 3],
+    pub seed: u32,
+    /// Sub-pixel offset of this frame's G-buffer, in pixels within [-0.5, 0.5].
+    pub jitter: [f32; 2],
+    pub size: [u32; 2],
+    /// Length of the scene bounds' diagonal: the unit for scale-relative thresholds.
+    pub scene_scale: f32,
+    /// 0 after a resize, scene change or camera cut: the previous surfaces are invalid.
+    pub history_valid: u32,
+    pub light_count: u32,
+    pub punctual_count: u32,
+    /// The previous frame's jitter: reprojection lands on the pixel whose (jittered)
+    /// sample was nearest to the point.
+    pub prev_jitter: [f32; 2],
+    pub _pad: [u32; 2],
+}
+
+/// Pipeline parameters as the shaders see them (built from `Settings`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuParams {
+    pub light_candidates: u32,
+    pub bsdf_candidates: u32,
+    pub m_cap: f32,
+    pub normal_threshold: f32,
+    pub depth_threshold: f32,
+    /// 0 disables the target-ratio test.
+    pub target_ratio_clamp: f32,
+    /// `REJECT_*` bits of the enabled validation checks.
+    pub checks: u32,
+    /// `PARAM_FLAG_*` bits.
+    pub flags: u32,
+    pub spatial_neighbours: u32,
+    pub spatial_radius: f32,
+    pub reference_spp: u32,
+    /// Boiling filter threshold k (0 = off): a spatial survivor whose W·p̂ exceeds k × the
+    /// neighbourhood mean is dropped.
+    pub boiling_filter: f32,
+}
+
+/// What the display pass shows and how (view settings, not pipeline parameters).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuDisplay {
+    /// Multiplies the image buffer: 1/N for an accumulation of N frames.
+    pub scale: f32,
+    /// Linear exposure multiplier (2^EV).
+    pub exposure: f32,
+    /// One of `TONEMAP_*`.
+    pub tonemapper: u32,
+    /// One of `VIEW_*`.
+    pub view: u32,
+    /// Which rejection reasons the rejection view shows: temporal bits 0..8, spatial 8..16.
+    pub reason_mask: u32,
+    /// M value drawn at the top of the M heatmap (the M cap).
+    pub m_scale: f32,
+    /// Reference radiance scale for the error view (1/N of the reference accumulation).
+    pub reference_scale: f32,
+    pub _pad: u32,
+}
+
+/// Uniform of one spatial pass: which pass it is (for decorrelated random numbers).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuPassInfo {
+    pub pass_index: u32,
+    pub is_last: u32,
+    pub _pad: [u32; 2],
+}

@@ -1,0 +1,27 @@
+//! The ReSTIR lab renderer: glTF and built-in scenes, a CPU-built BVH, and a wgpu ReSTIR DI
+//! pipeline (G-buffer → initial RIS → temporal → spatial → shade) with a brute-force
+//! reference, debug buffers and metrics. Usable headless; the viewer drives it too.
+
+pub mod effects;
+pub mod frame_targets;
+pub mod gpu;
+pub mod gpu_scene;
+pub mod gpu_types;
+pub mod image;
+pub mod metrics;
+pub mod passes;
+pub mod renderer;
+pub mod reservoir;
+pub mod scene;
+pub mod settings;
+pub mod shader_constants;
+pub mod shader_source;
+pub mod stats;
+pub mod view;
+
+pub use gpu::{Gpu, GpuError};
+pub use image::LinearImage;
+pub use renderer::Renderer;
+pub use scene::{Camera, Scene, load_scene};
+pub use settings::Settings;
+pub use view::{DebugView, Mode, Tonemapper, ViewSettings};

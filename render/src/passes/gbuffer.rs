@@ -1,0 +1,145 @@
+//! G-buffer: rasterise a visibility buffer (triangle id + barycentrics, depth-tested),
+//! then resolve it in a compute pass into per-pixel `Surface` records. Rasterising ids
+//! instead of attributes keeps the colour targets within the 32-bytes-per-sample limit
+//! and lets the raster and ray-traced paths share `hit_surface` in material.wgsl.
+
+use std::collections::BTreeSet;
+
+use super::{ComputePass, PassLayouts, shader_module, storage};
+use crate::gpu::timing::PassTimer;
+use crate::gpu::{Gpu, GpuError};
+
+pub const VISIBILITY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// Resolve pass group 2: 0 visibility texture, 1 surfaces out.
+pub fn resolve_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
+    vec![
+        wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Uint,
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+            count: None,
+        },
+        storage(1, false),
+    ]
+}
+
+pub struct GBufferPass {
+    raster: wgpu::RenderPipeline,
+    pub resolve: ComputePass,
+}
+
+impl GBufferPass {
+    pub fn new(
+        gpu: &Gpu,
+        layouts: &PassLayouts,
+        defines: &BTreeSet<String>,
+    ) -> Result<GBufferPass, GpuError> {
+        let module = shader_module(gpu, "gbuffer_raster.wgsl", defines)?;
+        let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let layout = gpu
+            .device
+            .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("gbuffer raster"),
+                bind_group_layouts: &[Some(&layouts.frame), Some(&layouts.scene)],
+                immediate_size: 0,
+            });
+        let raster = gpu
+            .device
+            .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some("gbuffer raster"),
+                layout: Some(&layout),
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some("vs_main"),
+                    compilation_options: Default::default(),
+                    buffers: &[],
+                },
+                primitive: wgpu::PrimitiveState {
+                    // Culling of single-sided back faces happens in the fragment shader, per
+                    // material; double-sided ones must survive the rasteriser.
+                    cull_mode: None,
+                    ..Default::default()
+                },
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format: DEPTH_FORMAT,
+                    depth_write_enabled: Some(true),
+                    // Reverse-Z: nearer is greater.
+                    depth_compare: Some(wgpu::CompareFunction::Greater),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                }),
+                multisample: Default::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some("fs_main"),
+                    compilation_options: Default::default(),
+                    targets: &[Some(wgpu::ColorTargetState {
+                        format: VISIBILITY_FORMAT,
+                        blend: None,
+                        write_mask: wgpu::ColorWrites::ALL,
+                    })],
+                }),
+                multiview_mask: None,
+                cache: None,
+            });
+        if let Some(e) = pollster::block_on(scope.pop()) {
+            return Err(GpuError::Validation(format!("gbuffer raster: {e}")));
+        }
+        let resolve = ComputePass::new(
+            gpu,
+            layouts,
+            "gbuffer resolve",
+            "gbuffer_resolve.wgsl",
+            defines,
+            &layouts.resolve,
+        )?;
+        Ok(GBufferPass { raster, resolve })
+    }
+
+    /// Rasterises `triangle_count` triangles into the visibility and depth targets.
+    #[allow(clippy::too_many_arguments)]
+    pub fn record_raster(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        timer: &mut PassTimer,
+        frame: &wgpu::BindGroup,
+        scene: &wgpu::BindGroup,
+        visibility: &wgpu::TextureView,
+        depth: &wgpu::TextureView,
+        triangle_count: u32,
+    ) {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("gbuffer raster"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: visibility,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: depth,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(0.0),
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: timer.render_writes("gbuffer raster"),
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&self.raster);
+        pass.set_bind_group(0, frame, &[]);
+        pass.set_bind_group(1, scene, &[]);
+        pass.draw(0..triangle_count * 3, 0..1);
+    }
+}

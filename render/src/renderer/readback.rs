@@ -1,0 +1,72 @@
+//! Blocking reads of the last frame's outputs (headless rendering, tests, the inspector).
+
+use super::Renderer;
+use crate::gpu::readback::{read_buffer, read_rgba8_texture};
+use crate::gpu_types::{GpuPixelDebug, GpuReservoir, GpuSurface};
+use crate::image::LinearImage;
+
+impl Renderer {
+    fn read_image(&self, buffer: &wgpu::Buffer, scale: f32) -> LinearImage {
+        let (w, h) = self.size();
+        let mut pixels: Vec<[f32; 4]> = read_buffer(&self.gpu, buffer, 0, w as u64 * h as u64 * 16);
+        pixels.resize((w * h) as usize, [0.0; 4]);
+        if scale != 1.0 {
+            for p in &mut pixels {
+                for c in &mut p[..3] {
+                    *c *= scale;
+                }
+                p[3] = 1.0;
+            }
+        }
+        LinearImage {
+            width: w,
+            height: h,
+            pixels,
+        }
+    }
+
+    /// Linear radiance of the last frame.
+    pub fn read_radiance(&self) -> LinearImage {
+        self.read_image(&self.targets.radiance, 1.0)
+    }
+
+    /// The average of all frames since the last accumulation reset.
+    pub fn read_accumulated(&self) -> LinearImage {
+        self.read_image(
+            &self.targets.accumulation,
+            1.0 / self.accumulated_frames.max(1) as f32,
+        )
+    }
+
+    /// What the display pass produced (tonemapped image or debug view), sRGB RGBA8.
+    pub fn read_display_rgba8(&self) -> Vec<u8> {
+        read_rgba8_texture(&self.gpu, &self.targets.display)
+    }
+
+    fn pixel_records<T: bytemuck::Pod>(&self, buffer: &wgpu::Buffer) -> Vec<T> {
+        read_buffer(
+            &self.gpu,
+            buffer,
+            0,
+            self.targets.pixel_count() * std::mem::size_of::<T>() as u64,
+        )
+    }
+
+    /// Per-pixel debug records of the last frame.
+    pub fn read_debug(&self) -> Vec<GpuPixelDebug> {
+        self.pixel_records(&self.targets.debug)
+    }
+
+    /// The reservoirs the last frame shaded with (empty after a reference frame).
+    pub fn read_final_reservoirs(&self) -> Vec<GpuReservoir> {
+        match self.last_final {
+            Some(i) => self.pixel_records(&self.targets.reservoirs[i]),
+            None => Vec::new(),
+        }
+    }
+
+    /// The last frame's G-buffer surfaces.
+    pub fn read_surfaces(&self) -> Vec<GpuSurface> {
+        self.pixel_records(&self.targets.surfaces[self.ping_pong.surfaces])
+    }
+}

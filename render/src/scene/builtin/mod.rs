@@ -1,0 +1,146 @@
+//! Scenes generated in code, loaded as `builtin:NAME`. All are deterministic (fixed-seed
+//! PRNG), diffuse materials are exactly Lambertian (`Material::diffuse`), and emitters light
+//! their front (counter-clockwise) side only unless double-sided.
+
+mod cornell;
+mod hard;
+mod many_lights;
+mod plane_light;
+mod rng;
+mod shapes;
+
+use super::Scene;
+use super::load::SceneError;
+use cornell::cornell_box;
+use many_lights::{glossy_floor, many_lights_room};
+
+/// Lights in `many-lights` without a count.
+pub const DEFAULT_LIGHT_COUNT: usize = 4096;
+/// The largest N `many-lights:N` accepts (2^22 lights, 2^23 triangles).
+pub const MAX_LIGHT_COUNT: usize = 4_194_304;
+
+/// Builds a scene given its name (without `builtin:`), which becomes `Scene::name`.
+type Generator = fn(&str) -> Scene;
+
+/// Every scene by name (without `builtin:`).
+const SCENES: &[(&str, Generator)] = &[
+    ("cornell", |name| cornell_box(name, 1.0)),
+    ("many-lights", |name| {
+        many_lights_room(name, DEFAULT_LIGHT_COUNT, glossy_floor())
+    }),
+    ("plane-light", plane_light::plane_light),
+    ("hard:tiny-bright", hard::tiny_bright),
+    ("hard:touching", hard::touching),
+    ("hard:back-facing", hard::back_facing),
+    ("hard:degenerate", hard::degenerate),
+    ("hard:no-emitters", hard::no_emitters),
+    ("hard:occluded", hard::occluded),
+    ("hard:scale-small", |name| cornell_box(name, 1e-3)),
+    ("hard:scale-large", |name| cornell_box(name, 1e4)),
+    ("hard:radiance-range", hard::radiance_range),
+    ("hard:mirror", |name| {
+        many_lights_room(name, 512, hard::mirror_floor())
+    }),
+];
+
+/// Build a built-in scene. `name` has no `builtin:` prefix; `many-lights:N` takes a light
+/// count in 1..=MAX_LIGHT_COUNT.
+pub fn builtin_scene(name: &str) -> Result<Scene, SceneError> {
+    if let Some((_, build)) = SCENES.iter().find(|(n, _)| *n == name) {
+        return Ok(build(name));
+    }
+    if let Some(count) = name.strip_prefix("many-lights:") {
+        let error = |detail: String| SceneError::Builtin {
+            name: name.to_string(),
+            detail,
+        };
+        let n: usize = count
+            .parse()
+            .map_err(|_| error(format!("'{count}' is not a light count")))?;
+        if !(1..=MAX_LIGHT_COUNT).contains(&n) {
+            return Err(error(format!(
+                "light count must be in 1..={MAX_LIGHT_COUNT}"
+            )));
+        }
+        return Ok(many_lights_room(name, n, glossy_floor()));
+    }
+    Err(SceneError::Builtin {
+        name: name.to_string(),
+        detail: format!(
+            "unknown built-in scene (known: {}, many-lights:N)",
+            builtin_names().join(", ")
+        ),
+    })
+}
+
+/// Every built-in scene's full name, `builtin:` prefix included (`many-lights` once, with
+/// its default count).
+pub fn builtin_names() -> Vec<String> {
+    SCENES
+        .iter()
+        .map(|(name, _)| format!("builtin:{name}"))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_are_unique_and_prefixed() {
+        let names = builtin_names();
+        let mut sorted = names.clone();
+        sorted.sort();
+        sorted.dedup();
+        assert_eq!(sorted.len(), names.len());
+        assert!(names.iter().all(|n| n.starts_with("builtin:")));
+    }
+
+    #[test]
+    fn scenes_are_deterministic() {
+        let (a, b) = (
+            builtin_scene("many-lights:300").unwrap(),
+            builtin_scene("many-lights:300").unwrap(),
+        );
+        assert_eq!(a.vertices, b.vertices);
+        assert_eq!(a.triangles, b.triangles);
+        assert_eq!(a.name, "builtin:many-lights:300");
+    }
+
+    #[test]
+    fn light_counts_out_of_range_are_errors() {
+        for bad in [
+            "many-lights:0",
+            "many-lights:4194305",
+            "many-lights:x",
+            "many-lights:",
+        ] {
+            let e = builtin_scene(bad).unwrap_err().to_string();
+            assert!(e.starts_with(&format!("builtin:{bad}:")), "{e}");
+        }
+        assert!(builtin_scene("many-lights:1").is_ok());
+    }
+
+    #[test]
+    fn every_hard_case_has_what_it_promises() {
+        let emitters = |n: &str| builtin_scene(n).unwrap().emissive_triangle_count();
+        assert_eq!(emitters("hard:no-emitters"), 0);
+        assert!(emitters("hard:degenerate") >= 7);
+        assert_eq!(emitters("hard:mirror"), 1024);
+        assert_eq!(emitters("hard:radiance-range"), 16);
+        let scene = builtin_scene("hard:tiny-bright").unwrap();
+        let tiny = scene
+            .materials
+            .iter()
+            .position(|m| m.emission.x == 1e6)
+            .unwrap();
+        let t = scene
+            .triangles
+            .iter()
+            .position(|t| t.material as usize == tiny)
+            .unwrap();
+        let [a, b, c] = scene.triangle_positions(t);
+        let area = (b - a).cross(c - a).length(); // two triangles of half this each
+        assert!((area - 1e-6).abs() < 1e-8, "{area}");
+    }
+}

@@ -1,0 +1,280 @@
+//! glTF 2.0 → `Scene`: .gltf (external or data-URI buffers) and .glb, flattened to world
+//! space. Bad files give a `SceneError` naming the file; the gltf crate's own panics are
+//! caught as a second line of defence (a malformed file must never crash the viewer).
+
+mod data;
+mod materials;
+mod primitives;
+
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::path::Path;
+
+use glam::{Mat4, Vec3};
+use gltf::khr_lights_punctual::Kind;
+
+use super::load::{SceneError, one_line, validate};
+use super::{Camera, Material, PunctualKind, PunctualLight, Scene};
+use primitives::{PrimitiveId, append_primitive};
+
+/// Extensions whose meaning this loader implements; a file that *requires* any other one
+/// cannot be shown correctly and is refused.
+const SUPPORTED_EXTENSIONS: &[&str] = &[
+    "KHR_lights_punctual",
+    "KHR_materials_emissive_strength",
+    "KHR_materials_specular",
+];
+
+/// Load a .gltf or .glb file. The returned scene has passed `load::validate`.
+pub fn load_gltf(path: &Path) -> Result<Scene, SceneError> {
+    let file = path.display().to_string();
+    let mut scene = match catch_unwind(AssertUnwindSafe(|| load_unvalidated(path, &file))) {
+        Ok(result) => result?,
+        Err(payload) => {
+            let detail = payload
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| payload.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "unknown panic".to_string());
+            return Err(SceneError::Panicked {
+                file,
+                detail: one_line(detail),
+            });
+        }
+    };
+    validate(&mut scene, &file)?;
+    Ok(scene)
+}
+
+fn load_unvalidated(path: &Path, file: &str) -> Result<Scene, SceneError> {
+    let extension = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    if !matches!(extension.as_deref(), Some("gltf" | "glb")) {
+        return Err(SceneError::Unsupported {
+            file: file.to_string(),
+            detail: "expected a .gltf or .glb file".to_string(),
+        });
+    }
+    let bytes = std::fs::read(path).map_err(|source| SceneError::Io {
+        file: file.to_string(),
+        what: "the file".to_string(),
+        error: source,
+    })?;
+    let gltf::Gltf { document, blob } = open_document(file, &bytes)?;
+    let base = path.parent().unwrap_or(Path::new("."));
+    let buffers = data::load_buffers(file, &document, base, blob)?;
+
+    let mut scene = Scene {
+        name: path
+            .file_name()
+            .map_or_else(|| file.to_string(), |n| n.to_string_lossy().into_owned()),
+        materials: materials::load_materials(file, &document),
+        textures: materials::load_textures(file, &document, base, &buffers)?,
+        ..Scene::default()
+    };
+    let mut walker = Walker {
+        file,
+        buffers: &buffers,
+        scene: &mut scene,
+        default_material: None,
+    };
+    walker.walk(&document)?;
+    Ok(scene)
+}
+
+/// Parse JSON/GLB, refuse unsupported required extensions, then run the crate's schema
+/// validation. The crate's own required-extension check is skipped because it does not know
+/// KHR_materials_specular, which this loader reads.
+fn open_document(file: &str, bytes: &[u8]) -> Result<gltf::Gltf, SceneError> {
+    let parse_error = |e: gltf::Error| SceneError::Parse {
+        file: file.to_string(),
+        detail: one_line(e.to_string()),
+    };
+    let gltf = gltf::Gltf::from_slice_without_validation(bytes).map_err(parse_error)?;
+    let mut json = gltf.document.into_json();
+    if let Some(ext) = json
+        .extensions_required
+        .iter()
+        .find(|e| !SUPPORTED_EXTENSIONS.contains(&e.as_str()))
+    {
+        return Err(SceneError::Unsupported {
+            file: file.to_string(),
+            detail: format!("required extension {ext} (supported: {SUPPORTED_EXTENSIONS:?})"),
+        });
+    }
+    for ext in json
+        .extensions_used
+        .iter()
+        .filter(|e| !SUPPORTED_EXTENSIONS.contains(&e.as_str()))
+    {
+        log::warn!("{file}: ignoring optional extension {ext}");
+    }
+    json.extensions_required.clear();
+    check_crate_assumptions(file, &json)?;
+    let document = gltf::Document::from_json(json).map_err(parse_error)?;
+    Ok(gltf::Gltf {
+        document,
+        blob: gltf.blob,
+    })
+}
+
+/// References the gltf crate (1.4.1) reads with `unwrap` or unchecked indexing before or
+/// without validating them (each found by the mutation fuzz test): checked here first.
+fn check_crate_assumptions(file: &str, json: &gltf::json::Root) -> Result<(), SceneError> {
+    use gltf::json::validation::Checked;
+    let fail = |detail: String| {
+        Err(SceneError::Parse {
+            file: file.to_string(),
+            detail,
+        })
+    };
+    // Validation indexes accessors[POSITION] before checking the index.
+    let position = Checked::Valid(gltf::Semantic::Positions);
+    for (m, mesh) in json.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            let index = primitive.attributes.get(&position).map(|i| i.value());
+            if let Some(index) = index.filter(|&i| i >= json.accessors.len()) {
+                return fail(format!(
+                    "meshes[{m}].primitives[{p}] POSITION refers to accessor {index} of {}",
+                    json.accessors.len()
+                ));
+            }
+        }
+    }
+    // `Image::source` unwraps the URI, or the MIME type of an image in a buffer view.
+    for (i, image) in json.images.iter().enumerate() {
+        match (&image.uri, &image.buffer_view, &image.mime_type) {
+            (Some(_), None, _) | (None, Some(_), Some(_)) => {}
+            (None, Some(_), None) => {
+                return fail(format!("images[{i}] has a bufferView but no mimeType"));
+            }
+            _ => {
+                return fail(format!(
+                    "images[{i}] needs exactly one of uri and bufferView"
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Depth-first traversal of the scene's node trees, carrying world transforms.
+struct Walker<'a> {
+    file: &'a str,
+    buffers: &'a [Vec<u8>],
+    scene: &'a mut Scene,
+    /// Index of `Material::default()` in the scene, added the first time a primitive has none.
+    default_material: Option<u32>,
+}
+
+impl Walker<'_> {
+    fn walk(&mut self, doc: &gltf::Document) -> Result<(), SceneError> {
+        let roots: Vec<gltf::Node> = match doc.default_scene().or_else(|| doc.scenes().next()) {
+            Some(s) => s.nodes().collect(),
+            None => {
+                // No scene at all: show every root node rather than nothing.
+                let mut is_child = vec![false; doc.nodes().len()];
+                doc.nodes()
+                    .flat_map(|n| n.children())
+                    .for_each(|c| is_child[c.index()] = true);
+                doc.nodes().filter(|n| !is_child[n.index()]).collect()
+            }
+        };
+        // An explicit stack (children pushed in reverse) keeps the file's depth-first order
+        // and cannot overflow the call stack on deep or cyclic hierarchies.
+        let mut visited = vec![false; doc.nodes().len()];
+        let mut stack: Vec<(gltf::Node, Mat4)> = roots
+            .into_iter()
+            .rev()
+            .map(|n| (n, Mat4::IDENTITY))
+            .collect();
+        while let Some((node, parent)) = stack.pop() {
+            if std::mem::replace(&mut visited[node.index()], true) {
+                return Err(SceneError::invalid(
+                    self.file,
+                    format!(
+                        "node {} is reached twice (a cycle or a shared child)",
+                        node.index()
+                    ),
+                ));
+            }
+            let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
+            self.visit(&node, world)?;
+            let children: Vec<gltf::Node> = node.children().collect();
+            stack.extend(children.into_iter().rev().map(|c| (c, world)));
+        }
+        Ok(())
+    }
+
+    fn visit(&mut self, node: &gltf::Node, world: Mat4) -> Result<(), SceneError> {
+        if let Some(mesh) = node.mesh() {
+            for (index, primitive) in mesh.primitives().enumerate() {
+                let material = match primitive.material().index() {
+                    Some(i) => i as u32,
+                    None => self.default_material(),
+                };
+                let id = PrimitiveId { mesh: &mesh, index };
+                append_primitive(
+                    self.file,
+                    &id,
+                    &primitive,
+                    self.buffers,
+                    world,
+                    material,
+                    self.scene,
+                )?;
+            }
+        }
+        let yfov = node.camera().and_then(|c| match c.projection() {
+            gltf::camera::Projection::Perspective(p) => Some(p.yfov()),
+            gltf::camera::Projection::Orthographic(_) => None,
+        });
+        if let (None, Some(yfov)) = (self.scene.camera, yfov) {
+            // Scale is dropped: a camera's rotation must stay orthonormal.
+            let (_, rotation, position) = world.to_scale_rotation_translation();
+            self.scene.camera = Some(Camera {
+                position,
+                rotation: rotation.normalize(),
+                yfov,
+            });
+        }
+        if let Some(light) = node.light() {
+            self.scene
+                .punctual_lights
+                .push(punctual_light(&light, world));
+        }
+        Ok(())
+    }
+
+    fn default_material(&mut self) -> u32 {
+        *self.default_material.get_or_insert_with(|| {
+            self.scene.materials.push(Material::default());
+            (self.scene.materials.len() - 1) as u32
+        })
+    }
+}
+
+/// KHR_lights_punctual: lights sit at the node's origin and point down its local -Z.
+fn punctual_light(light: &gltf::khr_lights_punctual::Light, world: Mat4) -> PunctualLight {
+    let kind = match light.kind() {
+        Kind::Point => PunctualKind::Point,
+        Kind::Directional => PunctualKind::Directional,
+        Kind::Spot {
+            inner_cone_angle,
+            outer_cone_angle,
+        } => PunctualKind::Spot {
+            inner_cone: inner_cone_angle,
+            outer_cone: outer_cone_angle,
+        },
+    };
+    PunctualLight {
+        kind,
+        position: world.transform_point3(Vec3::ZERO),
+        direction: world
+            .transform_vector3(Vec3::NEG_Z)
+            .normalize_or(Vec3::NEG_Z),
+        intensity: Vec3::from_array(light.color()) * light.intensity(),
+        range: light.range(),
+    }
+}

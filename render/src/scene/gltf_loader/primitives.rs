@@ -1,0 +1,242 @@
+//! One glTF primitive → world-space vertices and counter-clockwise triangles appended to the
+//! scene. Every accessor is range-checked first (see `data`), so the crate's readers cannot
+//! run past the end of a buffer.
+
+use glam::{Mat3, Mat4, Vec2, Vec3};
+use gltf::accessor::{DataType, Dimensions};
+use gltf::mesh::Mode;
+
+use super::super::load::SceneError;
+use super::super::{Scene, Triangle, Vertex};
+use super::data::check_accessor;
+
+/// Where a primitive sits in the file, for error messages.
+pub(super) struct PrimitiveId<'a> {
+    pub mesh: &'a gltf::Mesh<'a>,
+    pub index: usize,
+}
+
+impl std::fmt::Display for PrimitiveId<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.mesh.name() {
+            Some(name) => write!(
+                f,
+                "mesh {} ('{name}') primitive {}",
+                self.mesh.index(),
+                self.index
+            ),
+            None => write!(f, "mesh {} primitive {}", self.mesh.index(), self.index),
+        }
+    }
+}
+
+/// Append `primitive`, transformed by `world`, with every triangle using `material`.
+pub(super) fn append_primitive(
+    file: &str,
+    id: &PrimitiveId,
+    primitive: &gltf::Primitive,
+    buffers: &[Vec<u8>],
+    world: Mat4,
+    material: u32,
+    scene: &mut Scene,
+) -> Result<(), SceneError> {
+    let fail = |detail: String| SceneError::invalid(file, format!("{id}: {detail}"));
+    let mode = primitive.mode();
+    if !matches!(
+        mode,
+        Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan
+    ) {
+        return Err(SceneError::Unsupported {
+            file: file.to_string(),
+            detail: format!(
+                "{id} has mode {mode:?}; only triangles (lists, strips, fans) can be rendered"
+            ),
+        });
+    }
+    let local = read_vertices(file, id, primitive, buffers)?;
+    let indices = match primitive.indices() {
+        Some(accessor) => {
+            let what = format!("{id} indices");
+            check_accessor(
+                file,
+                &accessor,
+                buffers,
+                &what,
+                &[DataType::U8, DataType::U16, DataType::U32],
+                Dimensions::Scalar,
+            )?;
+            let reader = primitive.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
+            let indices: Vec<u32> = reader
+                .read_indices()
+                .ok_or_else(|| fail("indices unreadable".into()))?
+                .into_u32()
+                .collect();
+            if let Some(&bad) = indices.iter().find(|&&i| i as usize >= local.len()) {
+                return Err(fail(format!(
+                    "index {bad} is out of range ({} vertices)",
+                    local.len()
+                )));
+            }
+            indices
+        }
+        None => (0..local.len() as u32).collect(),
+    };
+    let base = u32::try_from(scene.vertices.len())
+        .ok()
+        .filter(|b| b.checked_add(local.len() as u32).is_some())
+        .ok_or_else(|| fail("the scene has more than 2^32 vertices".into()))?;
+
+    // Normals transform by the inverse transpose; a mirroring transform flips the winding,
+    // so two indices are swapped to keep the front face counter-clockwise.
+    let normal_matrix = Mat3::from_mat4(world).inverse().transpose();
+    let mirrored = Mat3::from_mat4(world).determinant() < 0.0;
+    for (i, v) in local.iter().enumerate() {
+        let position = world.transform_point3(v.position);
+        if !position.is_finite() {
+            return Err(fail(format!(
+                "vertex {i} has a non-finite position {position}"
+            )));
+        }
+        scene.vertices.push(Vertex {
+            position,
+            normal: (normal_matrix * v.normal).normalize_or_zero(),
+            uv: v.uv,
+        });
+    }
+    let triangles = triangle_list(mode, &indices);
+    if mode == Mode::Triangles && indices.len() % 3 != 0 {
+        log::warn!(
+            "{file}: {id}: {} indices is not a multiple of 3; the rest is ignored",
+            indices.len()
+        );
+    }
+    scene
+        .triangles
+        .extend(triangles.into_iter().map(|[a, b, c]| Triangle {
+            indices: if mirrored {
+                [base + a, base + c, base + b]
+            } else {
+                [base + a, base + b, base + c]
+            },
+            material,
+        }));
+    Ok(())
+}
+
+/// POSITION (required, float VEC3), NORMAL (optional, zero when absent) and TEXCOORD_0
+/// (optional, float or normalized integers) in the primitive's local space.
+fn read_vertices(
+    file: &str,
+    id: &PrimitiveId,
+    primitive: &gltf::Primitive,
+    buffers: &[Vec<u8>],
+) -> Result<Vec<Vertex>, SceneError> {
+    let fail = |detail: String| SceneError::invalid(file, format!("{id}: {detail}"));
+    let positions = primitive
+        .get(&gltf::Semantic::Positions)
+        .ok_or_else(|| fail("has no POSITION".into()))?;
+    let count = positions.count();
+    let checked = |semantic: gltf::Semantic, types: &[DataType], dims: Dimensions| {
+        let Some(accessor) = primitive.get(&semantic) else {
+            return Ok(false);
+        };
+        check_accessor(
+            file,
+            &accessor,
+            buffers,
+            &format!("{id} {}", semantic.to_string()),
+            types,
+            dims,
+        )?;
+        if accessor.count() != count {
+            return Err(fail(format!(
+                "{} has {} elements but POSITION has {count}",
+                semantic.to_string(),
+                accessor.count()
+            )));
+        }
+        Ok(true)
+    };
+    checked(
+        gltf::Semantic::Positions,
+        &[DataType::F32],
+        Dimensions::Vec3,
+    )?;
+    let has_normals = checked(gltf::Semantic::Normals, &[DataType::F32], Dimensions::Vec3)?;
+    let has_uvs = checked(
+        gltf::Semantic::TexCoords(0),
+        &[DataType::F32, DataType::U8, DataType::U16],
+        Dimensions::Vec2,
+    )?;
+
+    let reader = primitive.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
+    let mut vertices: Vec<Vertex> = reader
+        .read_positions()
+        .ok_or_else(|| fail("POSITION unreadable".into()))?
+        .map(|p| Vertex {
+            position: Vec3::from_array(p),
+            ..Vertex::default()
+        })
+        .collect();
+    if has_normals {
+        let normals = reader
+            .read_normals()
+            .ok_or_else(|| fail("NORMAL unreadable".into()))?;
+        for (v, n) in vertices.iter_mut().zip(normals) {
+            v.normal = Vec3::from_array(n);
+        }
+    }
+    if has_uvs {
+        let uvs = reader
+            .read_tex_coords(0)
+            .ok_or_else(|| fail("TEXCOORD_0 unreadable".into()))?;
+        for (v, uv) in vertices.iter_mut().zip(uvs.into_f32()) {
+            v.uv = Vec2::from_array(uv);
+        }
+    }
+    Ok(vertices)
+}
+
+/// Triangle list from any triangle mode, in the glTF spec's vertex order for strips and fans
+/// (which keeps every triangle's winding consistent with the first).
+fn triangle_list(mode: Mode, indices: &[u32]) -> Vec<[u32; 3]> {
+    let n = indices.len();
+    match mode {
+        Mode::TriangleStrip => (0..n.saturating_sub(2))
+            .map(|i| {
+                let odd = i % 2;
+                [indices[i], indices[i + 1 + odd], indices[i + 2 - odd]]
+            })
+            .collect(),
+        Mode::TriangleFan => (1..n.saturating_sub(1))
+            .map(|i| [indices[i], indices[i + 1], indices[0]])
+            .collect(),
+        _ => indices
+            .chunks_exact(3)
+            .map(|c| [c[0], c[1], c[2]])
+            .collect(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn strips_and_fans_become_consistently_wound_lists() {
+        // A strip over a quad 0-1-2-3: triangles (0,1,2) and (1,3,2) wind the same way.
+        assert_eq!(
+            triangle_list(Mode::TriangleStrip, &[0, 1, 2, 3]),
+            vec![[0, 1, 2], [1, 3, 2]]
+        );
+        assert_eq!(
+            triangle_list(Mode::TriangleFan, &[0, 1, 2, 3]),
+            vec![[1, 2, 0], [2, 3, 0]]
+        );
+        assert_eq!(
+            triangle_list(Mode::Triangles, &[0, 1, 2, 3]),
+            vec![[0, 1, 2]]
+        );
+        assert!(triangle_list(Mode::TriangleStrip, &[0, 1]).is_empty());
+    }
+}

@@ -1,0 +1,230 @@
+//! The power-proportional light table (notes §1): one entry per emissive triangle and per
+//! punctual light, picked with probability power / total through an alias table (Vose's
+//! method) so the shader samples a light in O(1) with two random numbers.
+//!
+//! Entries with zero, negative or non-finite (in f32) power or area never enter the table: a light that can
+//! be picked but contributes nothing only wastes candidates, and a degenerate triangle has
+//! no area to put the 1/area source pdf on.
+
+use glam::{DVec3, Vec3};
+
+use super::{Material, PunctualKind, PunctualLight, Scene, Texture};
+use crate::gpu_types::{
+    GpuLight, GpuPunctualLight, LIGHT_KIND_PUNCTUAL, LIGHT_KIND_SHIFT, LIGHT_KIND_TRIANGLE,
+    LIGHT_PRIM_MASK, NO_LIGHT, PUNCTUAL_DIRECTIONAL, PUNCTUAL_POINT, PUNCTUAL_SPOT,
+};
+use crate::image::luminance;
+
+pub struct LightTable {
+    /// Table entries: emissive triangles in BVH order, then punctual lights in scene order.
+    pub lights: Vec<GpuLight>,
+    /// Per triangle in BVH order: its index in `lights`, or `NO_LIGHT`.
+    pub triangle_light: Vec<u32>,
+    /// Every punctual light of the scene, in scene order (entries of `lights` point here).
+    pub punctual: Vec<GpuPunctualLight>,
+    /// Sum of the entries' powers (W for physical units).
+    pub total_power: f64,
+    /// Smallest and largest entry power, `None` for an empty table (for the UI and logs).
+    pub power_range: Option<(f32, f32)>,
+}
+
+impl LightTable {
+    /// `triangle_order[i]` is the scene triangle at BVH position `i` (see `Bvh`).
+    pub fn build(scene: &Scene, triangle_order: &[u32]) -> LightTable {
+        let radiance: Vec<Option<Vec3>> = scene
+            .materials
+            .iter()
+            .map(|m| emitted_radiance(m, &scene.textures))
+            .collect();
+        let mut entries: Vec<(u32, f64)> = Vec::new();
+        let mut triangle_light = vec![NO_LIGHT; triangle_order.len()];
+        for (bvh_index, &source) in triangle_order.iter().enumerate() {
+            let material = scene.triangles[source as usize].material as usize;
+            let Some(le) = radiance[material] else {
+                continue;
+            };
+            let sides = if scene.materials[material].double_sided {
+                2.0
+            } else {
+                1.0
+            };
+            let area = triangle_area(scene.triangle_positions(source as usize));
+            let power = area * luminance(le.to_array()) as f64 * std::f64::consts::PI * sides;
+            // The shader divides by the f32 area, so that must be usable too.
+            if is_usable(area) && is_usable(power) {
+                assert!(
+                    bvh_index as u32 <= LIGHT_PRIM_MASK,
+                    "too many triangles for a light index"
+                );
+                triangle_light[bvh_index] = entries.len() as u32;
+                entries.push((
+                    LIGHT_KIND_TRIANGLE << LIGHT_KIND_SHIFT | bvh_index as u32,
+                    power,
+                ));
+            }
+        }
+        // Directional lights are aimed at the scene: their power is what crosses a disc the
+        // size of the scene (R = half the bounds' diagonal), as in PBRT's DistantLight.
+        let scene_radius = 0.5 * scene.bounds().extent().length() as f64;
+        for (i, light) in scene.punctual_lights.iter().enumerate() {
+            let power = punctual_power(light, scene_radius);
+            if is_usable(power) {
+                entries.push((LIGHT_KIND_PUNCTUAL << LIGHT_KIND_SHIFT | i as u32, power));
+            }
+        }
+        let power_range = entries
+            .iter()
+            .fold(None, |range: Option<(f32, f32)>, &(_, p)| {
+                let p = p as f32;
+                Some(range.map_or((p, p), |(lo, hi)| (lo.min(p), hi.max(p))))
+            });
+        let (lights, total_power) = alias_table(&entries);
+        LightTable {
+            lights,
+            triangle_light,
+            punctual: scene.punctual_lights.iter().map(gpu_punctual).collect(),
+            total_power,
+            power_range,
+        }
+    }
+
+    /// Picks an entry exactly as the shader does: `(index, select_pdf)` from two uniform
+    /// numbers in [0, 1); `(NO_LIGHT, 0)` for an empty table.
+    pub fn sample(&self, u_slot: f32, u_alias: f32) -> (u32, f32) {
+        let n = self.lights.len() as u32;
+        if n == 0 {
+            return (NO_LIGHT, 0.0);
+        }
+        let slot = ((u_slot * n as f32) as u32).min(n - 1);
+        let entry = &self.lights[slot as usize];
+        let index = if u_alias < entry.alias_threshold {
+            slot
+        } else {
+            entry.alias_index
+        };
+        (index, self.lights[index as usize].select_pdf)
+    }
+}
+
+/// Positive and finite as the f32 the GPU will see.
+fn is_usable(x: f64) -> bool {
+    let x = x as f32;
+    x > 0.0 && x.is_finite()
+}
+
+/// Emitted radiance of a material, averaged over its emissive texture; `None` when it
+/// cannot emit.
+fn emitted_radiance(material: &Material, textures: &[Texture]) -> Option<Vec3> {
+    if !material.is_emissive() {
+        return None;
+    }
+    let mean = material
+        .emissive_texture
+        .and_then(|t| textures.get(t.texture as usize))
+        .map_or(Vec3::ONE, mean_linear_colour);
+    Some(material.emission * mean)
+}
+
+/// Per-channel mean of a texture's sRGB-decoded texels (alpha ignored). The mean keeps the
+/// colour, so the luminance of `emission × mean` is the texture-averaged luminance.
+fn mean_linear_colour(texture: &Texture) -> Vec3 {
+    if texture.texels.is_empty() {
+        return Vec3::ZERO;
+    }
+    let sum = texture.texels.iter().fold(DVec3::ZERO, |acc, t| {
+        acc + DVec3::new(
+            srgb_to_linear(t[0]),
+            srgb_to_linear(t[1]),
+            srgb_to_linear(t[2]),
+        )
+    });
+    (sum / texture.texels.len() as f64).as_vec3()
+}
+
+/// The sRGB transfer function (IEC 61966-2-1), as the GPU's `*Srgb` texture formats apply it.
+fn srgb_to_linear(c: u8) -> f64 {
+    let c = c as f64 / 255.0;
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+/// Area in f64, so thin triangles of a large scene do not round to zero power.
+fn triangle_area(p: [Vec3; 3]) -> f64 {
+    let [a, b, c] = p.map(|v| v.as_dvec3());
+    0.5 * (b - a).cross(c - a).length()
+}
+
+/// Emitted power, the same measure as a triangle's area · luminance(Le) · π.
+fn punctual_power(light: &PunctualLight, scene_radius: f64) -> f64 {
+    use std::f64::consts::PI;
+    let lum = luminance(light.intensity.to_array()) as f64;
+    match light.kind {
+        PunctualKind::Point => 4.0 * PI * lum,
+        PunctualKind::Spot { outer_cone, .. } => 2.0 * PI * (1.0 - (outer_cone as f64).cos()) * lum,
+        PunctualKind::Directional => lum * PI * scene_radius * scene_radius,
+    }
+}
+
+/// Point and directional lights get an all-accepting cone (cos = −1); shaders branch on
+/// `kind` anyway.
+fn gpu_punctual(light: &PunctualLight) -> GpuPunctualLight {
+    let (kind, cos_outer, cos_inner) = match light.kind {
+        PunctualKind::Point => (PUNCTUAL_POINT, -1.0, -1.0),
+        PunctualKind::Spot {
+            inner_cone,
+            outer_cone,
+        } => (PUNCTUAL_SPOT, outer_cone.cos(), inner_cone.cos()),
+        PunctualKind::Directional => (PUNCTUAL_DIRECTIONAL, -1.0, -1.0),
+    };
+    GpuPunctualLight {
+        position: light.position.to_array(),
+        kind,
+        // glTF lights point down their local −Z when nothing else is known.
+        direction: light.direction.normalize_or(Vec3::NEG_Z).to_array(),
+        range: light.range.unwrap_or(0.0),
+        intensity: light.intensity.to_array(),
+        cos_outer,
+        cos_inner,
+        _pad: [0.0; 3],
+    }
+}
+
+/// Vose's alias method over `(kind_prim, power)` entries, computed in f64 so that a 1e-20
+/// light next to a 1e8 one keeps its probability. Returns the entries and the total power.
+fn alias_table(entries: &[(u32, f64)]) -> (Vec<GpuLight>, f64) {
+    let n = entries.len();
+    let total: f64 = entries.iter().map(|e| e.1).sum();
+    let mut lights: Vec<GpuLight> = entries
+        .iter()
+        .enumerate()
+        .map(|(i, &(kind_prim, power))| GpuLight {
+            kind_prim,
+            select_pdf: (power / total) as f32,
+            alias_threshold: 1.0,
+            alias_index: i as u32,
+        })
+        .collect();
+    // Slot i keeps its own entry with probability scaled[i] and gives the rest to its alias.
+    let mut scaled: Vec<f64> = entries.iter().map(|e| e.1 / total * n as f64).collect();
+    let (mut small, mut large): (Vec<usize>, Vec<usize>) = (0..n).partition(|&i| scaled[i] < 1.0);
+    while let (Some(&s), Some(&l)) = (small.last(), large.last()) {
+        small.pop();
+        large.pop();
+        lights[s].alias_threshold = scaled[s] as f32;
+        lights[s].alias_index = l as u32;
+        scaled[l] -= 1.0 - scaled[s];
+        if scaled[l] < 1.0 {
+            small.push(l)
+        } else {
+            large.push(l)
+        }
+    }
+    // Whatever is left is 1 up to rounding and keeps its own slot (the defaults).
+    (lights, total)
+}
+
+#[cfg(test)]
+mod tests;

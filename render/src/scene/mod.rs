@@ -1,0 +1,249 @@
+//! Scenes on the CPU: what a glTF file or a built-in generator produces, before anything
+//! is uploaded. Everything is in world space and linear units; see README "Conventions".
+
+pub mod builtin;
+pub mod bvh;
+pub mod camera;
+pub mod gltf_loader;
+pub mod lights;
+pub mod load;
+
+pub use camera::Camera;
+pub use load::load_scene;
+
+use glam::{Vec2, Vec3, Vec4};
+
+/// A triangle soup with materials, textures, punctual lights and an optional camera.
+#[derive(Clone, Debug, Default)]
+pub struct Scene {
+    /// Human-readable name: the file name or `builtin:NAME`.
+    pub name: String,
+    pub vertices: Vec<Vertex>,
+    pub triangles: Vec<Triangle>,
+    pub materials: Vec<Material>,
+    pub textures: Vec<Texture>,
+    pub punctual_lights: Vec<PunctualLight>,
+    /// The file's first perspective camera, if it has one.
+    pub camera: Option<Camera>,
+}
+
+/// A world-space vertex. `normal` is zero when the source had none: shaders then use the
+/// geometric normal of the triangle.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Vertex {
+    pub position: Vec3,
+    pub normal: Vec3,
+    pub uv: Vec2,
+}
+
+/// Three vertex indices in counter-clockwise order (the front face, see README) and a
+/// material index.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Triangle {
+    pub indices: [u32; 3],
+    pub material: u32,
+}
+
+/// glTF metallic-roughness material with the extensions this project reads.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Material {
+    pub name: String,
+    /// Linear RGBA base colour factor.
+    pub base_color: Vec4,
+    pub base_color_texture: Option<TextureRef>,
+    pub metallic: f32,
+    pub roughness: f32,
+    /// glTF metallicRoughness texture: G = roughness, B = metallic (linear).
+    pub metallic_roughness_texture: Option<TextureRef>,
+    /// Emitted radiance = emissiveFactor × KHR_materials_emissive_strength.
+    pub emission: Vec3,
+    pub emissive_texture: Option<TextureRef>,
+    /// KHR_materials_specular `specularFactor` (1 when absent). 0 makes the dielectric
+    /// part exactly Lambertian.
+    pub specular: f32,
+    pub double_sided: bool,
+    pub alpha_mode: AlphaMode,
+}
+
+impl Default for Material {
+    fn default() -> Self {
+        Self {
+            name: String::from("default"),
+            base_color: Vec4::new(0.8, 0.8, 0.8, 1.0),
+            base_color_texture: None,
+            metallic: 0.0,
+            roughness: 1.0,
+            metallic_roughness_texture: None,
+            emission: Vec3::ZERO,
+            emissive_texture: None,
+            specular: 1.0,
+            double_sided: false,
+            alpha_mode: AlphaMode::Opaque,
+        }
+    }
+}
+
+impl Material {
+    /// A matte Lambertian material (specular lobe off).
+    pub fn diffuse(name: &str, base_color: Vec3) -> Self {
+        Self {
+            name: name.to_string(),
+            base_color: base_color.extend(1.0),
+            specular: 0.0,
+            ..Self::default()
+        }
+    }
+
+    /// An emitter: black diffuse surface with the given radiance.
+    pub fn emitter(name: &str, radiance: Vec3, double_sided: bool) -> Self {
+        Self {
+            name: name.to_string(),
+            base_color: Vec4::new(0.0, 0.0, 0.0, 1.0),
+            specular: 0.0,
+            emission: radiance,
+            double_sided,
+            ..Self::default()
+        }
+    }
+
+    /// True when this material can emit light at all.
+    pub fn is_emissive(&self) -> bool {
+        self.emission.max_element() > 0.0
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum AlphaMode {
+    Opaque,
+    /// Texels with alpha below the cutoff are holes (for camera and shadow rays).
+    Mask(f32),
+    /// Treated as opaque: this renderer has no transparency.
+    Blend,
+}
+
+/// A texture slot of a material. Only TEXCOORD_0 is supported; the loader rejects others.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TextureRef {
+    pub texture: u32,
+}
+
+/// RGBA8 texels as stored in the file (colour textures stay sRGB-encoded; the shader
+/// decodes them according to the slot that reads them).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Texture {
+    pub name: String,
+    pub width: u32,
+    pub height: u32,
+    pub texels: Vec<[u8; 4]>,
+    pub wrap_u: Wrap,
+    pub wrap_v: Wrap,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Wrap {
+    Repeat,
+    ClampToEdge,
+    MirroredRepeat,
+}
+
+/// KHR_lights_punctual light, in world space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PunctualLight {
+    pub kind: PunctualKind,
+    pub position: Vec3,
+    /// Direction the light points to (spot and directional), unit length.
+    pub direction: Vec3,
+    /// colour × intensity: candela for point and spot, lux for directional.
+    pub intensity: Vec3,
+    /// Distance where the light's influence ends (KHR_lights_punctual `range`).
+    pub range: Option<f32>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PunctualKind {
+    Point,
+    /// Cone angles in radians, 0 ≤ inner < outer ≤ π/2.
+    Spot {
+        inner_cone: f32,
+        outer_cone: f32,
+    },
+    Directional,
+}
+
+/// Axis-aligned bounds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Aabb {
+    pub min: Vec3,
+    pub max: Vec3,
+}
+
+impl Aabb {
+    pub const EMPTY: Aabb = Aabb {
+        min: Vec3::splat(f32::INFINITY),
+        max: Vec3::splat(f32::NEG_INFINITY),
+    };
+
+    pub fn grow(&mut self, p: Vec3) {
+        self.min = self.min.min(p);
+        self.max = self.max.max(p);
+    }
+
+    pub fn union(self, other: Aabb) -> Aabb {
+        Aabb {
+            min: self.min.min(other.min),
+            max: self.max.max(other.max),
+        }
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.min.x > self.max.x
+    }
+
+    pub fn extent(&self) -> Vec3 {
+        if self.is_empty() {
+            Vec3::ZERO
+        } else {
+            self.max - self.min
+        }
+    }
+
+    pub fn center(&self) -> Vec3 {
+        (self.min + self.max) * 0.5
+    }
+
+    /// Half the surface area (enough for SAH ratios).
+    pub fn half_area(&self) -> f32 {
+        let e = self.extent();
+        e.x * e.y + e.y * e.z + e.z * e.x
+    }
+}
+
+impl Scene {
+    pub fn bounds(&self) -> Aabb {
+        let mut b = Aabb::EMPTY;
+        for v in &self.vertices {
+            b.grow(v.position);
+        }
+        b
+    }
+
+    /// The three world positions of triangle `t`.
+    pub fn triangle_positions(&self, t: usize) -> [Vec3; 3] {
+        let tri = &self.triangles[t];
+        tri.indices.map(|i| self.vertices[i as usize].position)
+    }
+
+    /// The camera to start with: the file's, else one framing the scene bounds.
+    pub fn default_camera(&self) -> Camera {
+        self.camera
+            .unwrap_or_else(|| Camera::framing(self.bounds()))
+    }
+
+    /// Number of triangles whose material emits.
+    pub fn emissive_triangle_count(&self) -> usize {
+        self.triangles
+            .iter()
+            .filter(|t| self.materials[t.material as usize].is_emissive())
+            .count()
+    }
+}

@@ -1,0 +1,574 @@
+//! Every pipeline parameter in one table: name, stage, label, documentation, range and
+//! default. The viewer's panels, `--set`, presets and `restir-viewer params` all read this
+//! table, and the same name is used in WGSL (`Params` in types.wgsl) and in the UI.
+//! Defaults follow restir-notes.md §5.
+
+use std::fmt;
+use std::path::Path;
+
+use crate::gpu_types::GpuParams;
+use crate::shader_constants::*;
+
+/// The stage a parameter belongs to (the viewer groups them by this).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stage {
+    Initial,
+    Temporal,
+    Spatial,
+    Resampling,
+    Shading,
+}
+
+impl Stage {
+    pub fn label(self) -> &'static str {
+        match self {
+            Stage::Initial => "Initial candidates",
+            Stage::Temporal => "Temporal reuse",
+            Stage::Spatial => "Spatial reuse",
+            Stage::Resampling => "Bias correction",
+            Stage::Shading => "Shading and reference",
+        }
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum ParamValue {
+    Bool(bool),
+    Int(i64),
+    Float(f64),
+    Choice(String),
+}
+
+impl fmt::Display for ParamValue {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ParamValue::Bool(b) => write!(f, "{b}"),
+            ParamValue::Int(i) => write!(f, "{i}"),
+            ParamValue::Float(x) => write!(f, "{x}"),
+            ParamValue::Choice(s) => write!(f, "{s}"),
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ParamKind {
+    Bool,
+    Int { min: i64, max: i64 },
+    Float { min: f64, max: f64 },
+    Choice(&'static [&'static str]),
+}
+
+/// One row of the parameter table.
+#[derive(Clone, Copy, Debug)]
+pub struct ParamDef {
+    pub name: &'static str,
+    pub stage: Stage,
+    pub label: &'static str,
+    pub doc: &'static str,
+    pub kind: ParamKind,
+}
+
+impl ParamDef {
+    pub fn default_value(&self) -> ParamValue {
+        Settings::default()
+            .get(self.name)
+            .expect("every table row is a field")
+    }
+}
+
+/// How reused samples are weighted (restir-notes.md §4).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BiasCorrection {
+    /// 1/M weights with rejection: fast, biased near geometric and lighting discontinuities.
+    OneOverM,
+    /// Defensive pairwise MIS with the pixel's own sample as canonical: unbiased.
+    Pairwise,
+}
+
+pub const BIAS_CORRECTION_NAMES: &[&str] = &["one-over-m", "pairwise"];
+
+/// Conversion between a typed field and the table's dynamic value.
+trait Param: Sized {
+    fn to_value(&self) -> ParamValue;
+    fn from_value(value: &ParamValue) -> Option<Self>;
+}
+
+impl Param for bool {
+    fn to_value(&self) -> ParamValue {
+        ParamValue::Bool(*self)
+    }
+    fn from_value(value: &ParamValue) -> Option<Self> {
+        match value {
+            ParamValue::Bool(b) => Some(*b),
+            _ => None,
+        }
+    }
+}
+
+impl Param for u32 {
+    fn to_value(&self) -> ParamValue {
+        ParamValue::Int(*self as i64)
+    }
+    fn from_value(value: &ParamValue) -> Option<Self> {
+        match value {
+            ParamValue::Int(i) => u32::try_from(*i).ok(),
+            _ => None,
+        }
+    }
+}
+
+impl Param for f32 {
+    fn to_value(&self) -> ParamValue {
+        // Through the shortest decimal form, so 0.906 shows as 0.906, not 0.906000018.
+        ParamValue::Float(self.to_string().parse().unwrap_or(*self as f64))
+    }
+    fn from_value(value: &ParamValue) -> Option<Self> {
+        match value {
+            ParamValue::Float(x) => Some(*x as f32),
+            ParamValue::Int(i) => Some(*i as f32),
+            _ => None,
+        }
+    }
+}
+
+impl Param for BiasCorrection {
+    fn to_value(&self) -> ParamValue {
+        let index = match self {
+            BiasCorrection::OneOverM => 0,
+            BiasCorrection::Pairwise => 1,
+        };
+        ParamValue::Choice(BIAS_CORRECTION_NAMES[index].to_string())
+    }
+    fn from_value(value: &ParamValue) -> Option<Self> {
+        match value {
+            ParamValue::Choice(s) if s == "one-over-m" => Some(BiasCorrection::OneOverM),
+            ParamValue::Choice(s) if s == "pairwise" => Some(BiasCorrection::Pairwise),
+            _ => None,
+        }
+    }
+}
+
+macro_rules! parameter_table {
+    ($( $stage:ident { $( $field:ident : $ty:ty = $default:expr, $kind:expr, $label:literal, $doc:literal; )* } )*) => {
+        /// Every pipeline parameter (see the module docs).
+        #[derive(Clone, Debug, PartialEq)]
+        pub struct Settings { $( $( #[doc = $doc] pub $field: $ty, )* )* }
+
+        impl Default for Settings {
+            fn default() -> Self {
+                Self { $( $( $field: $default, )* )* }
+            }
+        }
+
+        /// The parameter table, in display order.
+        pub static PARAMS: &[ParamDef] = &[
+            $( $( ParamDef { name: stringify!($field), stage: Stage::$stage, label: $label, doc: $doc, kind: $kind }, )* )*
+        ];
+
+        impl Settings {
+            /// The current value of a parameter by name.
+            pub fn get(&self, name: &str) -> Option<ParamValue> {
+                match name {
+                    $( $( stringify!($field) => Some(self.$field.to_value()), )* )*
+                    _ => None,
+                }
+            }
+
+            /// Stores an already range-checked value; false on a type mismatch.
+            fn store(&mut self, name: &str, value: &ParamValue) -> bool {
+                match name {
+                    $( $( stringify!($field) => match <$ty as Param>::from_value(value) {
+                        Some(v) => { self.$field = v; true }
+                        None => false,
+                    }, )* )*
+                    _ => false,
+                }
+            }
+        }
+    };
+}
+
+parameter_table! {
+    Initial {
+        light_candidates: u32 = 32, ParamKind::Int { min: 0, max: 256 }, "Light candidates",
+            "Light samples per pixel drawn from the power-proportional alias table and streamed through the reservoir (notes §1). 1 light and 0 BSDF candidates is plain NEE.";
+        bsdf_candidates: u32 = 1, ParamKind::Int { min: 0, max: 16 }, "BSDF candidates",
+            "BSDF-sampled rays per pixel; those that hit an emitter join the reservoir, combined with the light candidates by the balance heuristic.";
+        initial_visibility: bool = true, ParamKind::Bool, "Initial visibility",
+            "Trace the survivor's shadow ray right after initial sampling and drop it when occluded (visibility reuse, notes §6), so reuse only spreads samples that were visible. One extra shadow ray per pixel.";
+    }
+    Temporal {
+        temporal: bool = true, ParamKind::Bool, "Temporal reuse",
+            "Merge the reprojected previous-frame reservoir (notes §2). Off: the temporal pass is not dispatched.";
+        m_cap: f32 = 20.0, ParamKind::Float { min: 0.0, max: 1e6 }, "M cap",
+            "Upper bound of a reservoir's confidence M. History is merged with min(M_prev, M cap), and M is capped after every reuse pass. M counts frames' worth of samples.";
+        normal_threshold: f32 = 0.906, ParamKind::Float { min: 0.0, max: 1.0 }, "Normal threshold",
+            "Reject a previous or neighbouring surface when the cosine between its normal and this one is below this (0.906 = 25°).";
+        depth_threshold: f32 = 0.1, ParamKind::Float { min: 0.0, max: 1.0 }, "Depth threshold",
+            "Reject when the world-position distance (temporal) or depth difference (spatial) exceeds this fraction of the view depth.";
+        target_ratio_clamp: f32 = 10.0, ParamKind::Float { min: 1.0, max: 1e6 }, "Target-ratio clamp",
+            "Reject the temporal sample when p̂(x, y_prev) / p̂(x_prev, y_prev) is outside [1/clamp, clamp]. 1 rejects any change of target.";
+        permutation: bool = true, ParamKind::Bool, "Permutation sampling",
+            "Read the previous reservoir through a per-frame 4×4 pixel permutation to decorrelate neighbours; fall back to the plain reprojected pixel when that read fails validation.";
+        check_offscreen: bool = true, ParamKind::Bool, "Check: off-screen",
+            "Reject a reprojection (or neighbour) outside the image. Off: the coordinate is clamped to the border.";
+        check_surface: bool = true, ParamKind::Bool, "Check: surface valid",
+            "Reject when the previous (or neighbouring) pixel saw no surface, or the history was invalidated (resize, scene change, camera cut).";
+        check_material: bool = true, ParamKind::Bool, "Check: material id",
+            "Reject when the material id differs.";
+        check_normal: bool = true, ParamKind::Bool, "Check: normal",
+            "Reject when the normals disagree by more than the normal threshold.";
+        check_depth: bool = true, ParamKind::Bool, "Check: position / depth",
+            "Reject when positions (temporal) or depths (spatial) differ by more than the depth threshold.";
+        check_reservoir: bool = true, ParamKind::Bool, "Check: reservoir null",
+            "Reject a previous or neighbouring reservoir that holds no sample.";
+        check_target: bool = true, ParamKind::Bool, "Check: target > 0",
+            "Reject the temporal sample when its target re-evaluated here is zero.";
+        check_target_ratio: bool = true, ParamKind::Bool, "Check: target ratio",
+            "Apply the target-ratio clamp (off disables the test whatever the clamp).";
+        camera_cut: f32 = 0.25, ParamKind::Float { min: 0.0, max: 100.0 }, "Camera cut distance",
+            "A camera jump longer than this fraction of the scene size in one frame is a cut: history is dropped. 0 treats every move as a cut.";
+    }
+    Spatial {
+        spatial: bool = true, ParamKind::Bool, "Spatial reuse",
+            "Merge reservoirs of nearby pixels (notes §3). Off: no spatial pass is dispatched.";
+        spatial_neighbours: u32 = 5, ParamKind::Int { min: 0, max: MAX_SPATIAL_NEIGHBOURS as i64 }, "Neighbours",
+            "Neighbours tried per pixel and pass, uniformly in a disk.";
+        spatial_radius: f32 = 30.0, ParamKind::Float { min: 1.0, max: 256.0 }, "Radius (px)",
+            "Radius of the neighbour disk in pixels.";
+        spatial_passes: u32 = 1, ParamKind::Int { min: 1, max: 8 }, "Passes",
+            "Spatial passes per frame, each reading the previous pass's output.";
+        boiling_filter: f32 = 0.0, ParamKind::Float { min: 0.0, max: 1000.0 }, "Boiling filter",
+            "Drop a pixel's sample when its W·p̂ exceeds this many times the neighbourhood mean (notes §6). 0 = off.";
+    }
+    Resampling {
+        bias_correction: BiasCorrection = BiasCorrection::OneOverM, ParamKind::Choice(BIAS_CORRECTION_NAMES), "Bias correction",
+            "one-over-m: 1/M weights with rejection (biased, fast). pairwise: defensive pairwise MIS with the pixel's own reservoir as canonical (unbiased, one extra target evaluation per neighbour).";
+    }
+    Shading {
+        jitter: bool = true, ParamKind::Bool, "Sub-pixel jitter",
+            "Jitter the G-buffer inside the pixel every frame, so accumulated frames converge to the pixel-area average (antialiased). Off: every pass, the reference included, sees the pixel centre, so comparisons measure lighting error alone.";
+        reference_spp: u32 = 4, ParamKind::Int { min: 1, max: 4096 }, "Reference spp",
+            "Samples per pixel per frame of the reference renderer.";
+    }
+}
+
+/// A problem with a parameter name or value (one line, names the parameter).
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum SettingsError {
+    #[error("unknown parameter '{0}' (see `restir-viewer params`)")]
+    Unknown(String),
+    #[error("parameter '{name}': {problem}")]
+    BadValue { name: String, problem: String },
+}
+
+impl Settings {
+    pub fn def(name: &str) -> Option<&'static ParamDef> {
+        PARAMS.iter().find(|p| p.name == name)
+    }
+
+    /// Sets a parameter. Out-of-range numbers are clamped and a warning is returned;
+    /// wrong types and non-finite numbers are errors.
+    pub fn set(&mut self, name: &str, value: ParamValue) -> Result<Option<String>, SettingsError> {
+        let def = Settings::def(name).ok_or_else(|| SettingsError::Unknown(name.to_string()))?;
+        let bad = |problem: String| SettingsError::BadValue {
+            name: name.to_string(),
+            problem,
+        };
+        let (value, warning) = match (def.kind, value) {
+            (ParamKind::Bool, v @ ParamValue::Bool(_)) => (v, None),
+            (ParamKind::Int { min, max }, ParamValue::Int(i)) => {
+                let c = i.clamp(min, max);
+                (
+                    ParamValue::Int(c),
+                    (c != i).then(|| format!("{name}: {i} is outside {min}..={max}, using {c}")),
+                )
+            }
+            (ParamKind::Int { min, max }, ParamValue::Float(x))
+                if x.fract() == 0.0 && x.is_finite() =>
+            {
+                let i = x as i64;
+                let c = i.clamp(min, max);
+                (
+                    ParamValue::Int(c),
+                    (c != i).then(|| format!("{name}: {i} is outside {min}..={max}, using {c}")),
+                )
+            }
+            (ParamKind::Float { min, max }, v @ (ParamValue::Float(_) | ParamValue::Int(_))) => {
+                let x = match v {
+                    ParamValue::Int(i) => i as f64,
+                    ParamValue::Float(x) => x,
+                    _ => unreachable!("matched above"),
+                };
+                if !x.is_finite() {
+                    return Err(bad(format!("{x} is not a finite number")));
+                }
+                let c = x.clamp(min, max);
+                (
+                    ParamValue::Float(c),
+                    (c != x).then(|| format!("{name}: {x} is outside {min}..={max}, using {c}")),
+                )
+            }
+            (ParamKind::Choice(options), ParamValue::Choice(s)) => {
+                if !options.contains(&s.as_str()) {
+                    return Err(bad(format!("'{s}' is not one of {}", options.join(", "))));
+                }
+                (ParamValue::Choice(s), None)
+            }
+            (kind, v) => return Err(bad(format!("{v} is not {}", kind_description(kind)))),
+        };
+        if !self.store(name, &value) {
+            return Err(bad(format!("{value} has the wrong type")));
+        }
+        if let Some(w) = &warning {
+            log::warn!("{w}");
+        }
+        Ok(warning)
+    }
+
+    /// Parses `value` as text for the parameter's kind (`--set key=value`).
+    pub fn set_from_str(
+        &mut self,
+        name: &str,
+        text: &str,
+    ) -> Result<Option<String>, SettingsError> {
+        let def = Settings::def(name).ok_or_else(|| SettingsError::Unknown(name.to_string()))?;
+        let bad = |problem: String| SettingsError::BadValue {
+            name: name.to_string(),
+            problem,
+        };
+        let t = text.trim();
+        let value = match def.kind {
+            ParamKind::Bool => match t.to_ascii_lowercase().as_str() {
+                "true" | "on" | "1" | "yes" => ParamValue::Bool(true),
+                "false" | "off" | "0" | "no" => ParamValue::Bool(false),
+                _ => return Err(bad(format!("'{t}' is not a boolean (true/false)"))),
+            },
+            ParamKind::Int { .. } => match t.parse::<i64>() {
+                Ok(i) => ParamValue::Int(i),
+                Err(_) => match t.parse::<f64>() {
+                    Ok(x) if x.is_finite() => {
+                        ParamValue::Int(x.round().clamp(i64::MIN as f64, i64::MAX as f64) as i64)
+                    }
+                    _ => return Err(bad(format!("'{t}' is not an integer"))),
+                },
+            },
+            ParamKind::Float { .. } => match t.parse::<f64>() {
+                Ok(x) => ParamValue::Float(x),
+                Err(_) => return Err(bad(format!("'{t}' is not a number"))),
+            },
+            ParamKind::Choice(_) => ParamValue::Choice(t.to_string()),
+        };
+        self.set(name, value)
+    }
+
+    /// Applies `key=value` pairs in order; returns the warnings.
+    pub fn apply_assignments<'a>(
+        &mut self,
+        assignments: impl IntoIterator<Item = &'a str>,
+    ) -> Result<Vec<String>, SettingsError> {
+        let mut warnings = Vec::new();
+        for a in assignments {
+            let (key, value) = a.split_once('=').ok_or_else(|| SettingsError::BadValue {
+                name: a.to_string(),
+                problem: "expected key=value".to_string(),
+            })?;
+            warnings.extend(self.set_from_str(key.trim(), value)?);
+        }
+        Ok(warnings)
+    }
+
+    /// The uniform block the shaders read.
+    pub fn gpu_params(&self) -> GpuParams {
+        let checks = [
+            (self.check_offscreen, REJECT_OFFSCREEN),
+            (self.check_surface, REJECT_SURFACE),
+            (self.check_material, REJECT_MATERIAL),
+            (self.check_normal, REJECT_NORMAL),
+            (self.check_depth, REJECT_DEPTH),
+            (self.check_reservoir, REJECT_RESERVOIR),
+            (self.check_target, REJECT_TARGET),
+            (self.check_target_ratio, REJECT_TARGET_RATIO),
+        ]
+        .iter()
+        .filter(|(on, _)| *on)
+        .fold(0, |acc, (_, bit)| acc | bit);
+        let mut flags = 0;
+        if self.permutation {
+            flags |= PARAM_FLAG_PERMUTATION;
+        }
+        if self.bias_correction == BiasCorrection::Pairwise {
+            flags |= PARAM_FLAG_PAIRWISE;
+        }
+        if self.jitter {
+            flags |= PARAM_FLAG_JITTER;
+        }
+        if self.initial_visibility {
+            flags |= PARAM_FLAG_INITIAL_VISIBILITY;
+        }
+        GpuParams {
+            light_candidates: self.light_candidates,
+            bsdf_candidates: self.bsdf_candidates,
+            m_cap: self.m_cap,
+            normal_threshold: self.normal_threshold,
+            depth_threshold: self.depth_threshold,
+            target_ratio_clamp: if self.check_target_ratio {
+                self.target_ratio_clamp
+            } else {
+                0.0
+            },
+            checks,
+            flags,
+            spatial_neighbours: self.spatial_neighbours.min(MAX_SPATIAL_NEIGHBOURS),
+            spatial_radius: self.spatial_radius,
+            reference_spp: self.reference_spp.max(1),
+            boiling_filter: self.boiling_filter,
+        }
+    }
+}
+
+fn kind_description(kind: ParamKind) -> String {
+    match kind {
+        ParamKind::Bool => "a boolean".into(),
+        ParamKind::Int { min, max } => format!("an integer in {min}..={max}"),
+        ParamKind::Float { min, max } => format!("a number in {min}..={max}"),
+        ParamKind::Choice(options) => format!("one of {}", options.join(", ")),
+    }
+}
+
+/// Presets: TOML files with one `name = value` line per parameter.
+pub mod preset {
+    use super::*;
+
+    /// Reads a preset on top of `base`. Unknown keys and wrong types are errors that name
+    /// the file and the key; out-of-range numbers are clamped with a warning.
+    pub fn load(path: &Path, base: &Settings) -> anyhow::Result<(Settings, Vec<String>)> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| anyhow::anyhow!("{}: cannot read preset: {e}", path.display()))?;
+        parse(&text, base).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))
+    }
+
+    pub fn parse(text: &str, base: &Settings) -> anyhow::Result<(Settings, Vec<String>)> {
+        let table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
+            anyhow::anyhow!(
+                "not a valid preset ({})",
+                e.message().lines().next().unwrap_or("")
+            )
+        })?;
+        let mut settings = base.clone();
+        let mut warnings = Vec::new();
+        for (key, value) in table {
+            let value = match value {
+                toml::Value::Boolean(b) => ParamValue::Bool(b),
+                toml::Value::Integer(i) => ParamValue::Int(i),
+                toml::Value::Float(x) => ParamValue::Float(x),
+                toml::Value::String(s) => ParamValue::Choice(s),
+                other => anyhow::bail!(
+                    "parameter '{key}': {} is not a parameter value",
+                    other.type_str()
+                ),
+            };
+            warnings.extend(settings.set(&key, value)?);
+        }
+        Ok((settings, warnings))
+    }
+
+    pub fn to_toml(settings: &Settings) -> String {
+        let mut out = String::from("# ReSTIR lab preset (restir-viewer params lists every name)\n");
+        for def in PARAMS {
+            let value = settings.get(def.name).expect("table row");
+            let text = match value {
+                ParamValue::Choice(s) => format!("\"{s}\""),
+                ParamValue::Float(x) => format!("{x:?}"),
+                other => other.to_string(),
+            };
+            out.push_str(&format!("{} = {}\n", def.name, text));
+        }
+        out
+    }
+
+    pub fn save(path: &Path, settings: &Settings) -> anyhow::Result<()> {
+        std::fs::write(path, to_toml(settings))
+            .map_err(|e| anyhow::anyhow!("{}: cannot write preset: {e}", path.display()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_follow_the_notes() {
+        let s = Settings::default();
+        assert_eq!(s.light_candidates, 32);
+        assert_eq!(s.bsdf_candidates, 1);
+        assert_eq!(s.m_cap, 20.0);
+        assert!((s.normal_threshold - 25f32.to_radians().cos()).abs() < 1e-3);
+        assert_eq!(s.depth_threshold, 0.1);
+        assert_eq!(s.target_ratio_clamp, 10.0);
+        assert_eq!(
+            (s.spatial_neighbours, s.spatial_radius, s.spatial_passes),
+            (5, 30.0, 1)
+        );
+        assert!(s.permutation && s.temporal && s.spatial);
+        assert_eq!(s.boiling_filter, 0.0);
+    }
+
+    #[test]
+    fn every_row_round_trips_through_get_and_set() {
+        for def in PARAMS {
+            let mut s = Settings::default();
+            let v = s.get(def.name).unwrap();
+            assert_eq!(s.set(def.name, v.clone()), Ok(None), "{}", def.name);
+            assert_eq!(s.get(def.name), Some(v));
+        }
+    }
+
+    #[test]
+    fn out_of_range_values_are_clamped_with_a_warning() {
+        let mut s = Settings::default();
+        let w = s.set_from_str("light_candidates", "100000").unwrap();
+        assert_eq!(s.light_candidates, 256);
+        assert!(w.unwrap().contains("light_candidates"));
+        s.set_from_str("m_cap", "-5").unwrap();
+        assert_eq!(s.m_cap, 0.0);
+        assert!(s.set_from_str("m_cap", "nan").is_err());
+        assert!(s.set_from_str("temporal", "maybe").is_err());
+        assert!(matches!(
+            s.set_from_str("nope", "1"),
+            Err(SettingsError::Unknown(_))
+        ));
+        assert!(s.set_from_str("bias_correction", "magic").is_err());
+        s.set_from_str("bias_correction", "pairwise").unwrap();
+        assert_eq!(s.bias_correction, BiasCorrection::Pairwise);
+    }
+
+    #[test]
+    fn presets_round_trip_and_reject_unknown_keys_and_types() {
+        let mut s = Settings::default();
+        s.m_cap = 7.5;
+        s.temporal = false;
+        s.bias_correction = BiasCorrection::Pairwise;
+        let text = preset::to_toml(&s);
+        let (back, warnings) = preset::parse(&text, &Settings::default()).unwrap();
+        assert_eq!(back, s);
+        assert!(warnings.is_empty());
+        let err = preset::parse("m_cup = 3\n", &Settings::default()).unwrap_err();
+        assert!(err.to_string().contains("m_cup"));
+        let err = preset::parse("temporal = \"yes\"\n", &Settings::default()).unwrap_err();
+        assert!(err.to_string().contains("temporal"));
+        assert!(preset::parse("this is not toml", &Settings::default()).is_err());
+    }
+
+    #[test]
+    fn gpu_params_reflect_checks_and_flags() {
+        let mut s = Settings::default();
+        assert_eq!(s.gpu_params().checks, 0xff);
+        s.check_normal = false;
+        s.check_target_ratio = false;
+        let p = s.gpu_params();
+        assert_eq!(p.checks & REJECT_NORMAL, 0);
+        assert_eq!(p.target_ratio_clamp, 0.0);
+        assert_eq!(p.flags & PARAM_FLAG_PERMUTATION, PARAM_FLAG_PERMUTATION);
+    }
+}

@@ -1,0 +1,174 @@
+//! WGSL composition: one mechanism for every pass. A pass file names its modules with
+//! `#include "common/x.wgsl"` (each included once) and guards optional code with
+//! `#ifdef EFFECT` / `#ifndef` / `#else` / `#endif`, so a pipeline compiled for a scene
+//! contains only the code paths that scene needs (see `effects.rs`). The generated
+//! constants of `shader_constants.rs` come first.
+//!
+//! Debug builds read the files from `shaders/` on disk (edit a shader, rebuild the
+//! pipelines, see the change); release builds use the copies embedded at compile time.
+
+use std::collections::BTreeSet;
+use std::path::PathBuf;
+
+use crate::shader_constants::wgsl_prelude;
+
+mod embedded {
+    include!(concat!(env!("OUT_DIR"), "/embedded_shaders.rs"));
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum ShaderSourceError {
+    #[error("shader '{0}' does not exist")]
+    Missing(String),
+    #[error("{file}:{line}: {message}")]
+    Syntax {
+        file: String,
+        line: usize,
+        message: String,
+    },
+}
+
+/// The on-disk shader folder, used in debug builds when it exists.
+fn disk_dir() -> Option<PathBuf> {
+    if cfg!(debug_assertions) {
+        let dir = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shaders"));
+        dir.is_dir().then_some(dir)
+    } else {
+        None
+    }
+}
+
+/// The text of one shader file (`path` relative to `shaders/`).
+pub fn shader_file(path: &str) -> Result<String, ShaderSourceError> {
+    if let Some(dir) = disk_dir() {
+        if let Ok(text) = std::fs::read_to_string(dir.join(path)) {
+            return Ok(text);
+        }
+    }
+    embedded::EMBEDDED_SHADERS
+        .iter()
+        .find(|(name, _)| *name == path)
+        .map(|(_, text)| text.to_string())
+        .ok_or_else(|| ShaderSourceError::Missing(path.to_string()))
+}
+
+/// Composes `entry` with its includes for the given set of defines.
+pub fn compose(entry: &str, defines: &BTreeSet<String>) -> Result<String, ShaderSourceError> {
+    let mut out = wgsl_prelude();
+    let mut defines_line = String::from("// Defines:");
+    for d in defines {
+        defines_line.push(' ');
+        defines_line.push_str(d);
+    }
+    out.push_str(&defines_line);
+    out.push('\n');
+    let mut included = BTreeSet::new();
+    append_file(entry, defines, &mut included, &mut out)?;
+    Ok(out)
+}
+
+fn append_file(
+    path: &str,
+    defines: &BTreeSet<String>,
+    included: &mut BTreeSet<String>,
+    out: &mut String,
+) -> Result<(), ShaderSourceError> {
+    if !included.insert(path.to_string()) {
+        return Ok(());
+    }
+    let text = shader_file(path)?;
+    // Each entry: (this branch is active, some branch of this #if was already taken).
+    let mut stack: Vec<(bool, bool)> = Vec::new();
+    let syntax = |line: usize, message: &str| ShaderSourceError::Syntax {
+        file: path.to_string(),
+        line: line + 1,
+        message: message.to_string(),
+    };
+    for (number, line) in text.lines().enumerate() {
+        let trimmed = line.trim_start();
+        let active = stack.iter().all(|(a, _)| *a);
+        if let Some(rest) = trimmed.strip_prefix('#') {
+            let mut words = rest.split_whitespace();
+            let directive = words.next().unwrap_or("");
+            let arg = words.next();
+            match directive {
+                "include" => {
+                    let name = arg
+                        .and_then(|a| a.strip_prefix('"')?.strip_suffix('"'))
+                        .ok_or_else(|| syntax(number, "#include needs a quoted path"))?;
+                    if active {
+                        append_file(name, defines, included, out)?;
+                    }
+                }
+                "ifdef" | "ifndef" => {
+                    let name = arg.ok_or_else(|| syntax(number, "#ifdef needs a name"))?;
+                    let truth = defines.contains(name) == (directive == "ifdef");
+                    stack.push((truth, truth));
+                }
+                "else" => {
+                    let top = stack
+                        .last_mut()
+                        .ok_or_else(|| syntax(number, "#else without #ifdef"))?;
+                    top.0 = !top.1;
+                    top.1 = true;
+                }
+                "endif" => {
+                    stack
+                        .pop()
+                        .ok_or_else(|| syntax(number, "#endif without #ifdef"))?;
+                }
+                other => return Err(syntax(number, &format!("unknown directive #{other}"))),
+            }
+            continue;
+        }
+        if active {
+            out.push_str(line);
+            out.push('\n');
+        }
+    }
+    if !stack.is_empty() {
+        return Err(syntax(text.lines().count(), "missing #endif"));
+    }
+    Ok(())
+}
+
+/// Every shader file name known to the library (for tests that compile them all).
+pub fn all_shader_files() -> Vec<&'static str> {
+    embedded::EMBEDDED_SHADERS
+        .iter()
+        .map(|(name, _)| *name)
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn defines(names: &[&str]) -> BTreeSet<String> {
+        names.iter().map(|s| s.to_string()).collect()
+    }
+
+    #[test]
+    fn includes_each_module_once() {
+        let src = compose("initial.wgsl", &defines(&["AREA_LIGHTS"])).unwrap();
+        assert_eq!(src.matches("struct Reservoir {").count(), 1);
+        assert!(src.contains("fn reservoir_update"));
+    }
+
+    #[test]
+    fn ifdef_removes_code_of_absent_effects() {
+        let without = compose("common/brdf.wgsl", &defines(&[])).unwrap();
+        let with = compose("common/brdf.wgsl", &defines(&["SPECULAR"])).unwrap();
+        assert!(!without.contains("ggx_d"));
+        assert!(with.contains("fn ggx_d"));
+    }
+
+    #[test]
+    fn missing_file_is_named() {
+        let mut included = BTreeSet::new();
+        let mut out = String::new();
+        // A missing file is reported by name.
+        let err = append_file("no/such.wgsl", &defines(&[]), &mut included, &mut out).unwrap_err();
+        assert!(err.to_string().contains("no/such.wgsl"));
+    }
+}

@@ -1,0 +1,189 @@
+//! Per-frame counters read back from the GPU (rejections by reason, selection sources,
+//! M-cap hits, permutation fallbacks, non-finite values per pass) and their summary
+//! over a run, as written to `--stats` JSON.
+
+use std::collections::BTreeMap;
+
+use serde::Serialize;
+
+use crate::shader_constants::*;
+
+/// The raw counters of one frame.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FrameCounters(pub Vec<u32>);
+
+impl FrameCounters {
+    pub fn get(&self, index: u32) -> u64 {
+        self.0.get(index as usize).copied().unwrap_or(0) as u64
+    }
+
+    pub fn add(&mut self, other: &FrameCounters) {
+        if self.0.len() < other.0.len() {
+            self.0.resize(other.0.len(), 0);
+        }
+        for (a, b) in self.0.iter_mut().zip(&other.0) {
+            *a = a.saturating_add(*b);
+        }
+    }
+
+    pub fn surface_pixels(&self) -> u64 {
+        self.get(STAT_SURFACE_PIXELS)
+    }
+
+    pub fn non_finite_total(&self) -> u64 {
+        (0..GUARDED_PASS_NAMES.len() as u32)
+            .map(|p| self.get(STAT_NONFINITE + p))
+            .sum()
+    }
+}
+
+/// One frame's report: its counters and (when timestamps exist) per-pass GPU times.
+#[derive(Clone, Debug, Default)]
+pub struct FrameReport {
+    pub frame: u64,
+    pub counters: FrameCounters,
+    pub pass_ms: Vec<(&'static str, f64)>,
+}
+
+impl FrameReport {
+    pub fn gpu_ms(&self) -> f64 {
+        self.pass_ms.iter().map(|(_, ms)| ms).sum()
+    }
+}
+
+/// Summary of a run of frames, the shape of `--stats` JSON.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct StatsSummary {
+    pub frames: u64,
+    /// Median over frames of each pass's GPU time (missing when timestamps are unsupported).
+    pub pass_ms_median: BTreeMap<String, f64>,
+    pub frame_gpu_ms_median: Option<f64>,
+    /// Pixels of the output image with a NaN or infinite channel.
+    pub nan_inf_pixels: u64,
+    /// Non-finite values each pass produced or read (and replaced), summed over frames.
+    pub non_finite_by_pass: BTreeMap<String, u64>,
+    pub temporal_rejections: BTreeMap<String, u64>,
+    pub spatial_rejections: BTreeMap<String, u64>,
+    /// Fraction of surface pixels whose survivor came from each source.
+    pub source_fractions: BTreeMap<String, f64>,
+    /// Fraction of surface pixels where the temporal or spatial M cap fired.
+    pub temporal_cap_fired_fraction: f64,
+    pub spatial_cap_fired_fraction: f64,
+    pub temporal_accepted_fraction: f64,
+    pub fallback_tried: u64,
+    pub fallback_used: u64,
+    pub boiling_dropped: u64,
+    pub surface_pixels: u64,
+}
+
+fn median(mut v: Vec<f64>) -> Option<f64> {
+    if v.is_empty() {
+        return None;
+    }
+    v.sort_by(|a, b| a.total_cmp(b));
+    let n = v.len();
+    Some(if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    })
+}
+
+impl StatsSummary {
+    pub fn from_reports(reports: &[FrameReport], nan_inf_pixels: u64) -> StatsSummary {
+        let mut total = FrameCounters::default();
+        let mut per_pass: BTreeMap<String, Vec<f64>> = BTreeMap::new();
+        for r in reports {
+            total.add(&r.counters);
+            // A pass recorded several times in a frame (spatial passes) counts as its sum.
+            let mut frame: BTreeMap<&str, f64> = BTreeMap::new();
+            for (name, ms) in &r.pass_ms {
+                *frame.entry(name).or_default() += ms;
+            }
+            for (name, ms) in frame {
+                per_pass.entry(name.to_string()).or_default().push(ms);
+            }
+        }
+        let frame_times: Vec<f64> = reports
+            .iter()
+            .filter(|r| !r.pass_ms.is_empty())
+            .map(|r| r.gpu_ms())
+            .collect();
+        let surface = total.surface_pixels();
+        let fraction = |n: u64| {
+            if surface > 0 {
+                n as f64 / surface as f64
+            } else {
+                0.0
+            }
+        };
+        let named = |base: u32| -> BTreeMap<String, u64> {
+            REJECT_REASON_NAMES
+                .iter()
+                .enumerate()
+                .map(|(i, n)| (n.to_string(), total.get(base + i as u32)))
+                .collect()
+        };
+        StatsSummary {
+            frames: reports.len() as u64,
+            pass_ms_median: per_pass
+                .into_iter()
+                .filter_map(|(k, v)| Some((k, median(v)?)))
+                .collect(),
+            frame_gpu_ms_median: median(frame_times),
+            nan_inf_pixels,
+            non_finite_by_pass: GUARDED_PASS_NAMES
+                .iter()
+                .enumerate()
+                .map(|(i, n)| (n.to_string(), total.get(STAT_NONFINITE + i as u32)))
+                .collect(),
+            temporal_rejections: named(STAT_TEMPORAL_REJECT),
+            spatial_rejections: named(STAT_SPATIAL_REJECT),
+            source_fractions: SOURCE_NAMES
+                .iter()
+                .enumerate()
+                .map(|(i, n)| (n.to_string(), fraction(total.get(STAT_SOURCE + i as u32))))
+                .collect(),
+            temporal_cap_fired_fraction: fraction(total.get(STAT_TEMPORAL_CAP)),
+            spatial_cap_fired_fraction: fraction(total.get(STAT_SPATIAL_CAP)),
+            temporal_accepted_fraction: fraction(total.get(STAT_TEMPORAL_ACCEPTED)),
+            fallback_tried: total.get(STAT_FALLBACK_TRIED),
+            fallback_used: total.get(STAT_FALLBACK_USED),
+            boiling_dropped: total.get(STAT_BOILING_DROPPED),
+            surface_pixels: surface,
+        }
+    }
+
+    pub fn non_finite_total(&self) -> u64 {
+        self.non_finite_by_pass.values().sum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn summary_fractions_and_medians() {
+        let mut c = vec![0u32; STAT_COUNT as usize];
+        c[STAT_SURFACE_PIXELS as usize] = 100;
+        c[(STAT_SOURCE + SOURCE_TEMPORAL) as usize] = 60;
+        c[(STAT_SOURCE + SOURCE_INITIAL) as usize] = 40;
+        c[(STAT_TEMPORAL_REJECT + 1) as usize] = 7;
+        let reports: Vec<_> = [1.0, 3.0, 2.0]
+            .iter()
+            .enumerate()
+            .map(|(i, ms)| FrameReport {
+                frame: i as u64,
+                counters: FrameCounters(c.clone()),
+                pass_ms: vec![("shade", *ms)],
+            })
+            .collect();
+        let s = StatsSummary::from_reports(&reports, 0);
+        assert_eq!(s.frames, 3);
+        assert_eq!(s.pass_ms_median["shade"], 2.0);
+        assert!((s.source_fractions["temporal"] - 0.6).abs() < 1e-12);
+        assert_eq!(s.temporal_rejections["surface_invalid"], 21);
+        assert_eq!(s.non_finite_total(), 0);
+    }
+}

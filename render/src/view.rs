@@ -1,0 +1,168 @@
+//! What is shown and how: the rendering mode, the debug view, exposure and tonemapper.
+//! These are view settings, not pipeline parameters (they never change the estimate).
+
+use crate::shader_constants::*;
+
+/// Which estimator renders the frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+pub enum Mode {
+    /// Unbiased progressive ground truth (ray-traced camera rays, light + BSDF MIS).
+    Reference,
+    /// One power-sampled light sample per pixel per frame.
+    Nee,
+    /// Initial RIS without reuse.
+    Ris,
+    /// RIS + temporal + spatial reuse, as the settings say.
+    Restir,
+}
+
+impl Mode {
+    pub const ALL: [Mode; 4] = [Mode::Reference, Mode::Nee, Mode::Ris, Mode::Restir];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Mode::Reference => "reference",
+            Mode::Nee => "nee",
+            Mode::Ris => "ris",
+            Mode::Restir => "restir",
+        }
+    }
+
+    pub fn from_name(s: &str) -> Option<Mode> {
+        Mode::ALL.into_iter().find(|m| m.name() == s)
+    }
+}
+
+/// The debug views (names as on the command line: `--debug-view NAME`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum DebugView {
+    Final,
+    Source,
+    M,
+    Rejection,
+    Weight,
+    Normals,
+    Albedo,
+    Depth,
+    Motion,
+    Error,
+}
+
+impl DebugView {
+    pub const ALL: [DebugView; 10] = [
+        DebugView::Final,
+        DebugView::Source,
+        DebugView::M,
+        DebugView::Rejection,
+        DebugView::Weight,
+        DebugView::Normals,
+        DebugView::Albedo,
+        DebugView::Depth,
+        DebugView::Motion,
+        DebugView::Error,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            DebugView::Final => "final",
+            DebugView::Source => "source",
+            DebugView::M => "m",
+            DebugView::Rejection => "rejection",
+            DebugView::Weight => "w",
+            DebugView::Normals => "normals",
+            DebugView::Albedo => "albedo",
+            DebugView::Depth => "depth",
+            DebugView::Motion => "motion",
+            DebugView::Error => "error",
+        }
+    }
+
+    pub fn from_name(s: &str) -> Option<DebugView> {
+        DebugView::ALL.into_iter().find(|v| v.name() == s)
+    }
+
+    pub fn gpu_code(self) -> u32 {
+        match self {
+            DebugView::Final => VIEW_FINAL,
+            DebugView::Source => VIEW_SOURCE,
+            DebugView::M => VIEW_M,
+            DebugView::Rejection => VIEW_REJECTION,
+            DebugView::Weight => VIEW_WEIGHT,
+            DebugView::Normals => VIEW_NORMALS,
+            DebugView::Albedo => VIEW_ALBEDO,
+            DebugView::Depth => VIEW_DEPTH,
+            DebugView::Motion => VIEW_MOTION,
+            DebugView::Error => VIEW_ERROR,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Tonemapper {
+    Aces,
+    Reinhard,
+    Clamp,
+}
+
+impl Tonemapper {
+    pub const ALL: [Tonemapper; 3] = [Tonemapper::Aces, Tonemapper::Reinhard, Tonemapper::Clamp];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Tonemapper::Aces => "aces",
+            Tonemapper::Reinhard => "reinhard",
+            Tonemapper::Clamp => "clamp",
+        }
+    }
+
+    pub fn gpu_code(self) -> u32 {
+        match self {
+            Tonemapper::Aces => TONEMAP_ACES,
+            Tonemapper::Reinhard => TONEMAP_REINHARD,
+            Tonemapper::Clamp => TONEMAP_CLAMP,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ViewSettings {
+    pub view: DebugView,
+    /// Exposure in stops (the image is multiplied by 2^exposure_ev before tonemapping).
+    pub exposure_ev: f32,
+    pub tonemapper: Tonemapper,
+    /// Show the running average instead of the last frame.
+    pub accumulate: bool,
+    /// Rejection reasons the rejection view shows: temporal bits 0..8, spatial 8..16.
+    pub reason_mask: u32,
+}
+
+impl Default for ViewSettings {
+    fn default() -> Self {
+        ViewSettings {
+            view: DebugView::Final,
+            exposure_ev: 0.0,
+            tonemapper: Tonemapper::Aces,
+            accumulate: false,
+            reason_mask: 0xffff,
+        }
+    }
+}
+
+/// Exposure (in EV) that maps the image's log-average luminance to middle grey (0.18),
+/// the usual automatic exposure; 0 for a black image.
+pub fn auto_exposure_ev(image: &crate::image::LinearImage) -> f32 {
+    let mut sum = 0.0f64;
+    let mut n = 0usize;
+    for p in &image.pixels {
+        let l = crate::image::luminance([p[0], p[1], p[2]]);
+        if l.is_finite() && l > 0.0 {
+            sum += (l as f64).ln();
+            n += 1;
+        }
+    }
+    if n == 0 {
+        return 0.0;
+    }
+    let log_avg = (sum / n as f64).exp();
+    (0.18 / log_avg).log2().clamp(-40.0, 40.0) as f32
+}

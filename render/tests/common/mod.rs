@@ -1,0 +1,43 @@
+//! Shared set-up of the GPU tests: every test needs an adapter (lavapipe in CI) and fails
+//! with a clear message when there is none; none of them skips silently.
+#![allow(dead_code)]
+
+use restir_render::{Gpu, LinearImage, Mode, Renderer, Settings, load_scene};
+
+pub fn gpu() -> Gpu {
+    match Gpu::new_headless() {
+        Ok(g) => g,
+        Err(e) => panic!("GPU tests need a wgpu adapter: {e}"),
+    }
+}
+
+pub fn renderer(scene: &str, width: u32, height: u32, mode: Mode, settings: Settings) -> Renderer {
+    let scene = load_scene(scene).unwrap_or_else(|e| panic!("{e}"));
+    let mut r =
+        Renderer::new(gpu(), &scene, width, height, settings).unwrap_or_else(|e| panic!("{e:#}"));
+    r.set_mode(mode);
+    r
+}
+
+/// Renders `frames` frames and returns the average of them.
+pub fn accumulate(r: &mut Renderer, frames: u32) -> LinearImage {
+    r.reset_accumulation();
+    for _ in 0..frames {
+        r.render_frame().unwrap_or_else(|e| panic!("{e}"));
+    }
+    r.read_accumulated()
+}
+
+/// A converged reference of the renderer's current scene and camera.
+pub fn reference(r: &mut Renderer, frames: u32, spp: u32) -> LinearImage {
+    let mode = r.mode();
+    let settings = r.settings().clone();
+    let mut s = settings.clone();
+    s.reference_spp = spp;
+    r.set_settings(s);
+    r.set_mode(Mode::Reference);
+    let img = accumulate(r, frames);
+    r.set_mode(mode);
+    r.set_settings(settings);
+    img
+}

@@ -1,0 +1,104 @@
+// Light sampling (restir-notes.md §1): pick a light in proportion to its power with the
+// alias table built on the CPU (render/src/scene/lights.rs), then a uniform point on it.
+// A light sample is (light id, barycentric uv): enough to rebuild the point anywhere.
+#include "common/scene_bindings.wgsl"
+#include "common/material.wgsl"
+#include "common/rng.wgsl"
+
+const LIGHT_POINT_AREA: u32 = 0u;
+const LIGHT_POINT_POSITION: u32 = 1u;   // point and spot lights
+const LIGHT_POINT_DIRECTION: u32 = 2u;  // directional lights
+
+struct LightPoint {
+    kind: u32,
+    position: vec3<f32>,  // the point on the light; for directional lights unused
+    normal: vec3<f32>,    // emitting-side normal of a triangle light
+    radiance: vec3<f32>,  // Le (area), intensity (point, spot) or illuminance (directional)
+    source_pdf: f32,      // area measure for triangles, discrete for punctual lights
+    double_sided: bool,
+    punctual: u32,        // index into punctual_lights
+}
+
+fn light_kind_of(light: Light) -> u32 {
+    return light.kind_prim >> LIGHT_KIND_SHIFT;
+}
+
+fn light_prim_of(light: Light) -> u32 {
+    return light.kind_prim & LIGHT_PRIM_MASK;
+}
+
+// Alias method: one uniform slot, one coin.
+fn sample_light_index(u: vec2<f32>) -> u32 {
+    let n = frame.light_count;
+    let slot = min(u32(u.x * f32(n)), n - 1u);
+    let entry = lights[slot];
+    return select(entry.alias_index, slot, u.y < entry.alias_threshold);
+}
+
+// Uniform point on a triangle as barycentrics (u, v) of p1 and p2.
+fn uniform_triangle_uv(u: vec2<f32>) -> vec2<f32> {
+    let su = sqrt(u.x);
+    return vec2<f32>(su * (1.0 - u.y), su * u.y);
+}
+
+fn triangle_area(tri: Triangle) -> f32 {
+    return 0.5 * length(cross(tri.p1 - tri.p0, tri.p2 - tri.p0));
+}
+
+fn light_point(light_id: u32, uv: vec2<f32>) -> LightPoint {
+    let light = lights[light_id];
+    var lp: LightPoint;
+    lp.source_pdf = light.select_pdf;
+    lp.double_sided = false;
+    lp.punctual = 0u;
+#ifdef AREA_LIGHTS
+    if light_kind_of(light) == LIGHT_KIND_TRIANGLE {
+        let tri_index = light_prim_of(light);
+        let tri = triangles[tri_index];
+        lp.kind = LIGHT_POINT_AREA;
+        lp.position = tri.p0 * (1.0 - uv.x - uv.y) + tri.p1 * uv.x + tri.p2 * uv.y;
+        lp.normal = triangle_normal(tri);
+        lp.radiance = material_emission(tri.material, triangle_uv(tri_index, uv.x, uv.y));
+        lp.source_pdf = light.select_pdf / triangle_area(tri);
+        lp.double_sided = (materials[tri.material].flags & MATERIAL_DOUBLE_SIDED) != 0u;
+        return lp;
+    }
+#endif
+#ifdef PUNCTUAL_LIGHTS
+    let p = punctual_lights[light_prim_of(light)];
+    lp.punctual = light_prim_of(light);
+    lp.radiance = p.intensity;
+    lp.normal = vec3<f32>(0.0);
+    lp.position = p.position;
+    lp.kind = select(LIGHT_POINT_POSITION, LIGHT_POINT_DIRECTION, p.kind == PUNCTUAL_DIRECTIONAL);
+#endif
+    return lp;
+}
+
+struct LightSampleId {
+    light: u32,
+    uv: vec2<f32>,
+}
+
+fn sample_light(rng: ptr<function, u32>) -> LightSampleId {
+    let light = sample_light_index(rand_vec2(rng));
+    let uv = uniform_triangle_uv(rand_vec2(rng));
+    return LightSampleId(light, uv);
+}
+
+#ifdef PUNCTUAL_LIGHTS
+// Spot cone and range window of KHR_lights_punctual, as the spec recommends.
+fn punctual_attenuation(p: PunctualLight, to_light: vec3<f32>, dist2: f32) -> f32 {
+    var a = 1.0;
+    if p.range > 0.0 {
+        let r = dist2 / (p.range * p.range);
+        a = clamp(1.0 - r * r, 0.0, 1.0);
+    }
+    if p.kind == PUNCTUAL_SPOT {
+        let cd = dot(p.direction, -to_light);
+        let t = clamp((cd - p.cos_outer) / max(p.cos_inner - p.cos_outer, 1e-4), 0.0, 1.0);
+        a *= t * t;
+    }
+    return a;
+}
+#endif

@@ -1,0 +1,156 @@
+// Material and texture evaluation at a point of a triangle. Each texture slot sits in its
+// own #ifdef so a scene without textures compiles none of this (issue "specialisation").
+#include "common/scene_bindings.wgsl"
+#include "common/math.wgsl"
+
+struct MaterialSample {
+    base_color: vec3<f32>,
+    alpha: f32,
+    metallic: f32,
+    roughness: f32,
+    specular: f32,
+}
+
+fn triangle_uv(tri_index: u32, u: f32, v: f32) -> vec2<f32> {
+    let s = shading[tri_index];
+    return s.uvs[0] * (1.0 - u - v) + s.uvs[1] * u + s.uvs[2] * v;
+}
+
+#ifdef ANY_TEXTURES
+fn wrap_texel(i: i32, size: i32, mode: u32) -> i32 {
+    if mode == 1u {
+        return clamp(i, 0, size - 1);
+    }
+    if mode == 2u {
+        let period = 2 * size;
+        let m = ((i % period) + period) % period;
+        return select(m, period - 1 - m, m >= size);
+    }
+    return ((i % size) + size) % size;
+}
+
+fn texel(t: Texture, x: i32, y: i32) -> vec4<f32> {
+    let xi = wrap_texel(x, i32(t.width), t.wrap & 15u);
+    let yi = wrap_texel(y, i32(t.height), t.wrap >> 4u);
+    return unpack4x8unorm(texels[t.offset + u32(yi) * t.width + u32(xi)]);
+}
+
+// Bilinear filtering of the base level (no mips: every pass reads the same value, which
+// keeps the raster and ray-traced paths consistent).
+fn sample_texture(index: u32, uv: vec2<f32>, srgb: bool) -> vec4<f32> {
+    let t = textures[index];
+    let p = uv * vec2<f32>(f32(t.width), f32(t.height)) - 0.5;
+    let base = floor(p);
+    let f = p - base;
+    let x = i32(base.x);
+    let y = i32(base.y);
+    var c00 = texel(t, x, y);
+    var c10 = texel(t, x + 1, y);
+    var c01 = texel(t, x, y + 1);
+    var c11 = texel(t, x + 1, y + 1);
+    if srgb {
+        c00 = vec4<f32>(srgb_to_linear(c00.rgb), c00.a);
+        c10 = vec4<f32>(srgb_to_linear(c10.rgb), c10.a);
+        c01 = vec4<f32>(srgb_to_linear(c01.rgb), c01.a);
+        c11 = vec4<f32>(srgb_to_linear(c11.rgb), c11.a);
+    }
+    return mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
+}
+#endif
+
+fn material_alpha(material_index: u32, uv: vec2<f32>) -> f32 {
+    let m = materials[material_index];
+    var alpha = m.base_color.a;
+#ifdef BASE_COLOR_TEXTURES
+    if m.base_color_texture != NO_TEXTURE {
+        alpha *= sample_texture(m.base_color_texture, uv, true).a;
+    }
+#endif
+    return alpha;
+}
+
+fn eval_material(material_index: u32, uv: vec2<f32>) -> MaterialSample {
+    let m = materials[material_index];
+    var out = MaterialSample(m.base_color.rgb, m.base_color.a, m.metallic, m.roughness, m.specular);
+#ifdef BASE_COLOR_TEXTURES
+    if m.base_color_texture != NO_TEXTURE {
+        let c = sample_texture(m.base_color_texture, uv, true);
+        out.base_color *= c.rgb;
+        out.alpha *= c.a;
+    }
+#endif
+#ifdef METALLIC_ROUGHNESS_TEXTURES
+    if m.metallic_roughness_texture != NO_TEXTURE {
+        let mr = sample_texture(m.metallic_roughness_texture, uv, false);
+        out.roughness *= mr.g;
+        out.metallic *= mr.b;
+    }
+#endif
+#ifndef METALLIC
+    out.metallic = 0.0;
+#endif
+#ifndef SPECULAR
+    out.specular = 0.0;
+#endif
+    return out;
+}
+
+// Emitted radiance of a material at uv, before the front-face rule.
+fn material_emission(material_index: u32, uv: vec2<f32>) -> vec3<f32> {
+    let m = materials[material_index];
+    var e = m.emission;
+#ifdef EMISSIVE_TEXTURES
+    if m.emissive_texture != NO_TEXTURE {
+        e *= sample_texture(m.emissive_texture, uv, true).rgb;
+    }
+#endif
+    return e;
+}
+
+// Geometric normal of a triangle by its counter-clockwise winding (the emitting side).
+fn triangle_normal(tri: Triangle) -> vec3<f32> {
+    return safe_normalize(cross(tri.p1 - tri.p0, tri.p2 - tri.p0), vec3<f32>(0.0, 1.0, 0.0));
+}
+
+// Everything a shading point needs from a hit (G-buffer resolve and reference renderer).
+struct HitSurface {
+    position: vec3<f32>,
+    normal: vec3<f32>,      // shading normal, on the viewer's side
+    geo_normal: vec3<f32>,  // geometric normal, on the viewer's side
+    front_facing: bool,     // the viewer sees the counter-clockwise (emitting) side
+    uv: vec2<f32>,
+    material: u32,
+}
+
+fn hit_surface(tri_index: u32, u: f32, v: f32, viewer: vec3<f32>) -> HitSurface {
+    let tri = triangles[tri_index];
+    let s = shading[tri_index];
+    let w = 1.0 - u - v;
+    let position = tri.p0 * w + tri.p1 * u + tri.p2 * v;
+    let ng = triangle_normal(tri);
+    let to_viewer = viewer - position;
+    let front = dot(ng, to_viewer) >= 0.0;
+    let ng_f = select(-ng, ng, front);
+    var ns = ng;
+    if s.has_normals != 0u {
+        ns = safe_normalize(oct_decode(s.normals[0]) * w + oct_decode(s.normals[1]) * u + oct_decode(s.normals[2]) * v, ng);
+    }
+    ns = select(-ns, ns, front);
+    // An interpolated normal that faces away from the viewer would make the BRDF
+    // undefined; fall back to the geometric one (the usual "normal flip" fix).
+    if dot(ns, to_viewer) <= 0.0 {
+        ns = ng_f;
+    }
+    let uv = s.uvs[0] * w + s.uvs[1] * u + s.uvs[2] * v;
+    return HitSurface(position, ns, ng_f, front, uv, tri.material);
+}
+
+// Radiance leaving a hit toward the viewer: emitters shine from their front face only,
+// from both faces when double-sided (README, "Conventions").
+fn emission_toward_viewer(hs: HitSurface) -> vec3<f32> {
+    let m = materials[hs.material];
+    if !hs.front_facing && (m.flags & MATERIAL_DOUBLE_SIDED) == 0u {
+        return vec3<f32>(0.0);
+    }
+    return material_emission(hs.material, hs.uv);
+}

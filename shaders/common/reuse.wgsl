@@ -1,0 +1,37 @@
+// Checks shared by temporal and spatial reuse (restir-notes.md §2.2, §3).
+#include "common/frame_bindings.wgsl"
+#include "common/stats_bindings.wgsl"
+#include "common/shading_point.wgsl"
+
+fn check_enabled(bit: u32) -> bool {
+    return (params.checks & bit) != 0u;
+}
+
+// Material, normal and position/depth agreement between two valid surfaces. Temporal reuse
+// compares world positions (the same point should come back); spatial reuse compares view
+// depths (neighbours are different points by design). Both thresholds are relative to the
+// current view depth, so they follow the scene's scale.
+fn surface_dissimilarity(s: Surface, other: Surface, same_point: bool) -> u32 {
+    var mask = 0u;
+    if check_enabled(REJECT_MATERIAL) && other.material != s.material {
+        mask |= REJECT_MATERIAL;
+    }
+    if check_enabled(REJECT_NORMAL) && dot(oct_decode(other.normal), oct_decode(s.normal)) < params.normal_threshold {
+        mask |= REJECT_NORMAL;
+    }
+    let distance = select(abs(other.depth - s.depth), length(other.position - s.position), same_point);
+    if check_enabled(REJECT_DEPTH) && !(distance <= params.depth_threshold * s.depth) {
+        mask |= REJECT_DEPTH;
+    }
+    return mask;
+}
+
+// One counter per set bit, at base + bit index.
+fn count_rejections(mask: u32, base: u32) {
+    var m = mask;
+    while m != 0u {
+        let bit = firstTrailingBit(m);
+        count_stat(base + bit);
+        m &= m - 1u;
+    }
+}

@@ -1,0 +1,11 @@
+// Group 1: the uploaded scene, all in BVH triangle order (render/src/passes/scene_gpu.rs).
+#include "common/types.wgsl"
+
+@group(1) @binding(0) var<storage, read> triangles: array<Triangle>;
+@group(1) @binding(1) var<storage, read> shading: array<TriangleShading>;
+@group(1) @binding(2) var<storage, read> materials: array<Material>;
+@group(1) @binding(3) var<storage, read> textures: array<Texture>;
+@group(1) @binding(4) var<storage, read> texels: array<u32>;
+@group(1) @binding(5) var<storage, read> lights: array<Light>;
+@group(1) @binding(6) var<storage, read> punctual_lights: array<PunctualLight>;
+@group(1) @binding(7) var<storage, read> bvh_nodes: array<BvhNode>;

@@ -1,0 +1,122 @@
+// The target function p̂ = luminance(Le · fr · G) (restir-notes.md §1) and the shadow test,
+// evaluated at a shading point rebuilt from a Surface record. Temporal and spatial reuse
+// call the same functions at the current pixel, so a reused sample is always rescored
+// where it is used (notes §2.3).
+#include "common/lights.wgsl"
+#include "common/brdf.wgsl"
+#include "common/bvh.wgsl"
+
+struct ShadingPoint {
+    position: vec3<f32>,
+    normal: vec3<f32>,
+    geo_normal: vec3<f32>,
+    wo: vec3<f32>,
+    brdf: Brdf,
+    material: u32,
+    depth: f32,
+}
+
+fn surface_is_valid(s: Surface) -> bool {
+    return s.depth > 0.0;
+}
+
+fn surface_base_color(s: Surface) -> vec3<f32> {
+    return unpack4x8unorm(s.base_color_metallic).rgb;
+}
+
+fn surface_metallic(s: Surface) -> f32 {
+    return unpack4x8unorm(s.base_color_metallic).a;
+}
+
+fn shading_point_from_surface(s: Surface, viewer: vec3<f32>) -> ShadingPoint {
+    let brdf = make_brdf(surface_base_color(s), surface_metallic(s), s.roughness, s.specular);
+    let wo = safe_normalize(viewer - s.position, oct_decode(s.normal));
+    return ShadingPoint(s.position, oct_decode(s.normal), oct_decode(s.geo_normal), wo, brdf, s.material, s.depth);
+}
+
+struct LightContribution {
+    value: vec3<f32>,  // unshadowed Le · fr · G (the integrand without visibility)
+    wi: vec3<f32>,
+    dist2: f32,
+    cos_light: f32,    // for converting a BSDF pdf to area measure
+}
+
+fn no_contribution() -> LightContribution {
+    return LightContribution(vec3<f32>(0.0), vec3<f32>(0.0, 0.0, 1.0), 0.0, 0.0);
+}
+
+fn light_contribution(sp: ShadingPoint, lp: LightPoint) -> LightContribution {
+    var wi: vec3<f32>;
+    var dist2 = 1.0;
+    var falloff = 1.0;  // G without cos at x, or 1/d² and cone for punctual lights
+    var cos_light = 1.0;
+    if lp.kind == LIGHT_POINT_AREA {
+        let d = lp.position - sp.position;
+        dist2 = dot(d, d);
+        if !(dist2 > 0.0) {
+            return no_contribution();
+        }
+        wi = d * inverseSqrt(dist2);
+        cos_light = dot(lp.normal, -wi);
+        if lp.double_sided {
+            cos_light = abs(cos_light);
+        }
+        if cos_light <= 0.0 {
+            return no_contribution();
+        }
+        falloff = cos_light / dist2;
+    }
+#ifdef PUNCTUAL_LIGHTS
+    else if lp.kind == LIGHT_POINT_POSITION {
+        let d = lp.position - sp.position;
+        dist2 = dot(d, d);
+        if !(dist2 > 0.0) {
+            return no_contribution();
+        }
+        wi = d * inverseSqrt(dist2);
+        falloff = punctual_attenuation(punctual_lights[lp.punctual], wi, dist2) / dist2;
+    } else {
+        wi = -punctual_lights[lp.punctual].direction;
+        dist2 = frame.scene_scale * frame.scene_scale * 4.0;
+    }
+#endif
+    let cos_x = dot(sp.normal, wi);
+    // Both normals must see the light: the shading normal for the BRDF, the geometric
+    // one so light never leaks through the surface.
+    if cos_x <= 0.0 || dot(sp.geo_normal, wi) <= 0.0 {
+        return no_contribution();
+    }
+    let f = eval_brdf(sp.brdf, sp.normal, sp.wo, wi);
+    let value = lp.radiance * f * (cos_x * falloff);
+    return LightContribution(value, wi, dist2, cos_light);
+}
+
+fn target_pdf(c: LightContribution) -> f32 {
+    let t = luminance(c.value);
+    return select(0.0, t, is_finite_f32(t) && t > 0.0);
+}
+
+// p̂ of a stored light sample at this shading point.
+fn target_at(sp: ShadingPoint, light: u32, uv: vec2<f32>) -> f32 {
+    if light == NO_LIGHT {
+        return 0.0;
+    }
+    return target_pdf(light_contribution(sp, light_point(light, uv)));
+}
+
+// One shadow ray between the shading point and the light point.
+fn light_visible(sp: ShadingPoint, lp: LightPoint, c: LightContribution) -> bool {
+#ifdef SHADOWS
+    var ray: Ray;
+    if lp.kind == LIGHT_POINT_DIRECTION {
+        let o = offset_ray_origin(sp.position, sp.geo_normal);
+        ray = Ray(o, c.wi * (frame.scene_scale * 2.0), 1.0);
+    } else {
+        let light_n = select(-lp.normal, lp.normal, dot(lp.normal, sp.position - lp.position) > 0.0);
+        ray = segment_ray(sp.position, sp.geo_normal, lp.position, light_n);
+    }
+    return !trace_any(ray);
+#else
+    return true;
+#endif
+}

@@ -1,0 +1,159 @@
+// GPU structs shared by every pass. Each one has a `#[repr(C)]` twin in
+// render/src/gpu_types.rs; tests/gpu_layout.rs checks sizes and offsets match.
+
+struct Triangle {
+    p0: vec3<f32>,
+    material: u32,
+    p1: vec3<f32>,
+    light: u32,         // light table index, or NO_LIGHT when the triangle does not emit
+    p2: vec3<f32>,
+    source_index: u32,  // index in the source scene, before BVH reordering
+}
+
+struct TriangleShading {
+    normals: array<u32, 3>,  // octahedral (pack2x16snorm)
+    has_normals: u32,        // 0: the source had no normals, use the geometric one
+    uvs: array<vec2<f32>, 3>,
+}
+
+struct Material {
+    base_color: vec4<f32>,
+    emission: vec3<f32>,
+    metallic: f32,
+    roughness: f32,
+    specular: f32,
+    alpha_cutoff: f32,
+    flags: u32,                      // MATERIAL_DOUBLE_SIDED | MATERIAL_ALPHA_MASK
+    base_color_texture: u32,         // NO_TEXTURE when absent
+    metallic_roughness_texture: u32,
+    emissive_texture: u32,
+    _pad: u32,
+}
+
+struct Texture {
+    offset: u32,  // first texel in `texels`
+    width: u32,
+    height: u32,
+    wrap: u32,    // wrap_u | wrap_v << 4: 0 repeat, 1 clamp, 2 mirrored repeat
+}
+
+struct Light {
+    kind_prim: u32,        // kind << LIGHT_KIND_SHIFT | triangle or punctual index
+    select_pdf: f32,       // probability of picking this light (power / total power)
+    alias_threshold: f32,
+    alias_index: u32,
+}
+
+struct PunctualLight {
+    position: vec3<f32>,
+    kind: u32,             // PUNCTUAL_POINT, PUNCTUAL_SPOT, PUNCTUAL_DIRECTIONAL
+    direction: vec3<f32>,  // where the light points
+    range: f32,            // 0 = infinite
+    intensity: vec3<f32>,  // candela (point, spot) or lux (directional)
+    cos_outer: f32,
+    cos_inner: f32,
+    _pad0: f32,
+    _pad1: f32,
+    _pad2: f32,
+}
+
+struct BvhNode {
+    min: vec3<f32>,
+    first: u32,  // leaf: first triangle; interior: left child (right = first + 1)
+    max: vec3<f32>,
+    count: u32,  // triangles in a leaf, 0 for an interior node
+}
+
+// A streaming reservoir (restir-notes.md §1). `m` is the confidence M: 1 for a fresh
+// initial reservoir, summed by reuse and capped by `m_cap`.
+struct Reservoir {
+    light: u32,    // light table index, NO_LIGHT for the null sample
+    p_hat: f32,   // p̂ at the pixel that finalised it (only for the target-ratio test)
+    uv: vec2<f32>, // barycentrics of the point on a triangle light
+    w_sum: f32,
+    weight: f32,   // W = w_sum / (M · p̂)
+    m: f32,
+    source: u32,   // SOURCE_*
+}
+
+// One pixel's primary surface (restir-notes.md §2.6), kept for one frame for temporal validation.
+struct Surface {
+    position: vec3<f32>,
+    depth: f32,               // distance to the camera; 0 = no surface
+    normal: u32,              // octahedral shading normal, facing the camera
+    geo_normal: u32,          // octahedral geometric normal, facing the camera
+    material: u32,
+    base_color_metallic: u32, // pack4x8unorm(linear base colour, metallic)
+    roughness: f32,
+    specular: f32,
+    motion: vec2<f32>,        // previous-frame pixel position of this point
+    emission: vec3<f32>,      // radiance emitted toward the camera
+    _pad: f32,
+}
+
+struct PixelDebug {
+    source: u32,
+    temporal_mask: u32,
+    spatial_mask: u32,
+    flags: u32,        // DEBUG_FLAG_*
+    m_initial: f32,
+    m_temporal: f32,
+    m_spatial: f32,
+    weight: f32,       // W of the survivor at shading
+    p_hat: f32,       // p̂ of the survivor at shading
+    spatial_accepted: u32,
+    _pad0: u32,
+    _pad1: u32,
+}
+
+struct Frame {
+    view_proj: mat4x4<f32>,       // unjittered
+    inv_view_proj: mat4x4<f32>,
+    prev_view_proj: mat4x4<f32>,
+    camera_position: vec3<f32>,
+    frame_index: u32,
+    prev_camera_position: vec3<f32>,
+    seed: u32,
+    jitter: vec2<f32>,            // this frame's sub-pixel offset, in pixels
+    size: vec2<u32>,
+    scene_scale: f32,             // scene bounds diagonal
+    history_valid: u32,
+    light_count: u32,
+    punctual_count: u32,
+    prev_jitter: vec2<f32>,       // the previous frame's jitter, for reprojection
+    _pad0: u32,
+    _pad1: u32,
+}
+
+struct Params {
+    light_candidates: u32,
+    bsdf_candidates: u32,
+    m_cap: f32,
+    normal_threshold: f32,
+    depth_threshold: f32,
+    target_ratio_clamp: f32,      // 0 = test off
+    checks: u32,                  // enabled REJECT_* checks
+    flags: u32,                   // PARAM_FLAG_*
+    spatial_neighbours: u32,
+    spatial_radius: f32,
+    reference_spp: u32,
+    boiling_filter: f32,          // 0 = off
+}
+
+struct Display {
+    scale: f32,          // 1/N for an accumulation of N frames
+    exposure: f32,       // linear (2^EV)
+    tonemapper: u32,     // TONEMAP_*
+    view: u32,           // VIEW_*
+    reason_mask: u32,    // rejection reasons shown: temporal bits 0..8, spatial 8..16
+    m_scale: f32,        // M drawn at the top of the heatmap
+    reference_scale: f32,
+    _pad: u32,
+}
+
+struct PassInfo {
+    pass_index: u32,
+    is_last: u32,
+    _pad0: u32,
+    _pad1: u32,
+}

@@ -1,0 +1,132 @@
+// What the user sees: the tonemapped image or one of the debug views, written as
+// sRGB-encoded RGBA8 (the viewer samples it through an sRGB view; PNGs store it as is).
+// Palettes are fixed and documented in README ("Debug views").
+#include "common/frame_bindings.wgsl"
+#include "common/math.wgsl"
+
+@group(2) @binding(0) var<storage, read> image: array<vec4<f32>>;
+@group(2) @binding(1) var<storage, read> surfaces: array<Surface>;
+@group(2) @binding(2) var<storage, read> debug: array<PixelDebug>;
+@group(2) @binding(3) var<storage, read> reservoirs: array<Reservoir>;
+@group(2) @binding(4) var<storage, read> reference: array<vec4<f32>>;
+@group(2) @binding(5) var<uniform> display: Display;
+@group(2) @binding(6) var output: texture_storage_2d<rgba8unorm, write>;
+
+const NO_SURFACE_COLOR: vec3<f32> = vec3<f32>(0.08, 0.08, 0.08);
+
+fn linear_to_srgb(c: vec3<f32>) -> vec3<f32> {
+    let x = clamp(c, vec3<f32>(0.0), vec3<f32>(1.0));
+    return select(1.055 * pow(x, vec3<f32>(1.0 / 2.4)) - 0.055, x * 12.92, x <= vec3<f32>(0.0031308));
+}
+
+// ACES filmic fit (Narkowicz 2015).
+fn aces(x: vec3<f32>) -> vec3<f32> {
+    return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), vec3<f32>(0.0), vec3<f32>(1.0));
+}
+
+fn tonemap(c: vec3<f32>) -> vec3<f32> {
+    let x = max(c * display.exposure, vec3<f32>(0.0));
+    switch display.tonemapper {
+        case TONEMAP_ACES: { return aces(x); }
+        case TONEMAP_REINHARD: { return x / (1.0 + luminance(x)); }
+        default: { return x; }
+    }
+}
+
+// Viridis, 5-stop piecewise linear: dark purple (0) → yellow (1).
+fn heatmap(t_in: f32) -> vec3<f32> {
+    let t = clamp(t_in, 0.0, 1.0) * 4.0;
+    let c0 = vec3<f32>(0.267, 0.005, 0.329);
+    let c1 = vec3<f32>(0.229, 0.322, 0.546);
+    let c2 = vec3<f32>(0.128, 0.567, 0.551);
+    let c3 = vec3<f32>(0.369, 0.789, 0.383);
+    let c4 = vec3<f32>(0.993, 0.906, 0.144);
+    if t < 1.0 { return mix(c0, c1, t); }
+    if t < 2.0 { return mix(c1, c2, t - 1.0); }
+    if t < 3.0 { return mix(c2, c3, t - 2.0); }
+    return mix(c3, c4, t - 3.0);
+}
+
+fn source_color(source: u32) -> vec3<f32> {
+    switch source {
+        case SOURCE_INITIAL: { return vec3<f32>(0.15, 0.35, 1.0); }
+        case SOURCE_TEMPORAL: { return vec3<f32>(0.1, 0.85, 0.25); }
+        case SOURCE_SPATIAL: { return vec3<f32>(1.0, 0.55, 0.05); }
+        default: { return vec3<f32>(0.0); }
+    }
+}
+
+// One colour per rejection reason (bit index): temporal 0..7, spatial 8..15 (lighter).
+fn reason_color(bit: u32) -> vec3<f32> {
+    var palette = array<vec3<f32>, 8>(
+        vec3<f32>(1.0, 0.0, 0.0),   // off-screen: red
+        vec3<f32>(1.0, 0.5, 0.0),   // previous surface invalid: orange
+        vec3<f32>(1.0, 0.0, 1.0),   // material: magenta
+        vec3<f32>(0.0, 0.6, 1.0),   // normal: blue
+        vec3<f32>(0.0, 1.0, 1.0),   // depth / position: cyan
+        vec3<f32>(1.0, 1.0, 0.0),   // reservoir null: yellow
+        vec3<f32>(0.6, 0.3, 0.1),   // target ≤ 0: brown
+        vec3<f32>(1.0, 1.0, 1.0),   // target ratio: white
+    );
+    let c = palette[bit & 7u];
+    return select(c, mix(c, vec3<f32>(1.0), 0.5) * 0.8, bit >= 8u);
+}
+
+fn debug_color(index: u32, pixel: vec2<u32>) -> vec3<f32> {
+    let s = surfaces[index];
+    let d = debug[index];
+    if display.view == VIEW_ERROR {
+        let value = luminance(image[index].rgb * display.scale);
+        let truth = luminance(reference[index].rgb * display.reference_scale);
+        // |frame − reference| relative to the exposure's white point.
+        return heatmap(abs(value - truth) * display.exposure);
+    }
+    if s.depth <= 0.0 {
+        return NO_SURFACE_COLOR;
+    }
+    switch display.view {
+        case VIEW_SOURCE: { return source_color(d.source); }
+        case VIEW_M: {
+            let r = reservoirs[index];
+            return heatmap(r.m / max(display.m_scale, 1.0));
+        }
+        case VIEW_REJECTION: {
+            let mask = (d.temporal_mask | (d.spatial_mask << 8u)) & display.reason_mask;
+            if mask == 0u {
+                return vec3<f32>(0.0);
+            }
+            return reason_color(firstTrailingBit(mask));
+        }
+        case VIEW_WEIGHT: {
+            // log10 W over [-4, 4] → [0, 1]; null samples are black.
+            if !(d.weight > 0.0) {
+                return vec3<f32>(0.0);
+            }
+            return heatmap((log2(d.weight) * 0.30103 + 4.0) / 8.0);
+        }
+        case VIEW_NORMALS: { return oct_decode(s.normal) * 0.5 + 0.5; }
+        case VIEW_ALBEDO: { return unpack4x8unorm(s.base_color_metallic).rgb; }
+        case VIEW_DEPTH: { return vec3<f32>(1.0 - clamp(s.depth / frame.scene_scale, 0.0, 1.0)); }
+        case VIEW_MOTION: {
+            let m = s.motion - (vec2<f32>(pixel) + 0.5);
+            return vec3<f32>(clamp(m * 0.1 + 0.5, vec2<f32>(0.0), vec2<f32>(1.0)), 0.5);
+        }
+        default: { return vec3<f32>(0.0); }
+    }
+}
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= frame.size) {
+        return;
+    }
+    let index = id.y * frame.size.x + id.x;
+    var out: vec3<f32>;
+    if display.view == VIEW_FINAL {
+        out = linear_to_srgb(tonemap(image[index].rgb * display.scale));
+    } else {
+        // Debug palettes are display colours already: only the sRGB encoding applies.
+        out = linear_to_srgb(debug_color(index, id.xy));
+    }
+    textureStore(output, vec2<i32>(id.xy), vec4<f32>(out, 1.0));
+}

@@ -1,0 +1,101 @@
+// Initial candidates (restir-notes.md §1): streaming RIS over `light_candidates` power-
+// sampled light points and `bsdf_candidates` BSDF rays that hit an emitter, combined with
+// the balance heuristic: w_i = p̂(y_i) / Σ_s N_s p_s(y_i) (area measure), W = w_sum / p̂(y).
+// The result has M = 1: M counts reservoirs' worth of samples, so the M cap counts frames.
+// With `initial_visibility` the survivor's shadow ray is traced here already.
+#include "common/frame_bindings.wgsl"
+#include "common/stats_bindings.wgsl"
+#include "common/shading_point.wgsl"
+#include "common/reservoir.wgsl"
+
+@group(2) @binding(0) var<storage, read> surfaces: array<Surface>;
+@group(2) @binding(1) var<storage, read_write> reservoirs_out: array<Reservoir>;
+@group(2) @binding(2) var<storage, read_write> debug: array<PixelDebug>;
+
+fn stream_light_candidates(sp: ShadingPoint, r: ptr<function, Reservoir>, rng: ptr<function, u32>) {
+    let n_l = f32(params.light_candidates);
+    let n_b = f32(params.bsdf_candidates);
+    for (var i = 0u; i < params.light_candidates; i++) {
+        let y = sample_light(rng);
+        let u_select = rand_f32(rng);
+        let lp = light_point(y.light, y.uv);
+        let c = light_contribution(sp, lp);
+        let t = target_pdf(c);
+        var p_bsdf = 0.0;
+#ifdef BSDF_CANDIDATES
+        if n_b > 0.0 && t > 0.0 && lp.kind == LIGHT_POINT_AREA {
+            p_bsdf = brdf_pdf(sp.brdf, sp.normal, sp.wo, c.wi) * c.cos_light / c.dist2;
+        }
+#endif
+        reservoir_update(r, y.light, y.uv, t / (n_l * lp.source_pdf + n_b * p_bsdf), t, SOURCE_INITIAL, u_select);
+    }
+}
+
+#ifdef BSDF_CANDIDATES
+fn stream_bsdf_candidates(sp: ShadingPoint, r: ptr<function, Reservoir>, rng: ptr<function, u32>) {
+    let n_l = f32(params.light_candidates);
+    let n_b = f32(params.bsdf_candidates);
+    for (var j = 0u; j < params.bsdf_candidates; j++) {
+        let u = vec3<f32>(rand_f32(rng), rand_f32(rng), rand_f32(rng));
+        let u_select = rand_f32(rng);
+        let bs = sample_brdf(sp.brdf, sp.normal, sp.wo, u);
+        if !(bs.pdf > 0.0) {
+            continue;
+        }
+        let hit = trace_closest(Ray(offset_ray_origin(sp.position, sp.geo_normal), bs.wi, FLT_MAX), false);
+        if hit.t < 0.0 || triangles[hit.triangle].light == NO_LIGHT {
+            continue;
+        }
+        let light = triangles[hit.triangle].light;
+        let uv = vec2<f32>(hit.u, hit.v);
+        let lp = light_point(light, uv);
+        let c = light_contribution(sp, lp);
+        let t = target_pdf(c);
+        let p_bsdf = bs.pdf * c.cos_light / c.dist2;
+        reservoir_update(r, light, uv, t / (n_l * lp.source_pdf + n_b * p_bsdf), t, SOURCE_INITIAL, u_select);
+    }
+}
+#endif
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= frame.size) {
+        return;
+    }
+    let index = id.y * frame.size.x + id.x;
+    let s = surfaces[index];
+    var r = reservoir_empty();
+    if surface_is_valid(s) {
+        if frame.light_count > 0u {
+            let sp = shading_point_from_surface(s, frame.camera_position);
+            var rng = rng_seed(id.xy, STREAM_INITIAL);
+            stream_light_candidates(sp, &r, &rng);
+#ifdef BSDF_CANDIDATES
+            stream_bsdf_candidates(sp, &r, &rng);
+#endif
+            reservoir_finalize(&r, 1.0);
+#ifdef SHADOWS
+            // Visibility reuse (ReSTIR paper §4, RTXDI "initial visibility"): one shadow
+            // ray for the survivor; an occluded one becomes a zero-contribution sample, so
+            // reuse never spreads samples that are in shadow where they were found.
+            if (params.flags & PARAM_FLAG_INITIAL_VISIBILITY) != 0u && !reservoir_is_null(r) {
+                let lp = light_point(r.light, r.uv);
+                if !light_visible(sp, lp, light_contribution(sp, lp)) {
+                    r = reservoir_empty();
+                }
+            }
+#endif
+        }
+        r.m = 1.0;
+        if reservoir_is_corrupt(r) {
+            count_stat(STAT_NONFINITE + PASS_INITIAL);
+            r = reservoir_empty();
+            r.m = 1.0;
+        }
+    }
+    reservoirs_out[index] = r;
+    var d: PixelDebug;
+    d.source = r.source;
+    d.m_initial = r.m;
+    debug[index] = d;
+}

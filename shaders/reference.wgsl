@@ -1,0 +1,120 @@
+// Ground truth: an unbiased progressive estimator, independent of the raster G-buffer.
+// Per sample: a jittered camera ray through the BVH, the emission it sees, one
+// power-sampled light point with a shadow ray and one BSDF ray, combined with the balance
+// heuristic (both are unbiased on their own; MIS only lowers the variance on glossy
+// surfaces). Many samples per pixel, averaged over frames by the accumulation buffer.
+#include "common/frame_bindings.wgsl"
+#include "common/stats_bindings.wgsl"
+#include "common/shading_point.wgsl"
+
+@group(2) @binding(0) var<storage, read_write> radiance: array<vec4<f32>>;
+@group(2) @binding(1) var<storage, read_write> accumulation: array<vec4<f32>>;
+// pass_index = which chunk of REFERENCE_SAMPLES_PER_DISPATCH samples this dispatch takes.
+@group(2) @binding(2) var<uniform> pass_info: PassInfo;
+@group(2) @binding(3) var<storage, read> surfaces: array<Surface>;
+
+fn camera_ray_direction(pixel: vec2<f32>) -> vec3<f32> {
+    let ndc = vec2<f32>(pixel.x / f32(frame.size.x) * 2.0 - 1.0, 1.0 - pixel.y / f32(frame.size.y) * 2.0);
+    // With the infinite reverse-Z projection, NDC depth 0 is the point at infinity: the
+    // inverse maps it to (direction, 0). Subtracting the camera position from a near-plane
+    // point instead would cancel catastrophically (the near plane is 1e-5 scene units away).
+    let far = frame.inv_view_proj * vec4<f32>(ndc, 0.0, 1.0);
+    return normalize(far.xyz);
+}
+
+fn light_sample_estimate(sp: ShadingPoint, rng: ptr<function, u32>) -> vec3<f32> {
+    let y = sample_light(rng);
+    let lp = light_point(y.light, y.uv);
+    let c = light_contribution(sp, lp);
+    if !(target_pdf(c) > 0.0) || !light_visible(sp, lp, c) {
+        return vec3<f32>(0.0);
+    }
+    var p_bsdf = 0.0;
+#ifdef SHADOWS
+    if lp.kind == LIGHT_POINT_AREA {
+        p_bsdf = brdf_pdf(sp.brdf, sp.normal, sp.wo, c.wi) * c.cos_light / c.dist2;
+    }
+#endif
+    return c.value / (lp.source_pdf + p_bsdf);
+}
+
+fn bsdf_sample_estimate(sp: ShadingPoint, rng: ptr<function, u32>) -> vec3<f32> {
+    let u = vec3<f32>(rand_f32(rng), rand_f32(rng), rand_f32(rng));
+    let bs = sample_brdf(sp.brdf, sp.normal, sp.wo, u);
+    if !(bs.pdf > 0.0) {
+        return vec3<f32>(0.0);
+    }
+    let hit = trace_closest(Ray(offset_ray_origin(sp.position, sp.geo_normal), bs.wi, FLT_MAX), false);
+    if hit.t < 0.0 || triangles[hit.triangle].light == NO_LIGHT {
+        return vec3<f32>(0.0);
+    }
+    // The hit is the closest surface, hence visible: no shadow ray needed.
+    let lp = light_point(triangles[hit.triangle].light, vec2<f32>(hit.u, hit.v));
+    let c = light_contribution(sp, lp);
+    if !(target_pdf(c) > 0.0) {
+        return vec3<f32>(0.0);
+    }
+    let p_bsdf = bs.pdf * c.cos_light / c.dist2;
+    return c.value / (lp.source_pdf + p_bsdf);
+}
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= frame.size) {
+        return;
+    }
+    let index = id.y * frame.size.x + id.x;
+    let chunk = pass_info.pass_index;
+    var rng = pcg_hash(rng_seed(id.xy, STREAM_REFERENCE) ^ pcg_hash(chunk));
+    var sum = vec3<f32>(0.0);
+    let spp = max(params.reference_spp, 1u);
+    let first = chunk * REFERENCE_SAMPLES_PER_DISPATCH;
+    let last = min(spp, first + REFERENCE_SAMPLES_PER_DISPATCH);
+    let jitter = (params.flags & PARAM_FLAG_JITTER) != 0u;
+    for (var i = first; i < last; i++) {
+        var sp: ShadingPoint;
+        var sample_value: vec3<f32>;
+        if jitter {
+            // The pixel-area integral: a jittered camera ray through the BVH.
+            let dir = camera_ray_direction(vec2<f32>(id.xy) + rand_vec2(&rng));
+            let hit = trace_closest(Ray(frame.camera_position, dir, FLT_MAX), true);
+            if hit.t < 0.0 {
+                continue;
+            }
+            let hs = hit_surface(hit.triangle, hit.u, hit.v, frame.camera_position);
+            let m = eval_material(hs.material, hs.uv);
+            let brdf = make_brdf(m.base_color, m.metallic, m.roughness, m.specular);
+            sp = ShadingPoint(hs.position, hs.normal, hs.geo_normal, -dir, brdf, hs.material, hit.t);
+            sample_value = emission_toward_viewer(hs);
+        } else {
+            // Jitter off: the surface the rasterised G-buffer sees at the pixel centre, so
+            // a comparison with the real-time modes measures lighting error alone (a ray
+            // and the rasteriser may disagree on a pixel centre exactly on an edge).
+            let s = surfaces[index];
+            if !surface_is_valid(s) {
+                continue;
+            }
+            sp = shading_point_from_surface(s, frame.camera_position);
+            sample_value = s.emission;
+        }
+        if frame.light_count > 0u {
+            sample_value += light_sample_estimate(sp, &rng);
+        }
+#ifdef AREA_LIGHTS
+#ifdef SHADOWS
+        // BSDF rays see occlusion by construction: only valid when shadows are on.
+        sample_value += bsdf_sample_estimate(sp, &rng);
+#endif
+#endif
+        if is_finite_vec3(sample_value) {
+            sum += sample_value;
+        } else {
+            count_stat(STAT_NONFINITE + PASS_REFERENCE);
+        }
+    }
+    // This chunk's share of the pixel's average; the first chunk starts the frame.
+    let share = sum / f32(spp);
+    let previous = select(radiance[index].rgb, vec3<f32>(0.0), chunk == 0u);
+    radiance[index] = vec4<f32>(previous + share, 1.0);
+    accumulation[index] += vec4<f32>(share, select(0.0, 1.0, chunk == 0u));
+}

@@ -1,0 +1,55 @@
+// Final shading: one shadow ray for the survivor, f(x, y) · V · W, plus the emission seen
+// directly. Also accumulates the running sum for progressive averaging and counts the
+// selection source of every pixel for the stats.
+#include "common/frame_bindings.wgsl"
+#include "common/stats_bindings.wgsl"
+#include "common/shading_point.wgsl"
+#include "common/reservoir.wgsl"
+
+@group(2) @binding(0) var<storage, read> surfaces: array<Surface>;
+@group(2) @binding(1) var<storage, read> reservoirs: array<Reservoir>;
+@group(2) @binding(2) var<storage, read_write> debug: array<PixelDebug>;
+@group(2) @binding(3) var<storage, read_write> radiance: array<vec4<f32>>;
+@group(2) @binding(4) var<storage, read_write> accumulation: array<vec4<f32>>;
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= frame.size) {
+        return;
+    }
+    let index = id.y * frame.size.x + id.x;
+    let s = surfaces[index];
+    var color = vec3<f32>(0.0);
+    if surface_is_valid(s) {
+        count_stat(STAT_SURFACE_PIXELS);
+        color = s.emission;
+        var r = reservoirs[index];
+        var d = debug[index];
+        if reservoir_is_corrupt(r) {
+            count_stat(STAT_NONFINITE + PASS_SHADE);
+            r = reservoir_empty();
+        }
+        d.weight = 0.0;
+        d.p_hat = 0.0;
+        if !reservoir_is_null(r) {
+            let sp = shading_point_from_surface(s, frame.camera_position);
+            let lp = light_point(r.light, r.uv);
+            let c = light_contribution(sp, lp);
+            d.weight = r.weight;
+            d.p_hat = target_pdf(c);
+            if d.p_hat > 0.0 && light_visible(sp, lp, c) {
+                color += c.value * r.weight;
+            }
+        }
+        let source = select(r.source, SOURCE_NULL, reservoir_is_null(r));
+        count_stat(STAT_SOURCE + source);
+        d.source = source;
+        debug[index] = d;
+    }
+    if !is_finite_vec3(color) {
+        count_stat(STAT_NONFINITE + PASS_SHADE);
+        color = vec3<f32>(0.0);
+    }
+    radiance[index] = vec4<f32>(color, 1.0);
+    accumulation[index] += vec4<f32>(color, 1.0);
+}

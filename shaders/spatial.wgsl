@@ -1,0 +1,148 @@
+// Spatial reuse (restir-notes.md §3): K neighbours in a disk of radius R pixels, each
+// checked for depth / normal / material compatibility (its own rejection bits, apart
+// from the temporal ones), merged with the neighbour's M (1/M) or with pairwise MIS
+// around this pixel's reservoir (unbiased); M is capped after the pass. Reads one
+// reservoir buffer and writes another, so neighbours never see half-updated data.
+#include "common/frame_bindings.wgsl"
+#include "common/stats_bindings.wgsl"
+#include "common/shading_point.wgsl"
+#include "common/reservoir.wgsl"
+#include "common/reuse.wgsl"
+
+@group(2) @binding(0) var<storage, read> surfaces: array<Surface>;
+@group(2) @binding(1) var<storage, read> reservoirs_in: array<Reservoir>;
+@group(2) @binding(2) var<storage, read_write> reservoirs_out: array<Reservoir>;
+@group(2) @binding(3) var<storage, read_write> debug: array<PixelDebug>;
+@group(2) @binding(4) var<uniform> pass_info: PassInfo;
+
+fn load_neighbour(index: u32) -> Reservoir {
+    let r = reservoirs_in[index];
+    if reservoir_is_corrupt(r) {
+        count_stat(STAT_NONFINITE + PASS_SPATIAL);
+        return reservoir_empty();
+    }
+    return r;
+}
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= frame.size) {
+        return;
+    }
+    let index = id.y * frame.size.x + id.x;
+    let s = surfaces[index];
+    var canonical = load_neighbour(index);
+    var d = debug[index];
+    if !surface_is_valid(s) {
+        reservoirs_out[index] = canonical;
+        return;
+    }
+    let sp = shading_point_from_surface(s, frame.camera_position);
+    var rng = rng_seed(id.xy, STREAM_SPATIAL + pass_info.pass_index);
+
+    // 1. Pick and validate neighbours.
+    var accepted: array<u32, MAX_SPATIAL_NEIGHBOURS>;
+    var n_accepted = 0u;
+    var pass_mask = 0u;
+    var c_total = canonical.m;
+    var contribution_sum = canonical.p_hat * canonical.weight;
+    let size = vec2<i32>(frame.size);
+    let k = min(params.spatial_neighbours, MAX_SPATIAL_NEIGHBOURS);
+    for (var i = 0u; i < k; i++) {
+        let u = rand_vec2(&rng);
+        let radius = params.spatial_radius * sqrt(u.x);
+        let angle = 2.0 * PI * u.y;
+        var offset = vec2<i32>(round(radius * vec2<f32>(cos(angle), sin(angle))));
+        if all(offset == vec2<i32>(0)) {
+            offset = vec2<i32>(1, 0);
+        }
+        var q = vec2<i32>(id.xy) + offset;
+        var mask = 0u;
+        if any(q < vec2<i32>(0)) || any(q >= size) {
+            if check_enabled(REJECT_OFFSCREEN) {
+                mask |= REJECT_OFFSCREEN;
+            }
+            q = clamp(q, vec2<i32>(0), size - 1);
+        }
+        let q_index = u32(q.y) * frame.size.x + u32(q.x);
+        if mask == 0u {
+            let ns = surfaces[q_index];
+            if !surface_is_valid(ns) {
+                if check_enabled(REJECT_SURFACE) {
+                    mask |= REJECT_SURFACE;
+                }
+            } else {
+                mask |= surface_dissimilarity(s, ns, false);
+            }
+            let nr = load_neighbour(q_index);
+            if reservoir_is_null(nr) && check_enabled(REJECT_RESERVOIR) {
+                mask |= REJECT_RESERVOIR;
+            }
+            if !reservoir_is_null(nr) && check_enabled(REJECT_TARGET) && target_at(sp, nr.light, nr.uv) <= 0.0 {
+                mask |= REJECT_TARGET;
+            }
+            if mask == 0u {
+                accepted[n_accepted] = q_index;
+                n_accepted++;
+                c_total += nr.m;
+                contribution_sum += nr.p_hat * nr.weight;
+            }
+        }
+        count_rejections(mask, STAT_SPATIAL_REJECT);
+        pass_mask |= mask;
+    }
+
+    // 2. Boiling filter (notes §6): drop this pixel's own sample when it outshines the
+    //    neighbourhood by more than k times; its M still counts.
+    if params.boiling_filter > 0.0 && n_accepted > 0u {
+        let mean = contribution_sum / f32(n_accepted + 1u);
+        if canonical.p_hat * canonical.weight > params.boiling_filter * mean {
+            count_stat(STAT_BOILING_DROPPED);
+            let m = canonical.m;
+            canonical = reservoir_empty();
+            canonical.m = m;
+        }
+    }
+
+    // 3. Merge.
+    var r = reservoir_empty();
+    if (params.flags & PARAM_FLAG_PAIRWISE) != 0u {
+        var m_canonical = confidence_share(canonical.m, c_total);
+        for (var i = 0u; i < n_accepted; i++) {
+            let q_index = accepted[i];
+            let nr = load_neighbour(q_index);
+            let target_here = target_at(sp, nr.light, nr.uv);
+            let m_i = pairwise_mis_noncanonical(c_total, canonical.m, nr.m, nr.p_hat, target_here);
+            reservoir_merge_mis(&r, nr, target_here, m_i, SOURCE_SPATIAL, rand_f32(&rng));
+            let neighbour_sp = shading_point_from_surface(surfaces[q_index], frame.camera_position);
+            let neighbour_at_canonical = target_at(neighbour_sp, canonical.light, canonical.uv);
+            m_canonical += pairwise_mis_canonical_term(c_total, canonical.m, nr.m, canonical.p_hat, neighbour_at_canonical);
+        }
+        reservoir_merge_mis(&r, canonical, canonical.p_hat, m_canonical, canonical.source, rand_f32(&rng));
+        reservoir_finalize(&r, 1.0);
+        r.m = c_total;
+    } else {
+        reservoir_merge(&r, canonical, canonical.p_hat, canonical.m, canonical.source, rand_f32(&rng));
+        for (var i = 0u; i < n_accepted; i++) {
+            let nr = load_neighbour(accepted[i]);
+            let target_here = target_at(sp, nr.light, nr.uv);
+            reservoir_merge(&r, nr, target_here, nr.m, SOURCE_SPATIAL, rand_f32(&rng));
+        }
+        reservoir_finalize(&r, r.m);
+    }
+    if r.m > params.m_cap {
+        r.m = params.m_cap;
+        d.flags |= DEBUG_FLAG_SPATIAL_CAP;
+        count_stat(STAT_SPATIAL_CAP);
+    }
+    if reservoir_is_corrupt(r) {
+        count_stat(STAT_NONFINITE + PASS_SPATIAL);
+        r = reservoir_empty();
+    }
+    reservoirs_out[index] = r;
+    d.source = r.source;
+    d.m_spatial = r.m;
+    d.spatial_mask |= pass_mask;
+    d.spatial_accepted += n_accepted;
+    debug[index] = d;
+}

@@ -1,0 +1,158 @@
+// Temporal reuse (restir-notes.md §2): reproject the current hit into the previous frame,
+// validate the previous surface and reservoir (every failed check sets its own bit of the
+// rejection mask), re-evaluate the target here, and merge the previous sample with weight
+// p̂(x, y_prev) · W_prev · min(M_prev, M_cap) (1/M) or a pairwise MIS weight (unbiased).
+#include "common/frame_bindings.wgsl"
+#include "common/stats_bindings.wgsl"
+#include "common/shading_point.wgsl"
+#include "common/reservoir.wgsl"
+#include "common/reuse.wgsl"
+
+@group(2) @binding(0) var<storage, read> surfaces: array<Surface>;
+@group(2) @binding(1) var<storage, read> prev_surfaces: array<Surface>;
+@group(2) @binding(2) var<storage, read> reservoirs_in: array<Reservoir>;
+@group(2) @binding(3) var<storage, read> prev_reservoirs: array<Reservoir>;
+@group(2) @binding(4) var<storage, read_write> reservoirs_out: array<Reservoir>;
+@group(2) @binding(5) var<storage, read_write> debug: array<PixelDebug>;
+
+struct TemporalCandidate {
+    mask: u32,             // REJECT_* bits of the failed checks
+    reservoir: Reservoir,
+    target_here: f32,      // p̂(x, y_prev), re-evaluated at the current point
+    prev_surface: Surface,
+}
+
+// Solari-style permutation: mirror the pixel inside a 4×4 block shifted by a per-frame
+// offset, so neighbouring pixels do not inherit correlated histories.
+fn permute_pixel(p: vec2<i32>) -> vec2<i32> {
+    let r = pcg_hash(frame.frame_index ^ frame.seed);
+    let offset = vec2<i32>(i32(r & 3u), i32((r >> 2u) & 3u));
+    return ((p + offset) ^ vec2<i32>(3)) - offset;
+}
+
+fn validate_previous(pixel: vec2<i32>, s: Surface, sp: ShadingPoint) -> TemporalCandidate {
+    var c = TemporalCandidate(0u, reservoir_empty(), 0.0, Surface());
+    let size = vec2<i32>(frame.size);
+    var p = pixel;
+    if any(p < vec2<i32>(0)) || any(p >= size) || s.motion.x <= NO_MOTION {
+        if check_enabled(REJECT_OFFSCREEN) {
+            c.mask |= REJECT_OFFSCREEN;
+            return c;
+        }
+        p = clamp(p, vec2<i32>(0), size - 1);
+    }
+    let prev_index = u32(p.y) * frame.size.x + u32(p.x);
+    let ps = prev_surfaces[prev_index];
+    c.prev_surface = ps;
+    if frame.history_valid == 0u || !surface_is_valid(ps) {
+        if check_enabled(REJECT_SURFACE) {
+            c.mask |= REJECT_SURFACE;
+            return c;
+        }
+    } else {
+        c.mask |= surface_dissimilarity(s, ps, true);
+    }
+    var prev = prev_reservoirs[prev_index];
+    if reservoir_is_corrupt(prev) {
+        count_stat(STAT_NONFINITE + PASS_TEMPORAL);
+        prev = reservoir_empty();
+    }
+    c.reservoir = prev;
+    let prev_null = reservoir_is_null(prev);
+    if prev_null && check_enabled(REJECT_RESERVOIR) {
+        c.mask |= REJECT_RESERVOIR;
+    }
+    c.target_here = target_at(sp, prev.light, prev.uv);
+    if c.target_here <= 0.0 && check_enabled(REJECT_TARGET) {
+        c.mask |= REJECT_TARGET;
+    }
+    if !prev_null && params.target_ratio_clamp > 0.0 && check_enabled(REJECT_TARGET_RATIO) {
+        let ratio = c.target_here / prev.p_hat;
+        let clamp_value = params.target_ratio_clamp;
+        if !(ratio >= 1.0 / clamp_value && ratio <= clamp_value) {
+            c.mask |= REJECT_TARGET_RATIO;
+        }
+    }
+    return c;
+}
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= frame.size) {
+        return;
+    }
+    let index = id.y * frame.size.x + id.x;
+    let s = surfaces[index];
+    let current = reservoirs_in[index];
+    var d = debug[index];
+    if !surface_is_valid(s) {
+        reservoirs_out[index] = current;
+        return;
+    }
+    let sp = shading_point_from_surface(s, frame.camera_position);
+    var rng = rng_seed(id.xy, STREAM_TEMPORAL);
+
+    let reprojected = vec2<i32>(floor(s.motion));
+    var cand: TemporalCandidate;
+    if (params.flags & PARAM_FLAG_PERMUTATION) != 0u {
+        cand = validate_previous(permute_pixel(reprojected), s, sp);
+        if cand.mask != 0u {
+            // Permuted reads fail at object edges; retry the plain reprojection (Solari #21722).
+            count_stat(STAT_FALLBACK_TRIED);
+            d.flags |= DEBUG_FLAG_FALLBACK_TRIED;
+            cand = validate_previous(reprojected, s, sp);
+            if cand.mask == 0u {
+                count_stat(STAT_FALLBACK_USED);
+                d.flags |= DEBUG_FLAG_FALLBACK_USED;
+            }
+        }
+    } else {
+        cand = validate_previous(reprojected, s, sp);
+    }
+    count_rejections(cand.mask, STAT_TEMPORAL_REJECT);
+    d.temporal_mask = cand.mask;
+
+    var r = current;
+    if cand.mask == 0u {
+        count_stat(STAT_TEMPORAL_ACCEPTED);
+        d.flags |= DEBUG_FLAG_TEMPORAL_MERGED;
+        let m_prev = min(cand.reservoir.m, params.m_cap);
+        if cand.reservoir.m > params.m_cap {
+            d.flags |= DEBUG_FLAG_TEMPORAL_CAP;
+            count_stat(STAT_TEMPORAL_CAP);
+        }
+        let u_current = rand_f32(&rng);
+        let u_prev = rand_f32(&rng);
+        r = reservoir_empty();
+        if (params.flags & PARAM_FLAG_PAIRWISE) != 0u {
+            // Pairwise MIS with the current (initial) reservoir as the canonical sample.
+            let c_total = current.m + m_prev;
+            let prev_sp = shading_point_from_surface(cand.prev_surface, frame.prev_camera_position);
+            let prev_at_current = target_at(prev_sp, current.light, current.uv);
+            let m_current = confidence_share(current.m, c_total)
+                + pairwise_mis_canonical_term(c_total, current.m, m_prev, current.p_hat, prev_at_current);
+            let m_temporal = pairwise_mis_noncanonical(c_total, current.m, m_prev, cand.reservoir.p_hat, cand.target_here);
+            reservoir_merge_mis(&r, current, current.p_hat, m_current, current.source, u_current);
+            reservoir_merge_mis(&r, cand.reservoir, cand.target_here, m_temporal, SOURCE_TEMPORAL, u_prev);
+            reservoir_finalize(&r, 1.0);
+            r.m = c_total;
+        } else {
+            reservoir_merge(&r, current, current.p_hat, current.m, current.source, u_current);
+            reservoir_merge(&r, cand.reservoir, cand.target_here, m_prev, SOURCE_TEMPORAL, u_prev);
+            reservoir_finalize(&r, r.m);
+        }
+    }
+    if r.m > params.m_cap {
+        r.m = params.m_cap;
+        d.flags |= DEBUG_FLAG_TEMPORAL_CAP;
+    }
+    if reservoir_is_corrupt(r) {
+        count_stat(STAT_NONFINITE + PASS_TEMPORAL);
+        r = reservoir_empty();
+        r.m = 1.0;
+    }
+    reservoirs_out[index] = r;
+    d.source = r.source;
+    d.m_temporal = r.m;
+    debug[index] = d;
+}

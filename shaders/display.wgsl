@@ -117,10 +117,10 @@ fn debug_color(index: u32, pixel: vec2<u32>) -> vec3<f32> {
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= frame.size) {
+    if !pixel_in_frame(id) {
         return;
     }
-    let index = id.y * frame.size.x + id.x;
+    let index = pixel_index(id.xy);
     var out: vec3<f32>;
     if display.view == VIEW_FINAL {
         out = linear_to_srgb(tonemap(image[index].rgb * display.scale));

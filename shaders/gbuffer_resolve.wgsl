@@ -9,10 +9,10 @@
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= frame.size) {
+    if !pixel_in_frame(id) {
         return;
     }
-    let index = id.y * frame.size.x + id.x;
+    let index = pixel_index(id.xy);
     let vis = textureLoad(visibility, vec2<i32>(id.xy), 0);
     var s: Surface;
     s.motion = vec2<f32>(NO_MOTION);

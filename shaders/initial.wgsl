@@ -11,14 +11,40 @@
 @group(2) @binding(0) var<storage, read> surfaces: array<Surface>;
 @group(2) @binding(1) var<storage, read_write> reservoirs_out: array<Reservoir>;
 @group(2) @binding(2) var<storage, read_write> debug: array<PixelDebug>;
+// Presampled lights (presample_lights.wgsl); a one-element placeholder without tiles.
+@group(2) @binding(3) var<storage, read> light_tiles: array<TileSample>;
 
-fn stream_light_candidates(sp: ShadingPoint, r: ptr<function, Reservoir>, rng: ptr<function, u32>) {
+struct Candidate {
+    id: LightSampleId,
+    point: LightPoint,
+}
+
+// One light candidate drawn from p_src: from this block's tile, or from the alias table.
+fn light_candidate(rng: ptr<function, u32>, tile: u32) -> Candidate {
+#ifdef LIGHT_TILES
+    let j = min(u32(rand_f32(rng) * f32(LIGHT_TILE_SIZE)), LIGHT_TILE_SIZE - 1u);
+    let t = light_tiles[tile * LIGHT_TILE_SIZE + j];
+    return Candidate(LightSampleId(t.light, t.uv), unpack_tile_sample(t));
+#else
+    let y = sample_light(rng);
+    return Candidate(y, light_point(y.light, y.uv));
+#endif
+}
+
+// The tile a pixel block uses this frame (a fresh, decorrelated choice every frame).
+fn block_tile(pixel: vec2<u32>) -> u32 {
+    let block = pixel / LIGHT_TILE_PIXELS;
+    return pcg_hash(block.x + pcg_hash(block.y + pcg_hash(frame.frame_index ^ frame.seed))) % LIGHT_TILE_COUNT;
+}
+
+fn stream_light_candidates(sp: ShadingPoint, r: ptr<function, Reservoir>, rng: ptr<function, u32>, tile: u32) {
     let n_l = f32(params.light_candidates);
     let n_b = f32(params.bsdf_candidates);
     for (var i = 0u; i < params.light_candidates; i++) {
-        let y = sample_light(rng);
+        let candidate = light_candidate(rng, tile);
+        let y = candidate.id;
+        let lp = candidate.point;
         let u_select = rand_f32(rng);
-        let lp = light_point(y.light, y.uv);
         let c = light_contribution(sp, lp);
         let t = target_pdf(c);
         var p_bsdf = 0.0;
@@ -59,17 +85,17 @@ fn stream_bsdf_candidates(sp: ShadingPoint, r: ptr<function, Reservoir>, rng: pt
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= frame.size) {
+    if !pixel_in_frame(id) {
         return;
     }
-    let index = id.y * frame.size.x + id.x;
+    let index = pixel_index(id.xy);
     let s = surfaces[index];
     var r = reservoir_empty();
     if surface_is_valid(s) {
         if frame.light_count > 0u {
             let sp = shading_point_from_surface(s, frame.camera_position);
             var rng = rng_seed(id.xy, STREAM_INITIAL);
-            stream_light_candidates(sp, &r, &rng);
+            stream_light_candidates(sp, &r, &rng, block_tile(id.xy));
 #ifdef BSDF_CANDIDATES
             stream_bsdf_candidates(sp, &r, &rng);
 #endif

@@ -60,10 +60,10 @@ fn bsdf_sample_estimate(sp: ShadingPoint, rng: ptr<function, u32>) -> vec3<f32> 
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= frame.size) {
+    if !pixel_in_frame(id) {
         return;
     }
-    let index = id.y * frame.size.x + id.x;
+    let index = pixel_index(id.xy);
     let chunk = pass_info.pass_index;
     var rng = pcg_hash(rng_seed(id.xy, STREAM_REFERENCE) ^ pcg_hash(chunk));
     var sum = vec3<f32>(0.0);

@@ -16,20 +16,15 @@
 @group(2) @binding(4) var<uniform> pass_info: PassInfo;
 
 fn load_neighbour(index: u32) -> Reservoir {
-    let r = reservoirs_in[index];
-    if reservoir_is_corrupt(r) {
-        count_stat(STAT_NONFINITE + PASS_SPATIAL);
-        return reservoir_empty();
-    }
-    return r;
+    return checked_reservoir(reservoirs_in[index], PASS_SPATIAL);
 }
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= frame.size) {
+    if !pixel_in_frame(id) {
         return;
     }
-    let index = id.y * frame.size.x + id.x;
+    let index = pixel_index(id.xy);
     let s = surfaces[index];
     var canonical = load_neighbour(index);
     var d = debug[index];
@@ -64,7 +59,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             }
             q = clamp(q, vec2<i32>(0), size - 1);
         }
-        let q_index = u32(q.y) * frame.size.x + u32(q.x);
+        let q_index = pixel_index(vec2<u32>(q));
         if mask == 0u {
             let ns = surfaces[q_index];
             if !surface_is_valid(ns) {

@@ -41,7 +41,7 @@ fn validate_previous(pixel: vec2<i32>, s: Surface, sp: ShadingPoint) -> Temporal
         }
         p = clamp(p, vec2<i32>(0), size - 1);
     }
-    let prev_index = u32(p.y) * frame.size.x + u32(p.x);
+    let prev_index = pixel_index(vec2<u32>(p));
     let ps = prev_surfaces[prev_index];
     c.prev_surface = ps;
     if frame.history_valid == 0u || !surface_is_valid(ps) {
@@ -52,11 +52,7 @@ fn validate_previous(pixel: vec2<i32>, s: Surface, sp: ShadingPoint) -> Temporal
     } else {
         c.mask |= surface_dissimilarity(s, ps, true);
     }
-    var prev = prev_reservoirs[prev_index];
-    if reservoir_is_corrupt(prev) {
-        count_stat(STAT_NONFINITE + PASS_TEMPORAL);
-        prev = reservoir_empty();
-    }
+    let prev = checked_reservoir(prev_reservoirs[prev_index], PASS_TEMPORAL);
     c.reservoir = prev;
     let prev_null = reservoir_is_null(prev);
     if prev_null && check_enabled(REJECT_RESERVOIR) {
@@ -78,10 +74,10 @@ fn validate_previous(pixel: vec2<i32>, s: Surface, sp: ShadingPoint) -> Temporal
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= frame.size) {
+    if !pixel_in_frame(id) {
         return;
     }
-    let index = id.y * frame.size.x + id.x;
+    let index = pixel_index(id.xy);
     let s = surfaces[index];
     let current = reservoirs_in[index];
     var d = debug[index];

@@ -4,7 +4,9 @@
 //! headless to EXR/PNG with statistics; `params` lists every pipeline parameter;
 //! `scenes` lists the built-in scenes.
 
+mod bench;
 mod cli;
+mod viewer;
 
 use clap::{Parser, Subcommand};
 
@@ -21,8 +23,12 @@ struct Args {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Open the interactive viewer (the default without a command).
+    View(viewer::ViewArgs),
     /// Render frames headless and write an image (and statistics).
     Render(cli::render::RenderArgs),
+    /// Measure configurations against a cached reference: times, errors, CSV/Markdown/plots.
+    Bench(bench::BenchArgs),
     /// List every pipeline parameter with its stage, default, range and meaning.
     Params,
     /// List the built-in scenes (one `builtin:...` name per line).
@@ -33,7 +39,9 @@ fn main() {
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
     let args = Args::parse();
     let result = match args.command {
+        Some(Command::View(a)) => viewer::run(a),
         Some(Command::Render(a)) => cli::render::run(a),
+        Some(Command::Bench(a)) => bench::run(a),
         Some(Command::Params) => {
             cli::params::print_params();
             Ok(())
@@ -42,9 +50,7 @@ fn main() {
             cli::params::print_scenes();
             Ok(())
         }
-        None => Err(anyhow::anyhow!(
-            "the interactive viewer is not built yet; use `render`"
-        )),
+        None => viewer::run(viewer::ViewArgs::default()),
     };
     if let Err(e) = result {
         // One line, naming the file or argument and the problem.

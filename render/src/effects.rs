@@ -10,6 +10,7 @@ use std::fmt;
 
 use crate::scene::{AlphaMode, Scene};
 use crate::settings::Settings;
+use crate::shader_constants::{LIGHT_TILE_COUNT, LIGHT_TILE_SIZE};
 
 /// What effect detection needs to know about a scene, counted once at load time.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -22,6 +23,8 @@ pub struct SceneFeatures {
     pub base_color_textured_materials: usize,
     pub metallic_roughness_textured_materials: usize,
     pub alpha_masked_materials: usize,
+    /// False only when occlusion is provably impossible (see `can_occlude`).
+    pub can_occlude: bool,
 }
 
 impl SceneFeatures {
@@ -56,8 +59,37 @@ impl SceneFeatures {
                 m.metallic_roughness_texture.is_some() && specular(m)
             }),
             alpha_masked_materials: count(&|m| matches!(m.alpha_mode, AlphaMode::Mask(_))),
+            can_occlude: can_occlude(scene),
         }
     }
+}
+
+/// Above this many triangles the convexity proof is not attempted (it is O(T·V)).
+const CONVEXITY_PROOF_LIMIT: usize = 4096;
+
+/// Whether any triangle can block a segment between two surface points. It cannot when
+/// every vertex lies on the inner side of every triangle's plane (normal by winding): the
+/// scene is then the boundary of one convex region seen from inside (an empty room, a
+/// plane under a light), and a segment between two boundary points never crosses the
+/// boundary. Anything else, or a scene too large to check, counts as occluding.
+fn can_occlude(scene: &Scene) -> bool {
+    if scene.triangles.len() > CONVEXITY_PROOF_LIMIT {
+        return true;
+    }
+    let bounds = scene.bounds();
+    let eps = bounds.extent().length() * 1e-5;
+    for t in 0..scene.triangles.len() {
+        let [a, b, c] = scene.triangle_positions(t);
+        let n = (b - a).cross(c - a);
+        if n.length_squared() <= 0.0 {
+            continue; // zero area: blocks nothing
+        }
+        let n = n.normalize();
+        if scene.vertices.iter().any(|v| n.dot(v.position - a) < -eps) {
+            return true;
+        }
+    }
+    false
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -73,10 +105,11 @@ pub enum Effect {
     Shadows,
     Motion,
     BsdfCandidates,
+    LightTiles,
 }
 
 impl Effect {
-    pub const ALL: [Effect; 11] = [
+    pub const ALL: [Effect; 12] = [
         Effect::AreaLights,
         Effect::EmissiveTextures,
         Effect::PunctualLights,
@@ -88,6 +121,7 @@ impl Effect {
         Effect::Shadows,
         Effect::Motion,
         Effect::BsdfCandidates,
+        Effect::LightTiles,
     ];
 
     /// The WGSL define.
@@ -104,6 +138,7 @@ impl Effect {
             Effect::Shadows => "SHADOWS",
             Effect::Motion => "MOTION",
             Effect::BsdfCandidates => "BSDF_CANDIDATES",
+            Effect::LightTiles => "LIGHT_TILES",
         }
     }
 
@@ -121,6 +156,7 @@ impl Effect {
             Effect::Shadows => "shadows",
             Effect::Motion => "motion",
             Effect::BsdfCandidates => "bsdf-candidates",
+            Effect::LightTiles => "light-tiles",
         }
     }
 
@@ -252,9 +288,13 @@ impl EffectSet {
         let has_lights = f.emissive_triangles > 0 || f.punctual_lights > 0;
         decide(
             Effect::Shadows,
-            has_lights,
+            has_lights && f.can_occlude,
             "occlusion cannot be ruled out, so every light sample gets a shadow ray".into(),
-            "no lights: nothing to shadow".into(),
+            if has_lights {
+                "the scene is one convex region seen from inside: nothing can occlude".into()
+            } else {
+                "no lights: nothing to shadow".into()
+            },
         );
         decide(
             Effect::Motion,
@@ -270,6 +310,18 @@ impl EffectSet {
                 "BSDF candidates set to 0".into()
             } else {
                 "no emissive triangles for BSDF rays to hit".into()
+            },
+        );
+        decide(
+            Effect::LightTiles,
+            settings.light_tiles && has_lights,
+            format!(
+                "light tiles: {LIGHT_TILE_COUNT} × {LIGHT_TILE_SIZE} presampled lights per frame"
+            ),
+            if settings.light_tiles {
+                "no lights to presample".into()
+            } else {
+                "light tiles off".into()
             },
         );
         set

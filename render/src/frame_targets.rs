@@ -1,7 +1,11 @@
-//! Everything whose size follows the output size: the visibility and depth targets, two
-//! surface buffers (current / previous), three reservoir buffers that the stages hand
-//! around (notes §2.6: ping-pong), the debug records, radiance, accumulation and the
-//! display texture. Re-created on resize; history starts invalid.
+//! Everything whose size follows the output size: the visibility and depth targets, the
+//! surface buffers (current / previous), the reservoir buffers that the stages hand around
+//! (notes §2.6: ping-pong), the debug records, radiance, accumulation and the display
+//! texture. Re-created on resize; history starts invalid.
+//!
+//! Without temporal reuse nothing needs last frame's data: one surface buffer and two
+//! reservoir buffers suffice. The second surface buffer and the third reservoir buffer
+//! (the history) are allocated the first time temporal reuse runs.
 
 use crate::gpu::Gpu;
 use crate::gpu_types::{GpuPixelDebug, GpuReservoir, GpuSurface};
@@ -12,8 +16,10 @@ pub struct FrameTargets {
     pub height: u32,
     pub visibility: wgpu::TextureView,
     pub depth: wgpu::TextureView,
-    pub surfaces: [wgpu::Buffer; 2],
-    pub reservoirs: [wgpu::Buffer; 3],
+    /// One, or two once temporal reuse has run (current and previous).
+    pub surfaces: Vec<wgpu::Buffer>,
+    /// Two, or three once temporal reuse has run (the third keeps the history).
+    pub reservoirs: Vec<wgpu::Buffer>,
     pub debug: wgpu::Buffer,
     pub radiance: wgpu::Buffer,
     pub accumulation: wgpu::Buffer,
@@ -110,9 +116,10 @@ impl FrameTargets {
             height,
             visibility: visibility.create_view(&Default::default()),
             depth: depth.create_view(&Default::default()),
-            surfaces: [0, 1].map(|i| pixel_buffer(gpu, &format!("surfaces {i}"), pixels, surface)),
-            reservoirs: [0, 1, 2]
-                .map(|i| pixel_buffer(gpu, &format!("reservoirs {i}"), pixels, reservoir)),
+            surfaces: vec![pixel_buffer(gpu, "surfaces 0", pixels, surface)],
+            reservoirs: (0..2)
+                .map(|i| pixel_buffer(gpu, &format!("reservoirs {i}"), pixels, reservoir))
+                .collect(),
             debug: pixel_buffer(
                 gpu,
                 "pixel debug",
@@ -126,6 +133,31 @@ impl FrameTargets {
             display_view,
             display_srgb_view,
         }
+    }
+
+    /// Allocates the previous-frame surfaces and the history reservoirs (first temporal frame).
+    pub fn ensure_history(&mut self, gpu: &Gpu) {
+        let pixels = self.pixel_count();
+        if self.surfaces.len() < 2 {
+            self.surfaces.push(pixel_buffer(
+                gpu,
+                "surfaces 1",
+                pixels,
+                std::mem::size_of::<GpuSurface>(),
+            ));
+        }
+        if self.reservoirs.len() < 3 {
+            self.reservoirs.push(pixel_buffer(
+                gpu,
+                "reservoirs 2",
+                pixels,
+                std::mem::size_of::<GpuReservoir>(),
+            ));
+        }
+    }
+
+    pub fn has_history(&self) -> bool {
+        self.surfaces.len() == 2 && self.reservoirs.len() == 3
     }
 
     pub fn pixel_count(&self) -> u64 {

@@ -39,8 +39,10 @@ pub struct GpuScene {
     /// Length of the bounds' diagonal (the unit of scale-relative thresholds).
     pub scale: f32,
     pub info: SceneInfo,
-    /// Triangle positions in BVH order (kept for CPU-side picking and tests).
     pub bvh: Bvh,
+    /// Per light-table entry: its triangle (or the punctual position three times), so the
+    /// CPU can turn a reservoir's (light, uv) into a point for the inspector.
+    light_geometry: Vec<[Vec3; 3]>,
 }
 
 /// Octahedral encoding into two snorm16, bit-identical to `oct_encode` in math.wgsl.
@@ -169,6 +171,19 @@ impl GpuScene {
             })
             .collect();
 
+        let light_geometry = lights
+            .lights
+            .iter()
+            .map(|l| {
+                let index = (l.kind_prim & LIGHT_PRIM_MASK) as usize;
+                if l.kind_prim >> LIGHT_KIND_SHIFT == LIGHT_KIND_TRIANGLE {
+                    let t = &triangles[index];
+                    [t.p0, t.p1, t.p2].map(Vec3::from)
+                } else {
+                    [Vec3::from(lights.punctual[index].position); 3]
+                }
+            })
+            .collect();
         let buffers = [
             storage_buffer(gpu, "triangles", &triangles),
             storage_buffer(gpu, "triangle shading", &shading),
@@ -208,6 +223,13 @@ impl GpuScene {
             scale,
             info,
             bvh,
+            light_geometry,
         })
+    }
+
+    /// The world position of light sample (light, uv), as `light_point` in lights.wgsl.
+    pub fn sample_point(&self, light: u32, uv: [f32; 2]) -> Option<[f32; 3]> {
+        let [p0, p1, p2] = *self.light_geometry.get(light as usize)?;
+        Some((p0 * (1.0 - uv[0] - uv[1]) + p1 * uv[0] + p2 * uv[1]).into())
     }
 }

@@ -135,6 +135,22 @@ pub struct GpuReservoir {
     pub source: u32,
 }
 
+/// One presampled light of a light tile: everything the initial pass needs to score it,
+/// in one contiguous read (lights.wgsl `LightPoint`, packed).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuTileSample {
+    pub position: [f32; 3],
+    pub source_pdf: f32,
+    pub radiance: [f32; 3],
+    pub light: u32,
+    pub uv: [f32; 2],
+    /// Octahedral normal of a triangle light.
+    pub normal: u32,
+    /// `kind | double_sided << 2 | punctual index << 8`.
+    pub flags: u32,
+}
+
 /// Per-pixel surface written by the G-buffer resolve pass and kept one frame for
 /// temporal validation (notes §2.6).
 #[repr(C)]

@@ -10,6 +10,7 @@ pub mod gpu_types;
 pub mod image;
 pub mod metrics;
 pub mod passes;
+pub mod reference_cache;
 pub mod renderer;
 pub mod reservoir;
 pub mod scene;

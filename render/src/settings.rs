@@ -194,6 +194,8 @@ parameter_table! {
             "Light samples per pixel drawn from the power-proportional alias table and streamed through the reservoir (notes §1). 1 light and 0 BSDF candidates is plain NEE.";
         bsdf_candidates: u32 = 1, ParamKind::Int { min: 0, max: 16 }, "BSDF candidates",
             "BSDF-sampled rays per pixel; those that hit an emitter join the reservoir, combined with the light candidates by the balance heuristic.";
+        light_tiles: bool = true, ParamKind::Bool, "Light tiles",
+            "Draw light candidates from 128 tiles of 1024 lights presampled by power once per frame (one tile per 16×16 pixel block) instead of from the whole light table: same distribution, a small shared working set, so selection costs the same for a thousand or a million lights (notes §6).";
         initial_visibility: bool = true, ParamKind::Bool, "Initial visibility",
             "Trace the survivor's shadow ray right after initial sampling and drop it when occluded (visibility reuse, notes §6), so reuse only spreads samples that were visible. One extra shadow ray per pixel.";
     }
@@ -545,10 +547,12 @@ mod tests {
 
     #[test]
     fn presets_round_trip_and_reject_unknown_keys_and_types() {
-        let mut s = Settings::default();
-        s.m_cap = 7.5;
-        s.temporal = false;
-        s.bias_correction = BiasCorrection::Pairwise;
+        let s = Settings {
+            m_cap: 7.5,
+            temporal: false,
+            bias_correction: BiasCorrection::Pairwise,
+            ..Settings::default()
+        };
         let text = preset::to_toml(&s);
         let (back, warnings) = preset::parse(&text, &Settings::default()).unwrap();
         assert_eq!(back, s);

@@ -80,6 +80,7 @@ pub const STAT_COUNT: u32 = 40;
 pub const STREAM_INITIAL: u32 = 0;
 pub const STREAM_TEMPORAL: u32 = 1;
 pub const STREAM_REFERENCE: u32 = 2;
+pub const STREAM_LIGHT_TILES: u32 = 3;
 pub const STREAM_SPATIAL: u32 = 4;
 
 /// The reference renders its samples per pixel in dispatches of at most this many.
@@ -87,6 +88,14 @@ pub const STREAM_SPATIAL: u32 = 4;
 /// counter shared by all loops, 65535): a single invocation tracing a few hundred BVH rays
 /// silently stops early. Small chunks keep every invocation far below that bound.
 pub const REFERENCE_SAMPLES_PER_DISPATCH: u32 = 8;
+
+/// Light tiles (notes §6; RTXDI): every frame LIGHT_TILE_COUNT tiles of LIGHT_TILE_SIZE
+/// power-sampled lights are drawn once; each LIGHT_TILE_PIXELS² block of pixels draws its
+/// initial candidates from one tile, so candidate reads hit a small, shared working set
+/// whatever the number of lights.
+pub const LIGHT_TILE_COUNT: u32 = 128;
+pub const LIGHT_TILE_SIZE: u32 = 1024;
+pub const LIGHT_TILE_PIXELS: u32 = 16;
 
 /// Upper bound of `spatial_neighbours` (the shader keeps accepted ones in an array).
 pub const MAX_SPATIAL_NEIGHBOURS: u32 = 32;
@@ -168,6 +177,10 @@ pub fn wgsl_prelude() -> String {
         ("STREAM_INITIAL", STREAM_INITIAL),
         ("STREAM_TEMPORAL", STREAM_TEMPORAL),
         ("STREAM_REFERENCE", STREAM_REFERENCE),
+        ("STREAM_LIGHT_TILES", STREAM_LIGHT_TILES),
+        ("LIGHT_TILE_COUNT", LIGHT_TILE_COUNT),
+        ("LIGHT_TILE_SIZE", LIGHT_TILE_SIZE),
+        ("LIGHT_TILE_PIXELS", LIGHT_TILE_PIXELS),
         ("STREAM_SPATIAL", STREAM_SPATIAL),
         ("MAX_SPATIAL_NEIGHBOURS", MAX_SPATIAL_NEIGHBOURS),
         (

@@ -40,10 +40,8 @@ fn disk_dir() -> Option<PathBuf> {
 
 /// The text of one shader file (`path` relative to `shaders/`).
 pub fn shader_file(path: &str) -> Result<String, ShaderSourceError> {
-    if let Some(dir) = disk_dir() {
-        if let Ok(text) = std::fs::read_to_string(dir.join(path)) {
-            return Ok(text);
-        }
+    if let Some(text) = disk_dir().and_then(|dir| std::fs::read_to_string(dir.join(path)).ok()) {
+        return Ok(text);
     }
     embedded::EMBEDDED_SHADERS
         .iter()

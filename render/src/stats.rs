@@ -37,12 +37,14 @@ impl FrameCounters {
     }
 }
 
-/// One frame's report: its counters and (when timestamps exist) per-pass GPU times.
+/// One frame's report: its counters, per-pass times (when timing is on) and, while a
+/// pixel is inspected, that pixel's reservoirs.
 #[derive(Clone, Debug, Default)]
 pub struct FrameReport {
     pub frame: u64,
     pub counters: FrameCounters,
     pub pass_ms: Vec<(&'static str, f64)>,
+    pub inspection: Option<crate::renderer::PixelInspection>,
 }
 
 impl FrameReport {
@@ -177,6 +179,7 @@ mod tests {
                 frame: i as u64,
                 counters: FrameCounters(c.clone()),
                 pass_ms: vec![("shade", *ms)],
+                inspection: None,
             })
             .collect();
         let s = StatsSummary::from_reports(&reports, 0);

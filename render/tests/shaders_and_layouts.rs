@@ -9,7 +9,8 @@ use restir_render::effects::{Effect, EffectSet};
 use restir_render::gpu_types::*;
 use restir_render::shader_source::compose;
 
-const PASSES: [&str; 8] = [
+const PASSES: [&str; 9] = [
+    "presample_lights.wgsl",
     "gbuffer_raster.wgsl",
     "gbuffer_resolve.wgsl",
     "initial.wgsl",
@@ -146,6 +147,12 @@ fn host_structs_match_wgsl_layouts() {
         ]
     );
     check_struct!(m, "BvhNode", GpuBvhNode, [min, first, max, count]);
+    check_struct!(
+        m,
+        "TileSample",
+        GpuTileSample,
+        [position, source_pdf, radiance, light, uv, normal, flags]
+    );
     check_struct!(
         m,
         "Reservoir",

@@ -72,7 +72,9 @@ fn hit_is_accepted(tri_index: u32, u: f32, v: f32, ray: Ray, cull_single_sided_b
     return true;
 }
 
-fn trace_closest(ray: Ray, cull_single_sided_back: bool) -> Hit {
+// The one traversal loop. `any_hit`: return at the first accepted hit (shadow rays);
+// otherwise shrink t_max to the nearest hit and visit the nearer child first.
+fn trace(ray: Ray, any_hit: bool, cull_single_sided_back: bool) -> Hit {
     var best = Hit(-1.0, 0u, 0.0, 0.0);
     var t_max = ray.t_max;
     let inv_dir = safe_inverse_dir(ray.dir);
@@ -86,12 +88,14 @@ fn trace_closest(ray: Ray, cull_single_sided_back: bool) -> Hit {
                 let tri_index = node.first + i;
                 let h = intersect_triangle(Ray(ray.origin, ray.dir, t_max), triangles[tri_index]);
                 if h.x > 0.0 && h.x < t_max && hit_is_accepted(tri_index, h.y, h.z, ray, cull_single_sided_back) {
-                    t_max = h.x;
                     best = Hit(h.x, tri_index, h.y, h.z);
+                    if any_hit {
+                        return best;
+                    }
+                    t_max = h.x;
                 }
             }
         } else {
-            // Visit the nearer child first; push the farther one.
             let a = node.first;
             let b = node.first + 1u;
             let na = bvh_nodes[a];
@@ -99,13 +103,12 @@ fn trace_closest(ray: Ray, cull_single_sided_back: bool) -> Hit {
             let ta = intersect_aabb(ray.origin, inv_dir, na.min, na.max, t_max);
             let tb = intersect_aabb(ray.origin, inv_dir, nb.min, nb.max, t_max);
             if ta >= 0.0 && tb >= 0.0 {
-                let near = select(b, a, ta <= tb);
-                let far = select(a, b, ta <= tb);
+                let a_first = ta <= tb;
                 if sp < BVH_STACK_SIZE {
-                    stack[sp] = far;
+                    stack[sp] = select(a, b, a_first);
                     sp++;
                 }
-                node_index = near;
+                node_index = select(b, a, a_first);
                 continue;
             } else if ta >= 0.0 {
                 node_index = a;
@@ -124,48 +127,11 @@ fn trace_closest(ray: Ray, cull_single_sided_back: bool) -> Hit {
     return best;
 }
 
-// Any hit in (0, t_max): the shadow-ray query. Stops at the first accepted hit.
+fn trace_closest(ray: Ray, cull_single_sided_back: bool) -> Hit {
+    return trace(ray, false, cull_single_sided_back);
+}
+
+// Any hit in (0, t_max): the shadow-ray query.
 fn trace_any(ray: Ray) -> bool {
-    let inv_dir = safe_inverse_dir(ray.dir);
-    var stack: array<u32, BVH_STACK_SIZE>;
-    var sp = 0u;
-    var node_index = 0u;
-    loop {
-        let node = bvh_nodes[node_index];
-        if node.count > 0u {
-            for (var i = 0u; i < node.count; i++) {
-                let tri_index = node.first + i;
-                let h = intersect_triangle(ray, triangles[tri_index]);
-                if h.x > 0.0 && h.x < ray.t_max && hit_is_accepted(tri_index, h.y, h.z, ray, false) {
-                    return true;
-                }
-            }
-        } else {
-            let a = node.first;
-            let na = bvh_nodes[a];
-            let nb = bvh_nodes[a + 1u];
-            let hit_a = intersect_aabb(ray.origin, inv_dir, na.min, na.max, ray.t_max) >= 0.0;
-            let hit_b = intersect_aabb(ray.origin, inv_dir, nb.min, nb.max, ray.t_max) >= 0.0;
-            if hit_a && hit_b {
-                if sp < BVH_STACK_SIZE {
-                    stack[sp] = a + 1u;
-                    sp++;
-                }
-                node_index = a;
-                continue;
-            } else if hit_a {
-                node_index = a;
-                continue;
-            } else if hit_b {
-                node_index = a + 1u;
-                continue;
-            }
-        }
-        if sp == 0u {
-            break;
-        }
-        sp--;
-        node_index = stack[sp];
-    }
-    return false;
+    return trace(ray, true, false).t > 0.0;
 }

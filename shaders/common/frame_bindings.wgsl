@@ -4,3 +4,12 @@
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<uniform> params: Params;
+
+// The pixel a compute invocation shades, or false when the dispatch overhangs the image.
+fn pixel_in_frame(id: vec3<u32>) -> bool {
+    return all(id.xy < frame.size);
+}
+
+fn pixel_index(pixel: vec2<u32>) -> u32 {
+    return pixel.y * frame.size.x + pixel.x;
+}

@@ -86,6 +86,23 @@ fn sample_light(rng: ptr<function, u32>) -> LightSampleId {
     return LightSampleId(light, uv);
 }
 
+fn pack_tile_sample(y: LightSampleId, lp: LightPoint) -> TileSample {
+    let flags = lp.kind | (select(0u, 1u, lp.double_sided) << 2u) | (lp.punctual << 8u);
+    return TileSample(lp.position, lp.source_pdf, lp.radiance, y.light, y.uv, oct_encode(lp.normal), flags);
+}
+
+fn unpack_tile_sample(t: TileSample) -> LightPoint {
+    var lp: LightPoint;
+    lp.kind = t.flags & 3u;
+    lp.position = t.position;
+    lp.normal = select(vec3<f32>(0.0), oct_decode(t.normal), lp.kind == LIGHT_POINT_AREA);
+    lp.radiance = t.radiance;
+    lp.source_pdf = t.source_pdf;
+    lp.double_sided = ((t.flags >> 2u) & 1u) != 0u;
+    lp.punctual = t.flags >> 8u;
+    return lp;
+}
+
 #ifdef PUNCTUAL_LIGHTS
 // Spot cone and range window of KHR_lights_punctual, as the spec recommends.
 fn punctual_attenuation(p: PunctualLight, to_light: vec3<f32>, dist2: f32) -> f32 {

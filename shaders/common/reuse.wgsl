@@ -2,6 +2,17 @@
 #include "common/frame_bindings.wgsl"
 #include "common/stats_bindings.wgsl"
 #include "common/shading_point.wgsl"
+#include "common/reservoir.wgsl"
+
+// A reservoir read from another pixel or frame, or null (counted against `pass_id`) when
+// its weights are not finite and non-negative: never propagate a corrupt one.
+fn checked_reservoir(r: Reservoir, pass_id: u32) -> Reservoir {
+    if reservoir_is_corrupt(r) {
+        count_stat(STAT_NONFINITE + pass_id);
+        return reservoir_empty();
+    }
+    return r;
+}
 
 fn check_enabled(bit: u32) -> bool {
     return (params.checks & bit) != 0u;

@@ -76,6 +76,17 @@ struct Reservoir {
     source: u32,   // SOURCE_*
 }
 
+// One presampled light of a light tile (a packed LightPoint plus its identity).
+struct TileSample {
+    position: vec3<f32>,
+    source_pdf: f32,
+    radiance: vec3<f32>,
+    light: u32,
+    uv: vec2<f32>,
+    normal: u32,   // octahedral
+    flags: u32,    // kind | double_sided << 2 | punctual index << 8
+}
+
 // One pixel's primary surface (restir-notes.md §2.6), kept for one frame for temporal validation.
 struct Surface {
     position: vec3<f32>,

@@ -12,7 +12,7 @@ use restir_render::{DebugView, LinearImage, Mode, Renderer};
 use serde::Serialize;
 
 use super::camera_path::{cut_viewpoint, orbit};
-use super::setup::{build_renderer, parse_effects, parse_size, settings_from};
+use super::setup::{PipelineArgs, build_renderer, parse_size};
 
 #[derive(Args, Debug)]
 pub struct RenderArgs {
@@ -34,15 +34,9 @@ pub struct RenderArgs {
     /// Write the average of all frames instead of the last one.
     #[arg(long)]
     pub accumulate: bool,
-    /// Seed of every random stream.
-    #[arg(long, default_value_t = 0)]
-    pub seed: u32,
-    /// Override a pipeline parameter, `name=value` (see `params`); repeatable.
-    #[arg(long = "set", value_name = "NAME=VALUE")]
-    pub set: Vec<String>,
-    /// A preset file (TOML, `name = value` per line) applied before `--set`.
-    #[arg(long)]
-    pub preset: Option<PathBuf>,
+    /// Seed, `--set`, preset and effect set.
+    #[command(flatten)]
+    pub pipeline: PipelineArgs,
     /// Output image: .exr (linear radiance) or .png (what the display shows).
     #[arg(long)]
     pub out: PathBuf,
@@ -58,9 +52,6 @@ pub struct RenderArgs {
     /// Jump the camera to a distant viewpoint at this frame (a camera cut).
     #[arg(long)]
     pub cut_at: Option<u32>,
-    /// Effect set to compile: auto (from the scene), all (general pipeline) or a list.
-    #[arg(long, default_value = "auto")]
-    pub effects: String,
     /// Exposure in EV for PNG output, or `auto` (log-average luminance to middle grey).
     #[arg(long, default_value = "auto")]
     pub exposure: String,
@@ -110,17 +101,17 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     if args.frames == 0 {
         bail!("--frames must be at least 1");
     }
-    let mut settings = settings_from(args.preset.as_ref(), &args.set)?;
+    let mut settings = args.pipeline.settings(&[])?;
     if let Some(spp) = args.spp {
         settings
             .set_from_str("reference_spp", &spp.to_string())
             .map_err(|e| anyhow::anyhow!("--spp: {e}"))?;
     }
-    let effects = parse_effects(&args.effects)?;
+    let effects = args.pipeline.effects()?;
 
     let mut renderer = build_renderer(&args.scene, size, settings)?;
     renderer.set_mode(mode);
-    renderer.set_seed(args.seed);
+    renderer.set_seed(args.pipeline.seed);
     renderer.force_effects(effects);
     let reports = render_frames(&mut renderer, &args)?;
 

@@ -3,9 +3,43 @@
 use std::path::PathBuf;
 
 use anyhow::{Context, bail};
+use clap::Args;
 use restir_render::effects::EffectSet;
 use restir_render::settings::preset;
 use restir_render::{Gpu, Renderer, Settings, load_scene};
+
+/// The pipeline options `render` and `bench` share (`#[command(flatten)]`).
+#[derive(Args, Debug)]
+pub struct PipelineArgs {
+    /// Seed of every random stream.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u32,
+    /// Override a pipeline parameter, `name=value` (see `params`); repeatable.
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    pub set: Vec<String>,
+    /// A preset file (TOML, `name = value` per line) applied before `--set`.
+    #[arg(long)]
+    pub preset: Option<PathBuf>,
+    /// Effect set to compile: auto (from the scene), all (general pipeline) or a list.
+    #[arg(long, default_value = "auto")]
+    pub effects: String,
+}
+
+impl PipelineArgs {
+    /// Defaults, then `first` (assignments a command starts from), the preset and `--set`.
+    pub fn settings(&self, first: &[&str]) -> anyhow::Result<Settings> {
+        let assignments: Vec<String> = first
+            .iter()
+            .map(|s| s.to_string())
+            .chain(self.set.iter().cloned())
+            .collect();
+        settings_from(self.preset.as_ref(), &assignments)
+    }
+
+    pub fn effects(&self) -> anyhow::Result<Option<EffectSet>> {
+        parse_effects(&self.effects)
+    }
+}
 
 /// Parses `WxH`.
 pub fn parse_size(text: &str) -> anyhow::Result<(u32, u32)> {

@@ -96,46 +96,67 @@ struct RingSlot {
 }
 
 /// A few mappable buffers used in turn, so per-frame data (stats, timestamps) comes back
-/// without the CPU waiting for the GPU. When every slot is still in flight the frame's
-/// data is dropped (the viewer just misses a sample); headless callers wait instead.
+/// without the CPU waiting for the GPU. When every slot is in flight (nobody collected for
+/// a while) the ring grows, up to `MAX_SLOTS`; only then is a frame's data dropped.
 pub struct ReadbackRing {
     slots: Vec<RingSlot>,
+    size: u64,
+    label: String,
 }
+
+const MAX_SLOTS: usize = 64;
 
 impl ReadbackRing {
     pub fn new(device: &wgpu::Device, size: u64, count: usize, label: &str) -> ReadbackRing {
-        let slots = (0..count)
-            .map(|_| RingSlot {
-                buffer: device.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some(label),
-                    size,
-                    usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-                    mapped_at_creation: false,
-                }),
-                state: Default::default(),
-                tag: 0,
-                len: 0,
-            })
-            .collect();
-        ReadbackRing { slots }
+        let mut ring = ReadbackRing {
+            slots: Vec::new(),
+            size,
+            label: label.to_string(),
+        };
+        for _ in 0..count {
+            ring.add_slot(device);
+        }
+        ring
     }
 
-    /// Records a copy of `len` bytes of `source` into a free slot; false if none is free.
+    fn add_slot(&mut self, device: &wgpu::Device) {
+        self.slots.push(RingSlot {
+            buffer: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(&self.label),
+                size: self.size,
+                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+            state: Default::default(),
+            tag: 0,
+            len: 0,
+        });
+    }
+
+    /// Records a copy of `len` bytes of `source` into a free slot; false if none is free
+    /// and the ring cannot grow any more.
     pub fn copy_from(
         &mut self,
+        device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         source: &wgpu::Buffer,
         len: u64,
         tag: u64,
     ) -> bool {
         use std::sync::atomic::Ordering;
-        let Some(slot) = self
+        let free = self
             .slots
-            .iter_mut()
-            .find(|s| s.state.load(Ordering::Acquire) == SLOT_FREE)
-        else {
-            return false;
+            .iter()
+            .position(|s| s.state.load(Ordering::Acquire) == SLOT_FREE);
+        let index = match free {
+            Some(i) => i,
+            None if self.slots.len() < MAX_SLOTS => {
+                self.add_slot(device);
+                self.slots.len() - 1
+            }
+            None => return false,
         };
+        let slot = &mut self.slots[index];
         encoder.copy_buffer_to_buffer(source, 0, &slot.buffer, 0, len);
         slot.tag = tag;
         slot.len = len;

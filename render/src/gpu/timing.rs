@@ -14,6 +14,7 @@ pub struct PassTimer {
     query_set: Option<wgpu::QuerySet>,
     resolve: wgpu::Buffer,
     ring: ReadbackRing,
+    device: wgpu::Device,
     labels: Vec<&'static str>,
     in_flight: HashMap<u64, Vec<&'static str>>,
     /// Nanoseconds per timestamp tick.
@@ -40,6 +41,7 @@ impl PassTimer {
             query_set,
             resolve,
             ring: ReadbackRing::new(&gpu.device, size, 4, "timestamp readback"),
+            device: gpu.device.clone(),
             labels: Vec::new(),
             in_flight: HashMap::new(),
             period: gpu.queue.get_timestamp_period() as f64,
@@ -98,10 +100,13 @@ impl PassTimer {
         }
         let count = labels.len() as u32 * 2;
         encoder.resolve_query_set(qs, 0..count, &self.resolve, 0);
-        if self
-            .ring
-            .copy_from(encoder, &self.resolve, count as u64 * 8, frame)
-        {
+        if self.ring.copy_from(
+            &self.device,
+            encoder,
+            &self.resolve,
+            count as u64 * 8,
+            frame,
+        ) {
             self.in_flight.insert(frame, labels);
         }
     }
@@ -132,4 +137,121 @@ impl PassTimer {
     pub fn in_flight(&self) -> bool {
         self.ring.in_flight()
     }
+}
+
+/// How a frame's passes are timed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TimingMode {
+    /// GPU timestamp queries around each pass (real GPUs).
+    Timestamps,
+    /// Each pass submitted alone and waited for, timed by the CPU clock. For CPU adapters
+    /// (lavapipe), whose compute timestamps do not bracket the dispatch's execution: the
+    /// numbers are then CPU times, meaningful as ratios within one run.
+    WallClock,
+    Off,
+}
+
+/// Records a frame's passes into command encoders and times them per `TimingMode`.
+pub struct FrameRecorder<'a> {
+    gpu: &'a super::Gpu,
+    timer: &'a mut PassTimer,
+    mode: TimingMode,
+    encoder: Option<wgpu::CommandEncoder>,
+    wall_times: PassTimes,
+}
+
+impl<'a> FrameRecorder<'a> {
+    pub fn new(
+        gpu: &'a super::Gpu,
+        timer: &'a mut PassTimer,
+        mode: TimingMode,
+    ) -> FrameRecorder<'a> {
+        FrameRecorder {
+            gpu,
+            timer,
+            mode,
+            encoder: Some(new_encoder(gpu)),
+            wall_times: Vec::new(),
+        }
+    }
+
+    /// The encoder for work that is not a timed pass (clears, copies).
+    pub fn encoder(&mut self) -> &mut wgpu::CommandEncoder {
+        self.encoder.get_or_insert_with(|| new_encoder(self.gpu))
+    }
+
+    /// Records one compute pass through `body`, timed.
+    pub fn compute_pass(
+        &mut self,
+        label: &'static str,
+        body: impl FnOnce(&mut wgpu::ComputePass<'_>),
+    ) {
+        let start = std::time::Instant::now();
+        {
+            let writes = match self.mode {
+                TimingMode::Timestamps => self.timer.compute_writes(label),
+                _ => None,
+            };
+            let encoder = self.encoder.get_or_insert_with(|| new_encoder(self.gpu));
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some(label),
+                timestamp_writes: writes,
+            });
+            body(&mut pass);
+        }
+        self.finish_pass(label, start);
+    }
+
+    /// Records one render pass: `body` gets the encoder and the timestamp writes to use.
+    pub fn render_pass(
+        &mut self,
+        label: &'static str,
+        body: impl FnOnce(&mut wgpu::CommandEncoder, Option<wgpu::RenderPassTimestampWrites<'_>>),
+    ) {
+        let start = std::time::Instant::now();
+        let writes = match self.mode {
+            TimingMode::Timestamps => self.timer.render_writes(label),
+            _ => None,
+        };
+        let encoder = self.encoder.get_or_insert_with(|| new_encoder(self.gpu));
+        body(encoder, writes);
+        self.finish_pass(label, start);
+    }
+
+    fn finish_pass(&mut self, label: &'static str, start: std::time::Instant) {
+        if self.mode == TimingMode::WallClock {
+            // Everything recorded so far (uploads, earlier passes) was already waited for,
+            // so this measures the pass itself.
+            let encoder = self.encoder.take().expect("encoder");
+            self.gpu.queue.submit([encoder.finish()]);
+            self.gpu.wait_idle();
+            self.wall_times
+                .push((label, start.elapsed().as_secs_f64() * 1e3));
+        }
+    }
+
+    /// Submits what is left; returns the wall-clock times (empty unless `WallClock`).
+    pub fn submit(
+        mut self,
+        frame: u64,
+        extra: impl FnOnce(&mut wgpu::CommandEncoder),
+    ) -> PassTimes {
+        let mut encoder = self.encoder.take().unwrap_or_else(|| new_encoder(self.gpu));
+        if self.mode == TimingMode::Timestamps {
+            self.timer.resolve(&mut encoder, frame);
+        } else {
+            self.timer.discard();
+        }
+        extra(&mut encoder);
+        self.gpu.queue.submit([encoder.finish()]);
+        self.timer.after_submit();
+        std::mem::take(&mut self.wall_times)
+    }
+}
+
+fn new_encoder(gpu: &super::Gpu) -> wgpu::CommandEncoder {
+    gpu.device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("frame"),
+        })
 }

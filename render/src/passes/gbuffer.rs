@@ -6,7 +6,7 @@
 use std::collections::BTreeSet;
 
 use super::{ComputePass, PassLayouts, shader_module, storage};
-use crate::gpu::timing::PassTimer;
+use crate::gpu::timing::FrameRecorder;
 use crate::gpu::{Gpu, GpuError};
 
 pub const VISIBILITY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
@@ -103,43 +103,42 @@ impl GBufferPass {
     }
 
     /// Rasterises `triangle_count` triangles into the visibility and depth targets.
-    #[allow(clippy::too_many_arguments)]
     pub fn record_raster(
         &self,
-        encoder: &mut wgpu::CommandEncoder,
-        timer: &mut PassTimer,
-        frame: &wgpu::BindGroup,
-        scene: &wgpu::BindGroup,
+        rec: &mut FrameRecorder,
+        groups: [&wgpu::BindGroup; 2],
         visibility: &wgpu::TextureView,
         depth: &wgpu::TextureView,
         triangle_count: u32,
     ) {
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("gbuffer raster"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: visibility,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: depth,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(0.0),
-                    store: wgpu::StoreOp::Store,
+        rec.render_pass("gbuffer raster", |encoder, timestamp_writes| {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("gbuffer raster"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: visibility,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: depth,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(0.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
                 }),
-                stencil_ops: None,
-            }),
-            timestamp_writes: timer.render_writes("gbuffer raster"),
-            occlusion_query_set: None,
-            multiview_mask: None,
+                timestamp_writes,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&self.raster);
+            pass.set_bind_group(0, groups[0], &[]);
+            pass.set_bind_group(1, groups[1], &[]);
+            pass.draw(0..triangle_count * 3, 0..1);
         });
-        pass.set_pipeline(&self.raster);
-        pass.set_bind_group(0, frame, &[]);
-        pass.set_bind_group(1, scene, &[]);
-        pass.draw(0..triangle_count * 3, 0..1);
     }
 }

@@ -6,6 +6,7 @@
 pub mod display;
 pub mod gbuffer;
 pub mod initial;
+pub mod presample;
 pub mod reference;
 pub mod shade;
 pub mod spatial;
@@ -13,6 +14,7 @@ pub mod temporal;
 
 use std::collections::BTreeSet;
 
+use crate::gpu::timing::FrameRecorder;
 use crate::gpu::{Gpu, GpuError};
 use crate::shader_source;
 
@@ -103,6 +105,7 @@ pub struct PassLayouts {
     pub frame: wgpu::BindGroupLayout,
     pub scene: wgpu::BindGroupLayout,
     pub resolve: wgpu::BindGroupLayout,
+    pub presample: wgpu::BindGroupLayout,
     pub initial: wgpu::BindGroupLayout,
     pub temporal: wgpu::BindGroupLayout,
     pub spatial: wgpu::BindGroupLayout,
@@ -129,6 +132,7 @@ impl PassLayouts {
             ),
             scene: layout(gpu, "scene", &scene_entries),
             resolve: layout(gpu, "gbuffer resolve", &gbuffer::resolve_entries()),
+            presample: layout(gpu, "presample lights", &presample::entries()),
             initial: layout(gpu, "initial", &initial::entries()),
             temporal: layout(gpu, "temporal", &temporal::entries()),
             spatial: layout(gpu, "spatial", &spatial::entries()),
@@ -205,42 +209,49 @@ impl ComputePass {
         Ok(ComputePass { name, pipeline })
     }
 
-    /// Records one dispatch covering `size` pixels, timed when timestamps are available.
-    pub fn record(
-        &self,
-        encoder: &mut wgpu::CommandEncoder,
-        timer: &mut crate::gpu::timing::PassTimer,
-        groups: [&wgpu::BindGroup; 3],
-        size: (u32, u32),
-    ) {
-        self.record_repeated(encoder, timer, groups, &[], size);
+    /// Records one dispatch covering `size` pixels as a timed pass.
+    pub fn record(&self, rec: &mut FrameRecorder, groups: [&wgpu::BindGroup; 3], size: (u32, u32)) {
+        self.record_repeated(rec, groups, &[], size);
     }
 
-    /// Records one dispatch per dynamic offset of group 2 (spatial passes, reference
-    /// chunks) inside one timed compute pass; wgpu orders the dispatches' storage accesses.
+    /// Records one dispatch of `workgroups` (x, y) groups as a timed pass (1-D passes).
+    pub fn record_workgroups(
+        &self,
+        rec: &mut FrameRecorder,
+        groups: [&wgpu::BindGroup; 3],
+        workgroups: (u32, u32),
+    ) {
+        rec.compute_pass(self.name, |pass| {
+            pass.set_pipeline(&self.pipeline);
+            for (i, g) in groups.iter().enumerate() {
+                pass.set_bind_group(i as u32, *g, &[]);
+            }
+            pass.dispatch_workgroups(workgroups.0, workgroups.1, 1);
+        });
+    }
+
+    /// Records one dispatch per dynamic offset of group 2 (reference chunks) inside one
+    /// timed compute pass; wgpu orders the dispatches' storage accesses.
     pub fn record_repeated(
         &self,
-        encoder: &mut wgpu::CommandEncoder,
-        timer: &mut crate::gpu::timing::PassTimer,
+        rec: &mut FrameRecorder,
         groups: [&wgpu::BindGroup; 3],
         dynamic_offsets: &[u32],
         size: (u32, u32),
     ) {
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some(self.name),
-            timestamp_writes: timer.compute_writes(self.name),
+        rec.compute_pass(self.name, |pass| {
+            pass.set_pipeline(&self.pipeline);
+            pass.set_bind_group(0, groups[0], &[]);
+            pass.set_bind_group(1, groups[1], &[]);
+            let (x, y) = (size.0.div_ceil(WORKGROUP), size.1.div_ceil(WORKGROUP));
+            if dynamic_offsets.is_empty() {
+                pass.set_bind_group(2, groups[2], &[]);
+                pass.dispatch_workgroups(x, y, 1);
+            }
+            for offset in dynamic_offsets {
+                pass.set_bind_group(2, groups[2], &[*offset]);
+                pass.dispatch_workgroups(x, y, 1);
+            }
         });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, groups[0], &[]);
-        pass.set_bind_group(1, groups[1], &[]);
-        let (x, y) = (size.0.div_ceil(WORKGROUP), size.1.div_ceil(WORKGROUP));
-        if dynamic_offsets.is_empty() {
-            pass.set_bind_group(2, groups[2], &[]);
-            pass.dispatch_workgroups(x, y, 1);
-        }
-        for offset in dynamic_offsets {
-            pass.set_bind_group(2, groups[2], &[*offset]);
-            pass.dispatch_workgroups(x, y, 1);
-        }
     }
 }

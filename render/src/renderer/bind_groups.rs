@@ -17,6 +17,8 @@ pub enum Key {
     Initial {
         surfaces: usize,
         out: usize,
+        /// Whether `light_tiles` is the full tile buffer (it is re-created once).
+        tiles: bool,
     },
     Temporal {
         surfaces: usize,
@@ -33,6 +35,7 @@ pub enum Key {
         surfaces: usize,
         input: usize,
     },
+    Presample,
     Reference {
         surfaces: usize,
     },
@@ -43,10 +46,12 @@ pub enum Key {
     },
 }
 
-/// Uniform buffers some groups bind besides the targets.
+/// Buffers some groups bind besides the size-dependent targets.
 pub struct Uniforms<'a> {
     pub pass_info: &'a wgpu::Buffer,
     pub display: &'a wgpu::Buffer,
+    /// The presampled light tiles (a one-element placeholder until tiles are used).
+    pub light_tiles: &'a wgpu::Buffer,
 }
 
 #[derive(Default)]
@@ -106,11 +111,22 @@ fn create(
                 },
             ],
         }),
-        Key::Initial { surfaces, out } => buffer_bind_group(
+        Key::Initial { surfaces, out, .. } => buffer_bind_group(
             gpu,
             "initial",
             &layouts.initial,
-            &[&t.surfaces[surfaces], &t.reservoirs[out], &t.debug],
+            &[
+                &t.surfaces[surfaces],
+                &t.reservoirs[out],
+                &t.debug,
+                u.light_tiles,
+            ],
+        ),
+        Key::Presample => buffer_bind_group(
+            gpu,
+            "presample lights",
+            &layouts.presample,
+            &[u.light_tiles],
         ),
         Key::Temporal {
             surfaces,

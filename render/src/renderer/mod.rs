@@ -4,8 +4,11 @@
 //! `readback.rs` brings images and per-pixel records back to the CPU.
 
 mod bind_groups;
+mod inspect;
 mod readback;
 mod record;
+
+pub use inspect::{PixelInspection, StageReservoir};
 
 use std::collections::HashMap;
 
@@ -15,7 +18,7 @@ use wgpu::util::DeviceExt;
 use crate::effects::{EffectSet, SceneFeatures};
 use crate::frame_targets::FrameTargets;
 use crate::gpu::readback::ReadbackRing;
-use crate::gpu::timing::PassTimer;
+use crate::gpu::timing::{PassTimer, TimingMode};
 use crate::gpu::{Gpu, GpuError};
 use crate::gpu_scene::{GpuScene, SceneInfo};
 use crate::gpu_types::*;
@@ -24,7 +27,7 @@ use crate::passes::{
 };
 use crate::scene::{Camera, Scene};
 use crate::settings::Settings;
-use crate::shader_constants::STAT_COUNT;
+use crate::shader_constants::{LIGHT_TILE_COUNT, LIGHT_TILE_SIZE, STAT_COUNT};
 use crate::stats::{FrameCounters, FrameReport};
 use crate::view::{Mode, ViewSettings};
 
@@ -61,10 +64,18 @@ pub struct Renderer {
     params_uniform: wgpu::Buffer,
     display_uniform: wgpu::Buffer,
     pass_info: wgpu::Buffer,
+    /// Light tiles: a one-element placeholder until the first frame that uses them.
+    light_tiles: wgpu::Buffer,
     stats_buffer: wgpu::Buffer,
     frame_bind_group: wgpu::BindGroup,
     timer: PassTimer,
     stats_ring: ReadbackRing,
+    inspect_ring: ReadbackRing,
+    inspected_pixel: Option<(u32, u32)>,
+    pending_inspections: HashMap<u64, inspect::PendingInspection>,
+    /// Inspections read back, waiting for their frame's counters (a separate readback).
+    arrived_inspections: HashMap<u64, PixelInspection>,
+    timing_mode: TimingMode,
     pending_counters: HashMap<u64, FrameCounters>,
     pending_times: HashMap<u64, Vec<(&'static str, f64)>>,
 
@@ -86,6 +97,23 @@ pub struct Renderer {
     last_final: Option<usize>,
     last_effects: Option<EffectSet>,
     last_passes: Vec<&'static str>,
+}
+
+fn tile_buffer(gpu: &Gpu, entries: u64) -> wgpu::Buffer {
+    gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("light tiles"),
+        size: entries * std::mem::size_of::<GpuTileSample>() as u64,
+        usage: wgpu::BufferUsages::STORAGE,
+        mapped_at_creation: false,
+    })
+}
+
+/// Replaces the placeholder by the full light-tile buffer on first use.
+fn ensure_light_tiles(gpu: &Gpu, tiles: &mut wgpu::Buffer) {
+    let full = (LIGHT_TILE_COUNT * LIGHT_TILE_SIZE) as u64;
+    if tiles.size() < full * std::mem::size_of::<GpuTileSample>() as u64 {
+        *tiles = tile_buffer(gpu, full);
+    }
 }
 
 /// Validated output size.
@@ -141,6 +169,7 @@ impl Renderer {
                 contents: &pass_info_data,
                 usage: wgpu::BufferUsages::UNIFORM,
             });
+        let light_tiles = tile_buffer(&gpu, 1);
         let stats_size = STAT_COUNT as u64 * 4;
         let stats_buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("stats"),
@@ -157,6 +186,15 @@ impl Renderer {
             &[&frame_uniform, &params_uniform, &stats_buffer],
         );
         let timer = PassTimer::new(&gpu);
+        // lavapipe's compute timestamps do not bracket the dispatch: time CPU adapters by
+        // the clock, one pass per submission (see TimingMode::WallClock).
+        let timing_mode = if gpu.is_cpu() {
+            TimingMode::WallClock
+        } else if gpu.timestamps {
+            TimingMode::Timestamps
+        } else {
+            TimingMode::Off
+        };
         let stats_ring = ReadbackRing::new(&gpu.device, stats_size, 4, "stats readback");
         let camera = scene.default_camera();
         Ok(Renderer {
@@ -170,10 +208,21 @@ impl Renderer {
             params_uniform,
             display_uniform,
             pass_info,
+            light_tiles,
             stats_buffer,
             frame_bind_group,
             timer,
             stats_ring,
+            inspect_ring: ReadbackRing::new(
+                &gpu.device,
+                inspect::INSPECT_BYTES,
+                3,
+                "inspect readback",
+            ),
+            inspected_pixel: None,
+            pending_inspections: HashMap::new(),
+            arrived_inspections: HashMap::new(),
+            timing_mode,
             pending_counters: HashMap::new(),
             pending_times: HashMap::new(),
             mode: Mode::Restir,
@@ -236,6 +285,8 @@ impl Renderer {
         }
         self.targets = FrameTargets::new(&self.gpu, width, height);
         self.bind_groups.clear();
+        // The new targets start without history buffers.
+        self.ping_pong = PingPong::default();
         self.invalidate_history();
         self.reset_accumulation();
         Ok(())
@@ -317,12 +368,40 @@ impl Renderer {
         self.last_final = None;
     }
 
+    /// Fault injection for tests of the non-finite guard: overwrites the history
+    /// reservoirs with NaN and infinite weights, as a driver bug or a bad upload might.
+    /// The next frame's temporal pass must count them and treat them as null.
+    #[doc(hidden)]
+    pub fn poison_history_for_tests(&mut self) {
+        let poisoned = GpuReservoir {
+            light: 0,
+            p_hat: f32::NAN,
+            uv: [0.3, 0.3],
+            w_sum: f32::INFINITY,
+            weight: f32::NAN,
+            m: f32::NAN,
+            source: 1,
+        };
+        let data = vec![poisoned; self.targets.pixel_count() as usize];
+        self.gpu.queue.write_buffer(
+            &self.targets.reservoirs[self.ping_pong.history],
+            0,
+            bytemuck::cast_slice(&data),
+        );
+    }
+
     /// Restarts the running average (on any change that makes old frames stale).
     pub fn reset_accumulation(&mut self) {
         self.accumulated_frames = 0;
         let mut encoder = self.gpu.device.create_command_encoder(&Default::default());
         encoder.clear_buffer(&self.targets.accumulation, 0, None);
         self.gpu.queue.submit([encoder.finish()]);
+    }
+
+    /// Whether the previous-frame surfaces and history reservoirs exist (they are allocated
+    /// the first time temporal reuse runs).
+    pub fn history_allocated(&self) -> bool {
+        self.targets.has_history()
     }
 
     pub fn accumulated_frames(&self) -> u32 {
@@ -332,6 +411,13 @@ impl Renderer {
     /// The display texture as sRGB (what the viewer samples and shows).
     pub fn display_view_srgb(&self) -> &wgpu::TextureView {
         &self.targets.display_srgb_view
+    }
+
+    /// The display texture as stored: sRGB-encoded values read as plain `Rgba8Unorm`.
+    /// egui-wgpu blends in gamma space and wants exactly this (the sRGB view would decode
+    /// to linear and show the image too dark).
+    pub fn display_view(&self) -> &wgpu::TextureView {
+        &self.targets.display_view
     }
 
     /// Uploads a reference image (linear radiance, same size) for the error view.
@@ -352,6 +438,29 @@ impl Renderer {
         Ok(())
     }
 
+    /// How passes are timed (wall clock on CPU adapters, timestamps on GPUs).
+    pub fn timing_mode(&self) -> TimingMode {
+        self.timing_mode
+    }
+
+    /// `Off` stops timing (fastest); `WallClock` forces per-pass submissions.
+    pub fn set_timing_mode(&mut self, mode: TimingMode) {
+        self.timing_mode = if mode == TimingMode::Timestamps && !self.gpu.timestamps {
+            TimingMode::Off
+        } else {
+            mode
+        };
+    }
+
+    /// Selects the pixel whose reservoirs every following frame captures (None stops).
+    pub fn set_inspected_pixel(&mut self, pixel: Option<(u32, u32)>) {
+        self.inspected_pixel = pixel;
+    }
+
+    pub fn inspected_pixel(&self) -> Option<(u32, u32)> {
+        self.inspected_pixel
+    }
+
     /// Reports (counters and pass timings) of frames whose readbacks have arrived.
     /// With `wait`, blocks until every submitted frame's report is in.
     pub fn collect_reports(&mut self, wait: bool) -> Vec<FrameReport> {
@@ -365,13 +474,25 @@ impl Renderer {
                 .insert(frame, FrameCounters(bytemuck::pod_collect_to_vec(&bytes)));
         }
         self.pending_times.extend(self.timer.collect());
-        // Counters and timings of a frame travel in the same submission but come back
-        // separately: a report is complete when both are in (or timestamps are off).
+        for (frame, bytes) in self.inspect_ring.collect() {
+            if let Some(pending) = self.pending_inspections.remove(&frame) {
+                let scene = &self.scene;
+                if let Some(i) =
+                    pending.finish(frame, &bytes, |light, uv| scene.sample_point(light, uv))
+                {
+                    self.arrived_inspections.insert(frame, i);
+                }
+            }
+        }
+        // Counters, timings and the inspection of a frame travel in the same submission
+        // but come back separately: a report is complete when all are in (timings only
+        // when timestamps are on).
         let mut ready: Vec<u64> = self
             .pending_counters
             .keys()
             .copied()
             .filter(|f| !self.timer.enabled() || wait || self.pending_times.contains_key(f))
+            .filter(|f| !self.pending_inspections.contains_key(f))
             .collect();
         ready.sort_unstable();
         let reports = ready
@@ -380,11 +501,14 @@ impl Renderer {
                 frame,
                 counters: self.pending_counters.remove(&frame).unwrap_or_default(),
                 pass_ms: self.pending_times.remove(&frame).unwrap_or_default(),
+                inspection: self.arrived_inspections.remove(&frame),
             })
             .collect();
         // Timings whose counters were dropped (ring full) would otherwise pile up.
         let oldest = self.frame_index.saturating_sub(16);
         self.pending_times.retain(|f, _| *f >= oldest);
+        self.pending_inspections.retain(|f, _| *f >= oldest);
+        self.arrived_inspections.retain(|f, _| *f >= oldest);
         reports
     }
 }

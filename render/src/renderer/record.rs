@@ -1,20 +1,24 @@
 //! One frame, in order: uniforms → G-buffer → initial → temporal → spatial × P → shade →
 //! display (or reference → display). Passes the settings switch off are not dispatched.
 
+use std::collections::BTreeSet;
+
 use glam::Vec2;
 
 use super::bind_groups::{Key, Uniforms};
+use super::inspect::InspectCapture;
 use super::{PingPong, PipelineVariant, Renderer};
 use crate::effects::EffectSet;
-use crate::gpu::GpuError;
+use crate::gpu::timing::FrameRecorder;
+use crate::gpu::{Gpu, GpuError};
 use crate::gpu_types::{GpuDisplay, GpuFrame};
 use crate::passes::{
-    ComputePass, PASS_INFO_SLOTS, PASS_INFO_STRIDE, display, gbuffer::GBufferPass, initial,
-    reference, shade, spatial, temporal,
+    ComputePass, PASS_INFO_SLOTS, PASS_INFO_STRIDE, PassLayouts, display, gbuffer::GBufferPass,
+    initial, presample, reference, shade, spatial, temporal,
 };
 use crate::settings::Settings;
-use crate::shader_constants::REFERENCE_SAMPLES_PER_DISPATCH;
-use crate::view::{DebugView, Mode};
+use crate::shader_constants::{LIGHT_TILE_COUNT, LIGHT_TILE_SIZE, REFERENCE_SAMPLES_PER_DISPATCH};
+use crate::view::Mode;
 
 /// Radical inverse in base b (Halton sequence) for sub-pixel jitter.
 fn halton(mut index: u32, base: u32) -> f32 {
@@ -26,6 +30,41 @@ fn halton(mut index: u32, base: u32) -> f32 {
         index /= base;
     }
     r
+}
+
+/// The first of `count` reservoir buffers that is neither `a` nor `b`.
+fn other(count: usize, a: usize, b: usize) -> usize {
+    (0..count)
+        .find(|&i| i != a && i != b)
+        .expect("enough reservoir buffers")
+}
+
+fn variant_key(defines: &BTreeSet<String>) -> String {
+    defines.iter().cloned().collect::<Vec<_>>().join(",")
+}
+
+/// The compiled pass `name` of `variant`, compiling it on first use.
+fn pass<'a>(
+    variant: &'a mut PipelineVariant,
+    gpu: &Gpu,
+    layouts: &PassLayouts,
+    defines: &BTreeSet<String>,
+    name: &'static str,
+) -> Result<&'a ComputePass, GpuError> {
+    if !variant.passes.contains_key(name) {
+        let (shader, layout) = match name {
+            "initial" => (initial::SHADER, &layouts.initial),
+            "presample lights" => (presample::SHADER, &layouts.presample),
+            "temporal" => (temporal::SHADER, &layouts.temporal),
+            "spatial" => (spatial::SHADER, &layouts.spatial),
+            "shade" => (shade::SHADER, &layouts.shade),
+            "reference" => (reference::SHADER, &layouts.reference),
+            _ => (display::SHADER, &layouts.display),
+        };
+        let pass = ComputePass::new(gpu, layouts, name, shader, defines, layout)?;
+        variant.passes.insert(name, pass);
+    }
+    Ok(&variant.passes[name])
 }
 
 impl Renderer {
@@ -49,32 +88,48 @@ impl Renderer {
         s
     }
 
-    fn pass<'a>(
-        variant: &'a mut PipelineVariant,
-        gpu: &crate::gpu::Gpu,
-        layouts: &crate::passes::PassLayouts,
-        defines: &std::collections::BTreeSet<String>,
-        name: &'static str,
-    ) -> Result<&'a ComputePass, GpuError> {
-        if !variant.passes.contains_key(name) {
-            let (shader, layout) = match name {
-                "initial" => (initial::SHADER, &layouts.initial),
-                "temporal" => (temporal::SHADER, &layouts.temporal),
-                "spatial" => (spatial::SHADER, &layouts.spatial),
-                "shade" => (shade::SHADER, &layouts.shade),
-                "reference" => (reference::SHADER, &layouts.reference),
-                _ => (display::SHADER, &layouts.display),
-            };
-            let pass = ComputePass::new(gpu, layouts, name, shader, defines, layout)?;
-            variant.passes.insert(name, pass);
-        }
-        Ok(&variant.passes[name])
+    /// Writes the frame uniform; returns (unjittered view-projection, jitter).
+    fn write_frame_uniform(&mut self, settings: &Settings) -> (glam::Mat4, Vec2) {
+        let (width, height) = self.size();
+        let camera = self.camera;
+        let aspect = width as f32 / height as f32;
+        let near = (self.scene.scale * 1e-5).max(1e-30);
+        let view_proj = camera.projection_matrix(aspect, near) * camera.view_matrix();
+        let jitter = if settings.jitter && self.mode != Mode::Reference {
+            let i = (self.frame_index % 64) as u32 + 1;
+            Vec2::new(halton(i, 2), halton(i, 3)) - 0.5
+        } else {
+            Vec2::ZERO
+        };
+        let frame = GpuFrame {
+            view_proj: view_proj.to_cols_array_2d(),
+            inv_view_proj: view_proj.inverse().to_cols_array_2d(),
+            prev_view_proj: self.prev_view_proj.unwrap_or(view_proj).to_cols_array_2d(),
+            camera_position: camera.position.into(),
+            frame_index: self.frame_index as u32,
+            prev_camera_position: self
+                .prev_camera
+                .map_or(camera.position, |c| c.position)
+                .into(),
+            seed: self.seed,
+            jitter: jitter.into(),
+            size: [width, height],
+            scene_scale: self.scene.scale,
+            history_valid: self.history_valid as u32,
+            light_count: self.scene.light_count,
+            punctual_count: self.scene.punctual_count,
+            prev_jitter: self.prev_jitter.into(),
+            _pad: [0; 2],
+        };
+        self.gpu
+            .queue
+            .write_buffer(&self.frame_uniform, 0, bytemuck::bytes_of(&frame));
+        (view_proj, jitter)
     }
 
     /// Renders one frame with the current camera, mode, settings and view, and submits it.
     pub fn render_frame(&mut self) -> Result<(), GpuError> {
         let settings = self.effective_settings();
-        let (width, height) = self.size();
         let camera = self.camera;
         let moved = self.prev_camera.is_some_and(|p| p != camera);
         let jump = self
@@ -90,128 +145,188 @@ impl Renderer {
             None => EffectSet::detect(&self.features, &settings, moved),
         };
         let defines = effects.defines();
-        let variant_key = defines.iter().cloned().collect::<Vec<_>>().join(",");
-
-        // Uniforms.
-        let aspect = width as f32 / height as f32;
-        let near = (self.scene.scale * 1e-5).max(1e-30);
-        let view_proj = camera.projection_matrix(aspect, near) * camera.view_matrix();
-        let prev_view_proj = self.prev_view_proj.unwrap_or(view_proj);
-        let jitter = if settings.jitter && self.mode != Mode::Reference {
-            let i = (self.frame_index % 64) as u32 + 1;
-            Vec2::new(halton(i, 2), halton(i, 3)) - 0.5
-        } else {
-            Vec2::ZERO
-        };
-        let prev_jitter = self.prev_jitter;
-        let frame = GpuFrame {
-            view_proj: view_proj.to_cols_array_2d(),
-            inv_view_proj: view_proj.inverse().to_cols_array_2d(),
-            prev_view_proj: prev_view_proj.to_cols_array_2d(),
-            camera_position: camera.position.into(),
-            frame_index: self.frame_index as u32,
-            prev_camera_position: self
-                .prev_camera
-                .map_or(camera.position, |c| c.position)
-                .into(),
-            seed: self.seed,
-            jitter: jitter.into(),
-            size: [width, height],
-            scene_scale: self.scene.scale,
-            history_valid: self.history_valid as u32,
-            light_count: self.scene.light_count,
-            punctual_count: self.scene.punctual_count,
-            prev_jitter: prev_jitter.into(),
-            _pad: [0; 2],
-        };
-        self.gpu
-            .queue
-            .write_buffer(&self.frame_uniform, 0, bytemuck::bytes_of(&frame));
+        let (view_proj, jitter) = self.write_frame_uniform(&settings);
         self.gpu.queue.write_buffer(
             &self.params_uniform,
             0,
             bytemuck::bytes_of(&settings.gpu_params()),
         );
 
-        // The reference traces its own camera rays, except with jitter off, where it shades
-        // the rasterised surfaces (see reference.wgsl).
-        let needs_gbuffer = self.mode != Mode::Reference || !settings.jitter;
-        let variant = self.variants.entry(variant_key).or_default();
+        // Which passes run. The reference traces its own camera rays, except with jitter
+        // off, where it shades the rasterised surfaces (see reference.wgsl).
+        let realtime = self.mode != Mode::Reference;
+        let needs_gbuffer = realtime || !settings.jitter;
+        let temporal_on = realtime && settings.temporal;
+        let spatial_on = realtime && settings.spatial && settings.spatial_neighbours > 0;
+        let tiles_on = realtime && effects.contains(crate::effects::Effect::LightTiles);
+        let mut names = vec!["display"];
+        if realtime {
+            names.extend(["initial", "shade"]);
+        } else {
+            names.push("reference");
+        }
+        if temporal_on {
+            names.push("temporal");
+        }
+        if spatial_on {
+            names.push("spatial");
+        }
+        if tiles_on {
+            names.push("presample lights");
+            super::ensure_light_tiles(&self.gpu, &mut self.light_tiles);
+        }
+        let variant = self.variants.entry(variant_key(&defines)).or_default();
         if variant.gbuffer.is_none() && needs_gbuffer {
             variant.gbuffer = Some(GBufferPass::new(&self.gpu, &self.layouts, &defines)?);
         }
-        let mut names: Vec<&'static str> = match self.mode {
-            Mode::Reference => vec!["reference"],
-            _ => {
-                let mut v = vec!["initial"];
-                if settings.temporal {
-                    v.push("temporal");
-                }
-                if settings.spatial && settings.spatial_neighbours > 0 {
-                    v.push("spatial");
-                }
-                v.push("shade");
-                v
-            }
-        };
-        names.push("display");
         for name in &names {
-            Self::pass(variant, &self.gpu, &self.layouts, &defines, name)?;
+            pass(variant, &self.gpu, &self.layouts, &defines, name)?;
         }
+        let variant = &self.variants[&variant_key(&defines)];
 
-        let mut encoder = self
-            .gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("frame"),
-            });
-        encoder.clear_buffer(&self.stats_buffer, 0, None);
+        self.accumulated_frames += 1;
+        let show_accumulation = self.shows_accumulation();
+        self.write_display_uniform(&settings);
+
+        let frame_group = self.frame_bind_group.clone();
+        let scene_group = self.scene.bind_group.clone();
+        if temporal_on {
+            self.targets.ensure_history(&self.gpu);
+        }
+        // Surfaces alternate once there are two buffers (the previous one is the history).
+        let surfaces = if self.targets.surfaces.len() == 2 {
+            1 - self.ping_pong.surfaces
+        } else {
+            0
+        };
+        let buffers = self.targets.reservoirs.len();
+        let size = self.size();
+        let mut dispatched: Vec<&'static str> = Vec::new();
+        let mut capture = self.inspected_pixel.map(|p| InspectCapture::new(p, size));
+        let mut rec = FrameRecorder::new(&self.gpu, &mut self.timer, self.timing_mode);
+        rec.encoder().clear_buffer(&self.stats_buffer, 0, None);
         let uniforms = Uniforms {
             pass_info: &self.pass_info,
             display: &self.display_uniform,
+            light_tiles: &self.light_tiles,
         };
-        let frame_group = self.frame_bind_group.clone();
-        let scene_group = self.scene.bind_group.clone();
-        let surfaces = 1 - self.ping_pong.surfaces;
-        let size = (width, height);
-        let mut dispatched: Vec<&'static str> = Vec::new();
-        self.last_effects = Some(effects);
+        let tiles =
+            self.light_tiles.size() > std::mem::size_of::<crate::gpu_types::GpuTileSample>() as u64;
+        let mut group = |key: Key| {
+            self.bind_groups
+                .get(&self.gpu, &self.layouts, &self.targets, &uniforms, key)
+        };
         let mut final_reservoirs = self.ping_pong.history;
 
         if needs_gbuffer {
             let gb = variant.gbuffer.as_ref().expect("built above");
             gb.record_raster(
-                &mut encoder,
-                &mut self.timer,
-                &frame_group,
-                &scene_group,
+                &mut rec,
+                [&frame_group, &scene_group],
                 &self.targets.visibility,
                 &self.targets.depth,
                 self.scene.triangle_count,
             );
-            let group = self.bind_groups.get(
-                &self.gpu,
-                &self.layouts,
-                &self.targets,
-                &uniforms,
-                Key::Resolve { surfaces },
-            );
             gb.resolve.record(
-                &mut encoder,
-                &mut self.timer,
-                [&frame_group, &scene_group, &group],
+                &mut rec,
+                [
+                    &frame_group,
+                    &scene_group,
+                    &group(Key::Resolve { surfaces }),
+                ],
                 size,
             );
             dispatched.extend(["gbuffer raster", "gbuffer resolve"]);
         }
-        if self.mode == Mode::Reference {
-            let group = self.bind_groups.get(
-                &self.gpu,
-                &self.layouts,
-                &self.targets,
-                &uniforms,
-                Key::Reference { surfaces },
-            );
+        if realtime {
+            // Reservoir buffers: `history` holds last frame's result until temporal reuse
+            // has read it; every stage writes a buffer its inputs do not occupy.
+            let history = self.ping_pong.history;
+            let mut current = other(buffers, history, history);
+            if tiles_on {
+                let workgroups =
+                    (LIGHT_TILE_COUNT * LIGHT_TILE_SIZE).div_ceil(presample::WORKGROUP_SIZE);
+                variant.passes["presample lights"].record_workgroups(
+                    &mut rec,
+                    [&frame_group, &scene_group, &group(Key::Presample)],
+                    (workgroups, 1),
+                );
+                dispatched.push("presample lights");
+            }
+            let g = group(Key::Initial {
+                surfaces,
+                out: current,
+                tiles,
+            });
+            variant.passes["initial"].record(&mut rec, [&frame_group, &scene_group, &g], size);
+            dispatched.push("initial");
+            if let Some(c) = &mut capture {
+                c.copy_reservoir(
+                    &self.gpu.device,
+                    rec.encoder(),
+                    &self.targets,
+                    current,
+                    "initial",
+                );
+            }
+            if temporal_on {
+                let out = other(buffers, current, history);
+                let g = group(Key::Temporal {
+                    surfaces,
+                    input: current,
+                    prev: history,
+                    out,
+                });
+                variant.passes["temporal"].record(&mut rec, [&frame_group, &scene_group, &g], size);
+                dispatched.push("temporal");
+                current = out;
+                if let Some(c) = &mut capture {
+                    c.copy_reservoir(
+                        &self.gpu.device,
+                        rec.encoder(),
+                        &self.targets,
+                        current,
+                        "temporal",
+                    );
+                }
+            }
+            if spatial_on {
+                // Each pass reads the previous pass's output (its own bind group); the
+                // pass index picks its PassInfo slot for decorrelated random numbers.
+                for p in 0..settings.spatial_passes.min(8) {
+                    let out = other(buffers, current, current);
+                    let g = group(Key::Spatial {
+                        surfaces,
+                        input: current,
+                        out,
+                    });
+                    variant.passes["spatial"].record_repeated(
+                        &mut rec,
+                        [&frame_group, &scene_group, &g],
+                        &[p * PASS_INFO_STRIDE],
+                        size,
+                    );
+                    current = out;
+                    if let Some(c) = &mut capture {
+                        c.copy_reservoir(
+                            &self.gpu.device,
+                            rec.encoder(),
+                            &self.targets,
+                            current,
+                            "spatial",
+                        );
+                    }
+                }
+                dispatched.push("spatial");
+            }
+            let g = group(Key::Shade {
+                surfaces,
+                input: current,
+            });
+            variant.passes["shade"].record(&mut rec, [&frame_group, &scene_group, &g], size);
+            dispatched.push("shade");
+            final_reservoirs = current;
+        } else {
             // Samples in chunks, one dispatch each (see REFERENCE_SAMPLES_PER_DISPATCH).
             let chunks = settings
                 .reference_spp
@@ -219,122 +334,49 @@ impl Renderer {
                 .div_ceil(REFERENCE_SAMPLES_PER_DISPATCH)
                 .min(PASS_INFO_SLOTS);
             let offsets: Vec<u32> = (0..chunks).map(|c| c * PASS_INFO_STRIDE).collect();
+            let g = group(Key::Reference { surfaces });
             variant.passes["reference"].record_repeated(
-                &mut encoder,
-                &mut self.timer,
-                [&frame_group, &scene_group, &group],
+                &mut rec,
+                [&frame_group, &scene_group, &g],
                 &offsets,
                 size,
             );
             dispatched.push("reference");
-        } else {
-            // Reservoir buffers: `history` holds last frame's result until temporal reuse
-            // has read it; every stage writes a buffer its inputs do not occupy.
-            let history = self.ping_pong.history;
-            let other =
-                |a: usize, b: usize| (0..3).find(|&i| i != a && i != b).expect("three buffers");
-            let mut current = other(history, history);
-            let group = self.bind_groups.get(
-                &self.gpu,
-                &self.layouts,
-                &self.targets,
-                &uniforms,
-                Key::Initial {
-                    surfaces,
-                    out: current,
-                },
-            );
-            variant.passes["initial"].record(
-                &mut encoder,
-                &mut self.timer,
-                [&frame_group, &scene_group, &group],
-                size,
-            );
-            dispatched.push("initial");
-
-            if settings.temporal {
-                let out = other(current, history);
-                let key = Key::Temporal {
-                    surfaces,
-                    input: current,
-                    prev: history,
-                    out,
-                };
-                let group =
-                    self.bind_groups
-                        .get(&self.gpu, &self.layouts, &self.targets, &uniforms, key);
-                variant.passes["temporal"].record(
-                    &mut encoder,
-                    &mut self.timer,
-                    [&frame_group, &scene_group, &group],
-                    size,
-                );
-                dispatched.push("temporal");
-                current = out;
-            }
-            if names.contains(&"spatial") {
-                // Each pass reads the previous pass's output: one compute pass per spatial
-                // pass (a bind group per buffer pair), timed together as "spatial".
-                for p in 0..settings.spatial_passes.min(8) {
-                    let out = other(current, current);
-                    let key = Key::Spatial {
-                        surfaces,
-                        input: current,
-                        out,
-                    };
-                    let group = self.bind_groups.get(
-                        &self.gpu,
-                        &self.layouts,
-                        &self.targets,
-                        &uniforms,
-                        key,
-                    );
-                    let groups = [&frame_group, &scene_group, &group];
-                    variant.passes["spatial"].record_repeated(
-                        &mut encoder,
-                        &mut self.timer,
-                        groups,
-                        &[p * PASS_INFO_STRIDE],
-                        size,
-                    );
-                    current = out;
-                }
-                dispatched.push("spatial");
-            }
-            let group = self.bind_groups.get(
-                &self.gpu,
-                &self.layouts,
-                &self.targets,
-                &uniforms,
-                Key::Shade {
-                    surfaces,
-                    input: current,
-                },
-            );
-            variant.passes["shade"].record(
-                &mut encoder,
-                &mut self.timer,
-                [&frame_group, &scene_group, &group],
-                size,
-            );
-            dispatched.push("shade");
-            final_reservoirs = current;
         }
-        self.accumulated_frames += 1;
-
-        self.record_display(&mut encoder, surfaces, final_reservoirs, &settings)?;
-        dispatched.push("display");
-
-        self.timer.resolve(&mut encoder, self.frame_index);
-        self.stats_ring.copy_from(
-            &mut encoder,
-            &self.stats_buffer,
-            self.stats_buffer.size(),
-            self.frame_index,
+        let display_group = group(Key::Display {
+            surfaces,
+            reservoirs: final_reservoirs,
+            accumulated: show_accumulation,
+        });
+        variant.passes["display"].record(
+            &mut rec,
+            [&frame_group, &scene_group, &display_group],
+            size,
         );
-        self.gpu.queue.submit([encoder.finish()]);
-        self.timer.after_submit();
+        dispatched.push("display");
+        if let Some(c) = &mut capture {
+            c.copy_pixel_records(&self.gpu.device, rec.encoder(), &self.targets, surfaces);
+        }
+
+        let frame = self.frame_index;
+        let stats_ring = &mut self.stats_ring;
+        let stats_buffer = &self.stats_buffer;
+        let inspect_ring = &mut self.inspect_ring;
+        let device = self.gpu.device.clone();
+        let wall_times = rec.submit(frame, |encoder| {
+            stats_ring.copy_from(&device, encoder, stats_buffer, stats_buffer.size(), frame);
+            if let Some(c) = &capture {
+                c.submit_copy(&device, encoder, inspect_ring, frame);
+            }
+        });
         self.stats_ring.after_submit();
+        self.inspect_ring.after_submit();
+        if !wall_times.is_empty() {
+            self.pending_times.insert(frame, wall_times);
+        }
+        if let Some(c) = capture {
+            self.pending_inspections.insert(frame, c.into_pending());
+        }
         self.gpu.check()?;
 
         // Hand over to the next frame.
@@ -342,28 +384,25 @@ impl Renderer {
             history: final_reservoirs,
             surfaces,
         };
-        self.history_valid = self.mode != Mode::Reference;
-        self.last_final = (self.mode != Mode::Reference).then_some(final_reservoirs);
+        self.history_valid = realtime;
+        self.last_final = realtime.then_some(final_reservoirs);
         self.prev_camera = Some(camera);
         self.prev_view_proj = Some(view_proj);
         self.prev_jitter = jitter;
         self.frame_index += 1;
+        self.last_effects = Some(effects);
         self.last_passes = dispatched;
         Ok(())
     }
 
-    /// Records the display pass (tonemapped image or debug view) for the given buffers.
-    fn record_display(
-        &mut self,
-        encoder: &mut wgpu::CommandEncoder,
-        surfaces: usize,
-        reservoirs: usize,
-        settings: &Settings,
-    ) -> Result<(), GpuError> {
-        // The reference is always shown as its running average.
-        let accumulated = self.view.accumulate || self.mode == Mode::Reference;
-        let display_data = GpuDisplay {
-            scale: if accumulated {
+    /// Whether the display shows the running average (the reference always does).
+    fn shows_accumulation(&self) -> bool {
+        self.view.accumulate || self.mode == Mode::Reference
+    }
+
+    fn write_display_uniform(&self, settings: &Settings) {
+        let display = GpuDisplay {
+            scale: if self.shows_accumulation() {
                 1.0 / self.accumulated_frames.max(1) as f32
             } else {
                 1.0
@@ -379,62 +418,53 @@ impl Renderer {
         };
         self.gpu
             .queue
-            .write_buffer(&self.display_uniform, 0, bytemuck::bytes_of(&display_data));
-        let size = self.size();
-        let defines = self
-            .last_effects
-            .as_ref()
-            .map(|e| e.defines())
-            .unwrap_or_default();
-        let key = defines.iter().cloned().collect::<Vec<_>>().join(",");
-        let variant = self.variants.entry(key).or_default();
-        let pass = Self::pass(variant, &self.gpu, &self.layouts, &defines, "display")?;
-        let uniforms = Uniforms {
-            pass_info: &self.pass_info,
-            display: &self.display_uniform,
-        };
-        let group = self.bind_groups.get(
-            &self.gpu,
-            &self.layouts,
-            &self.targets,
-            &uniforms,
-            Key::Display {
-                surfaces,
-                reservoirs,
-                accumulated,
-            },
-        );
-        pass.record(
-            encoder,
-            &mut self.timer,
-            [&self.frame_bind_group, &self.scene.bind_group, &group],
-            size,
-        );
-        Ok(())
+            .write_buffer(&self.display_uniform, 0, bytemuck::bytes_of(&display));
     }
 
     /// Re-runs only the display pass on the last frame's buffers (after a change of view,
     /// exposure or debug view) without rendering a new frame.
     pub fn redisplay(&mut self) -> Result<(), GpuError> {
         let settings = self.effective_settings();
-        let mut encoder = self.gpu.device.create_command_encoder(&Default::default());
-        let (surfaces, reservoirs) = (self.ping_pong.surfaces, self.ping_pong.history);
-        self.record_display(&mut encoder, surfaces, reservoirs, &settings)?;
-        // Timestamps of a lone display pass are not a frame: drop them.
-        self.timer.discard();
-        self.gpu.queue.submit([encoder.finish()]);
+        self.write_display_uniform(&settings);
+        let defines = self
+            .last_effects
+            .as_ref()
+            .map(|e| e.defines())
+            .unwrap_or_default();
+        let variant = self.variants.entry(variant_key(&defines)).or_default();
+        let display_pass = pass(variant, &self.gpu, &self.layouts, &defines, "display")?;
+        let uniforms = Uniforms {
+            pass_info: &self.pass_info,
+            display: &self.display_uniform,
+            light_tiles: &self.light_tiles,
+        };
+        let key = Key::Display {
+            surfaces: self.ping_pong.surfaces,
+            reservoirs: self.ping_pong.history,
+            accumulated: self.view.accumulate || self.mode == Mode::Reference,
+        };
+        let group = self
+            .bind_groups
+            .get(&self.gpu, &self.layouts, &self.targets, &uniforms, key);
+        let size = (self.targets.width, self.targets.height);
+        let mut rec = FrameRecorder::new(
+            &self.gpu,
+            &mut self.timer,
+            crate::gpu::timing::TimingMode::Off,
+        );
+        display_pass.record(
+            &mut rec,
+            [&self.frame_bind_group, &self.scene.bind_group, &group],
+            size,
+        );
+        rec.submit(self.frame_index, |_| {});
         self.gpu.check()
-    }
-
-    /// True when the view shows a debug buffer rather than the image.
-    pub fn showing_debug_view(&self) -> bool {
-        self.view.view != DebugView::Final
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::halton;
+    use super::{halton, other};
 
     #[test]
     fn halton_is_in_unit_interval_and_low_discrepancy() {
@@ -444,5 +474,17 @@ mod tests {
         assert!((mean - 0.5).abs() < 0.02);
         assert_eq!(halton(1, 2), 0.5);
         assert_eq!(halton(2, 3), 2.0 / 3.0);
+    }
+
+    #[test]
+    fn stages_never_write_a_buffer_they_read() {
+        for history in 0..3 {
+            let initial = other(3, history, history);
+            assert_ne!(initial, history);
+            let temporal = other(3, initial, history);
+            assert!(temporal != initial && temporal != history);
+            let spatial = other(3, temporal, temporal);
+            assert_ne!(spatial, temporal);
+        }
     }
 }

@@ -41,3 +41,33 @@ pub fn reference(r: &mut Renderer, frames: u32, spp: u32) -> LinearImage {
     r.set_settings(settings);
     img
 }
+
+/// Settings from `key=value` assignments on top of the defaults.
+pub fn settings(assignments: &[&str]) -> Settings {
+    let mut s = Settings::default();
+    s.apply_assignments(assignments.iter().copied())
+        .expect("valid test settings");
+    s
+}
+
+/// Mean per-frame luma RMSE and mean frame-to-frame luma RMSE over `frames` frames,
+/// starting from a clean history.
+pub fn per_frame_errors(r: &mut Renderer, reference: &LinearImage, frames: u32) -> (f64, f64) {
+    use restir_render::metrics::luma_rmse;
+    r.request_cut();
+    let (mut accuracy, mut stability) = (0.0, 0.0);
+    let mut previous: Option<LinearImage> = None;
+    for _ in 0..frames {
+        r.render_frame().unwrap_or_else(|e| panic!("{e}"));
+        let frame = r.read_radiance();
+        accuracy += luma_rmse(&frame, reference).unwrap();
+        if let Some(p) = &previous {
+            stability += luma_rmse(&frame, p).unwrap();
+        }
+        previous = Some(frame);
+    }
+    (
+        accuracy / frames as f64,
+        stability / (frames - 1).max(1) as f64,
+    )
+}

@@ -41,7 +41,13 @@ pub(super) fn luminance(c: Vec3) -> f32 {
     c.dot(Vec3::new(0.2126, 0.7152, 0.0722))
 }
 
-/// The glossy floor of `many-lights`.
+/// The Lambertian variant (`many-lights-diffuse`): every material diffuse, so the
+/// specialised pipeline has no GGX code at all.
+pub(super) fn diffuse_floor() -> Material {
+    Material::diffuse("floor", Vec3::splat(0.5))
+}
+
+/// The glossy floor of `many-lights` (GGX roughness 0.5 over a grey base).
 pub(super) fn glossy_floor() -> Material {
     Material {
         name: "glossy floor".into(),

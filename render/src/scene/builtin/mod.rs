@@ -12,7 +12,7 @@ mod shapes;
 use super::Scene;
 use super::load::SceneError;
 use cornell::cornell_box;
-use many_lights::{glossy_floor, many_lights_room};
+use many_lights::{diffuse_floor, glossy_floor, many_lights_room};
 
 /// Lights in `many-lights` without a count.
 pub const DEFAULT_LIGHT_COUNT: usize = 4096;
@@ -27,6 +27,9 @@ const SCENES: &[(&str, Generator)] = &[
     ("cornell", |name| cornell_box(name, 1.0)),
     ("many-lights", |name| {
         many_lights_room(name, DEFAULT_LIGHT_COUNT, glossy_floor())
+    }),
+    ("many-lights-diffuse", |name| {
+        many_lights_room(name, DEFAULT_LIGHT_COUNT, diffuse_floor())
     }),
     ("plane-light", plane_light::plane_light),
     ("hard:tiny-bright", hard::tiny_bright),
@@ -49,7 +52,16 @@ pub fn builtin_scene(name: &str) -> Result<Scene, SceneError> {
     if let Some((_, build)) = SCENES.iter().find(|(n, _)| *n == name) {
         return Ok(build(name));
     }
-    if let Some(count) = name.strip_prefix("many-lights:") {
+    // `many-lights:N` and `many-lights-diffuse:N`: the room with N lights.
+    type Floor = fn() -> crate::scene::Material;
+    let families: [(&str, Floor); 2] = [
+        ("many-lights:", glossy_floor),
+        ("many-lights-diffuse:", diffuse_floor),
+    ];
+    for (prefix, floor) in families {
+        let Some(count) = name.strip_prefix(prefix) else {
+            continue;
+        };
         let error = |detail: String| SceneError::Builtin {
             name: name.to_string(),
             detail,
@@ -62,12 +74,12 @@ pub fn builtin_scene(name: &str) -> Result<Scene, SceneError> {
                 "light count must be in 1..={MAX_LIGHT_COUNT}"
             )));
         }
-        return Ok(many_lights_room(name, n, glossy_floor()));
+        return Ok(many_lights_room(name, n, floor()));
     }
     Err(SceneError::Builtin {
         name: name.to_string(),
         detail: format!(
-            "unknown built-in scene (known: {}, many-lights:N)",
+            "unknown built-in scene (known: {}, many-lights:N, many-lights-diffuse:N)",
             builtin_names().join(", ")
         ),
     })

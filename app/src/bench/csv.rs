@@ -1,0 +1,230 @@
+//! `results.csv` (one row per configuration), `frames.csv` (one row per measured frame) and
+//! the sweep's `sweep.csv`. Times carry a `timing` column that says whether they are GPU
+//! timestamps or CPU wall-clock (lavapipe: ratios only).
+
+use std::collections::BTreeSet;
+use std::path::Path;
+
+use anyhow::Context;
+
+use super::BenchInfo;
+use super::run_loop::ConfigResult;
+
+/// The passes in pipeline order; others (from a newer renderer) follow alphabetically.
+pub const PASS_ORDER: &[&str] = &[
+    "gbuffer raster",
+    "gbuffer resolve",
+    "initial",
+    "temporal",
+    "spatial",
+    "shade",
+    "display",
+];
+
+/// Every pass any result timed, in pipeline order.
+pub fn pass_names<'a>(results: impl IntoIterator<Item = &'a ConfigResult>) -> Vec<String> {
+    let seen: BTreeSet<&String> = results
+        .into_iter()
+        .flat_map(|r| r.times.pass_ms_median.keys())
+        .collect();
+    let mut names: Vec<String> = PASS_ORDER
+        .iter()
+        .filter(|p| seen.iter().any(|s| s == p))
+        .map(|p| p.to_string())
+        .collect();
+    names.extend(
+        seen.into_iter()
+            .filter(|s| !PASS_ORDER.contains(&s.as_str()))
+            .cloned(),
+    );
+    names
+}
+
+/// Column names of the passes' median times: `initial_ms`, `gbuffer_raster_ms`, ...
+pub fn pass_columns(passes: &[String]) -> Vec<String> {
+    passes
+        .iter()
+        .map(|p| format!("{}_ms", p.replace(' ', "_")))
+        .collect()
+}
+
+/// The passes' median times of one result, in `pass_columns` order.
+pub fn pass_cells<'a>(
+    passes: &'a [String],
+    r: &'a ConfigResult,
+) -> impl Iterator<Item = String> + 'a {
+    passes
+        .iter()
+        .map(|p| num(r.times.pass_ms_median.get(p).copied()))
+}
+
+/// A CSV table under construction.
+pub struct Table {
+    text: String,
+}
+
+impl Table {
+    pub fn new(header: &[&str]) -> Table {
+        let mut t = Table {
+            text: String::new(),
+        };
+        t.row(header.iter().map(|s| s.to_string()));
+        t
+    }
+
+    pub fn row(&mut self, cells: impl IntoIterator<Item = String>) {
+        let cells: Vec<String> = cells.into_iter().map(|c| escape(&c)).collect();
+        self.text.push_str(&cells.join(","));
+        self.text.push('\n');
+    }
+
+    pub fn write(&self, path: &Path) -> anyhow::Result<()> {
+        std::fs::write(path, &self.text)
+            .with_context(|| format!("{}: cannot write", path.display()))
+    }
+}
+
+fn escape(cell: &str) -> String {
+    if cell.contains([',', '"', '\n']) {
+        format!("\"{}\"", cell.replace('"', "\"\""))
+    } else {
+        cell.to_string()
+    }
+}
+
+/// A number, or empty when there is none.
+pub fn num(x: Option<f64>) -> String {
+    x.map(|v| format!("{v}")).unwrap_or_default()
+}
+
+/// √(RMSE² − noise²): the error against the true image, when the reference's own noise
+/// (independent of the frames) is known; E[RMSE²] = MSE + Var_ref.
+pub fn without_noise(rmse: Option<f64>, noise: Option<f64>) -> Option<f64> {
+    Some((rmse?.powi(2) - noise?.powi(2)).max(0.0).sqrt())
+}
+
+pub fn write_results(
+    path: &Path,
+    info: &BenchInfo,
+    results: &[ConfigResult],
+) -> anyhow::Result<()> {
+    let passes = pass_names(results);
+    let pass_headers = pass_columns(&passes);
+    let mut header: Vec<&str> = vec![
+        "config",
+        "mode",
+        "description",
+        "frames",
+        "median_frame_ms",
+        "time_vs_nee",
+    ];
+    header.extend(pass_headers.iter().map(String::as_str));
+    header.extend([
+        "mean_luma_rmse",
+        "mean_stability_rmse",
+        "accumulated_rgb_rmse",
+        "accumulated_rgb_rmse_minus_reference_noise",
+        "accumulated_rel_mse",
+        "luma_ratio",
+        "frame_mse_vs_nee",
+        "budget_ms",
+        "budget_used_ms",
+        "budget_capped",
+        "budget_mse_vs_nee",
+        "non_finite_pixels",
+        "scene",
+        "size",
+        "camera",
+        "seed",
+        "reference_spp",
+        "reference_noise_luma_rmse",
+        "reference_noise_rgb_rmse",
+        "device",
+        "timing",
+    ]);
+    let mut table = Table::new(&header);
+    for r in results {
+        let s = r.scores.clone().unwrap_or_default();
+        let scored = r.scores.is_some();
+        let mut cells = vec![
+            r.config.name.clone(),
+            r.config.mode.name().to_string(),
+            r.config.description.clone(),
+            r.frames.len().to_string(),
+            num(r.median_frame_ms()),
+            num(r.time_vs_nee),
+        ];
+        cells.extend(pass_cells(&passes, r));
+        cells.extend([
+            num(scored.then_some(s.mean_luma_rmse)),
+            num(scored.then_some(s.mean_stability)),
+            num(s.accumulated_rgb_rmse),
+            num(without_noise(
+                s.accumulated_rgb_rmse,
+                info.reference_noise_rgb,
+            )),
+            num(s.accumulated_rel_mse),
+            num(scored.then_some(s.luma_ratio)),
+            num(r.frame_mse_vs_nee),
+            num(r.budget.map(|b| b.budget.ms)),
+            num(r.budget.map(|b| b.used_ms)),
+            r.budget.map(|b| b.capped().to_string()).unwrap_or_default(),
+            num(r.budget_mse_vs_nee),
+            s.non_finite_pixels.to_string(),
+            info.scene.clone(),
+            format!("{}x{}", info.size.0, info.size.1),
+            info.camera.label(),
+            info.seed.to_string(),
+            info.reference_spp.to_string(),
+            num(info.reference_noise_luma),
+            num(info.reference_noise_rgb),
+            info.device.clone(),
+            info.timing_note().to_string(),
+        ]);
+        table.row(cells);
+    }
+    table.write(path)
+}
+
+pub fn write_frames(path: &Path, results: &[ConfigResult]) -> anyhow::Result<()> {
+    let mut table = Table::new(&[
+        "config",
+        "frame",
+        "frame_ms",
+        "cumulative_ms",
+        "luma_rmse",
+        "stability_rmse",
+        "accumulated_rgb_rmse",
+    ]);
+    for r in results {
+        for f in &r.frames {
+            table.row([
+                r.config.name.clone(),
+                f.index.to_string(),
+                f.ms.to_string(),
+                f.cumulative_ms.to_string(),
+                num(f.scores.luma_rmse),
+                num(f.scores.stability),
+                num(f.scores.accumulated_rgb_rmse),
+            ]);
+        }
+    }
+    table.write(path)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bench_csv_cells_are_escaped() {
+        let mut t = Table::new(&["a", "b"]);
+        t.row(["x,y".to_string(), "say \"hi\"".to_string()]);
+        assert_eq!(t.text, "a,b\n\"x,y\",\"say \"\"hi\"\"\"\n");
+        assert_eq!(num(None), "");
+        assert_eq!(num(Some(0.5)), "0.5");
+        assert_eq!(without_noise(Some(0.5), Some(0.3)), Some(0.4));
+        assert_eq!(without_noise(Some(0.1), Some(0.3)), Some(0.0));
+        assert_eq!(without_noise(Some(0.1), None), None);
+    }
+}

@@ -1,0 +1,224 @@
+//! `results.md`: the tables people paste (into README, an issue, docs/bench.md), with the
+//! device and the conditions named, and the timing caveat next to every time.
+
+use std::fmt::Write;
+
+use super::BenchInfo;
+use super::csv::pass_names;
+use super::references::CameraPath;
+use super::run_loop::ConfigResult;
+
+/// A number with 4 significant digits (errors), or "n/a".
+pub fn sig(x: Option<f64>) -> String {
+    match x {
+        Some(0.0) => "0".into(),
+        Some(v) if v.is_finite() => {
+            let digits = (3 - v.abs().log10().floor() as i32).clamp(0, 8) as usize;
+            format!("{v:.digits$}")
+        }
+        Some(v) => format!("{v}"),
+        None => "n/a".into(),
+    }
+}
+
+/// Milliseconds with two decimals (or "n/a").
+pub fn ms(x: Option<f64>) -> String {
+    x.map(|v| format!("{v:.2}")).unwrap_or_else(|| "n/a".into())
+}
+
+/// A ratio like `1.23×`.
+pub fn ratio(x: Option<f64>) -> String {
+    x.map(|v| format!("{v:.2}×"))
+        .unwrap_or_else(|| "n/a".into())
+}
+
+/// One Markdown table.
+pub fn table(out: &mut String, header: &[String], rows: &[Vec<String>]) {
+    let line = |cells: &[String]| format!("| {} |\n", cells.join(" | "));
+    out.push_str(&line(header));
+    out.push_str(&line(&vec!["---".to_string(); header.len()]));
+    for r in rows {
+        out.push_str(&line(r));
+    }
+}
+
+/// The `[^t]` footnote on every time: what kind of time it is.
+pub fn time_footnote(note: &str) -> String {
+    format!("[^t]: {note}.\n")
+}
+
+pub fn results(info: &BenchInfo, results: &[ConfigResult]) -> String {
+    let mut md = String::new();
+    let what = match (info.frames, info.budget_ms) {
+        (_, Some(t)) => format!("equal time, {t} ms[^t] per configuration"),
+        (Some(n), None) => format!("{n} frames per configuration"),
+        (None, None) => String::new(),
+    };
+    let _ = writeln!(
+        md,
+        "# Bench: {}, {}×{}, {} camera, {what}\n",
+        info.scene,
+        info.size.0,
+        info.size.1,
+        info.camera.label()
+    );
+    let _ = writeln!(
+        md,
+        "- Device: **{}** — {}.",
+        info.device,
+        info.timing_note()
+    );
+    let noise = match (info.reference_noise_luma, info.reference_noise_rgb) {
+        (Some(l), Some(r)) => format!(
+            "its own RMSE ≈ {} luma / {} RGB (every per-frame RMSE² includes this²)",
+            sig(Some(l)),
+            sig(Some(r))
+        ),
+        _ => "its own noise not estimated".into(),
+    };
+    let per = if info.reference_count > 1 {
+        format!(" ({} references, one per frame)", info.reference_count)
+    } else {
+        String::new()
+    };
+    let _ = writeln!(
+        md,
+        "- Reference: {} spp{per}, jitter {}, {noise}.",
+        info.reference_spp,
+        on_off(info.jitter)
+    );
+    let _ = writeln!(md, "- Spatial radius: {}.", info.radius);
+    let _ = writeln!(
+        md,
+        "- Seed {}; every configuration starts from a clean history{}. Time per frame = sum of its pass times, median over frames.\n",
+        info.seed,
+        if info.warmup > 0 {
+            format!(" and renders {} unmeasured warm-up frames", info.warmup)
+        } else {
+            String::new()
+        }
+    );
+    let accumulated = if info.camera == CameraPath::Static {
+        "accumulated RGB RMSE"
+    } else {
+        "accumulated RGB RMSE (n/a: moving camera)"
+    };
+    let header: Vec<String> = [
+        "configuration",
+        "ms/frame[^t]",
+        "time × nee[^t]",
+        "per-frame luma RMSE",
+        "stability (luma RMSE)",
+        accumulated,
+        "luma ratio",
+        "per-frame MSE × nee",
+    ]
+    .map(String::from)
+    .to_vec();
+    let rows: Vec<Vec<String>> = results
+        .iter()
+        .map(|r| {
+            let s = r.scores.as_ref();
+            vec![
+                format!("`{}`", r.config.name),
+                ms(r.median_frame_ms()),
+                ratio(r.time_vs_nee),
+                sig(s.map(|s| s.mean_luma_rmse)),
+                sig(s.map(|s| s.mean_stability)),
+                sig(s.and_then(|s| s.accumulated_rgb_rmse)),
+                s.map(|s| format!("{:.4}", s.luma_ratio))
+                    .unwrap_or_else(|| "n/a".into()),
+                ratio(r.frame_mse_vs_nee),
+            ]
+        })
+        .collect();
+    table(&mut md, &header, &rows);
+    if let Some(t) = info.budget_ms {
+        let _ = writeln!(md, "\n## Equal time: {t} ms[^t] each\n");
+        let header: Vec<String> = [
+            "configuration",
+            "frames",
+            "time used (ms)[^t]",
+            "accumulated RGB RMSE",
+            "MSE × nee (lower is better)",
+        ]
+        .map(String::from)
+        .to_vec();
+        let rows: Vec<Vec<String>> = results
+            .iter()
+            .map(|r| {
+                let capped = if r.budget.is_some_and(|b| b.capped()) {
+                    " (frame cap)"
+                } else {
+                    ""
+                };
+                vec![
+                    format!("`{}`", r.config.name),
+                    format!("{}{capped}", r.frames.len()),
+                    ms(r.budget.map(|b| b.used_ms)),
+                    sig(r.final_accumulated_rmse()),
+                    ratio(r.budget_mse_vs_nee),
+                ]
+            })
+            .collect();
+        table(&mut md, &header, &rows);
+    }
+    let _ = writeln!(md, "\n## Median time per pass (ms)[^t]\n");
+    let labelled: Vec<(String, &ConfigResult)> = results
+        .iter()
+        .map(|r| (format!("`{}`", r.config.name), r))
+        .collect();
+    pass_table(&mut md, "configuration", &labelled);
+    let _ = writeln!(md, "\n{}", time_footnote(info.timing_note()));
+    md
+}
+
+/// Median time of each pass (columns) per labelled result (rows), and the frame's.
+pub fn pass_table(md: &mut String, label: &str, labelled: &[(String, &ConfigResult)]) {
+    let passes = pass_names(labelled.iter().map(|(_, r)| *r));
+    let mut header = vec![label.to_string()];
+    header.extend(passes.iter().cloned());
+    header.push("frame".into());
+    let rows: Vec<Vec<String>> = labelled
+        .iter()
+        .map(|(name, r)| {
+            let mut row = vec![name.clone()];
+            row.extend(passes.iter().map(|p| {
+                r.times
+                    .pass_ms_median
+                    .get(p)
+                    .map(|v| format!("{v:.2}"))
+                    .unwrap_or_else(|| "–".into())
+            }));
+            row.push(ms(r.median_frame_ms()));
+            row
+        })
+        .collect();
+    table(md, &header, &rows);
+}
+
+fn on_off(b: bool) -> &'static str {
+    if b { "on" } else { "off" }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bench_numbers_format_for_tables() {
+        assert_eq!(sig(Some(0.145912)), "0.1459");
+        assert_eq!(sig(Some(0.0041987)), "0.004199");
+        assert_eq!(sig(Some(123.456)), "123.5");
+        assert_eq!(sig(None), "n/a");
+        assert_eq!(ms(Some(1.23456)), "1.23");
+        assert_eq!(ratio(Some(0.5)), "0.50×");
+        let mut out = String::new();
+        table(
+            &mut out,
+            &["a".into(), "b".into()],
+            &[vec!["1".into(), "2".into()]],
+        );
+        assert_eq!(out, "| a | b |\n| --- | --- |\n| 1 | 2 |\n");
+    }
+}

@@ -1,0 +1,265 @@
+//! `bench`: what accuracy costs in time (issue 7). Runs named configurations from a clean
+//! history with the same seed against a cached reference and writes `results.csv`,
+//! `frames.csv`, `results.md` and PNG plots; `--budget-ms` compares them at equal time and
+//! `--sweep-lights` times light selection against the light count. See docs/bench.md.
+//!
+//! `configs` names what runs, `references` finds the images to compare with, `run_loop`
+//! measures one configuration, `scoring` turns frames into notes §7's numbers,
+//! `equal_time` holds the budget rule, `csv`, `markdown` and `plots` write the results and
+//! `sweep` is the light-count benchmark.
+
+mod configs;
+mod csv;
+mod equal_time;
+mod markdown;
+mod plots;
+mod references;
+mod run_loop;
+mod scoring;
+mod sweep;
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use anyhow::{Context, bail};
+use clap::Args;
+use restir_render::reference_cache::ReferenceCache;
+use restir_render::{Gpu, Renderer, load_scene};
+
+use crate::cli::setup::{PipelineArgs, parse_size};
+use configs::{BASE_ASSIGNMENTS, DEFAULT_CONFIGS, RadiusChoice, parse_configs, scale_radius};
+use equal_time::{Budget, mse_ratio};
+use references::{CameraPath, ReferencePlan, References, Shot};
+use run_loop::{ConfigResult, ConfigRun, RunPlan, run_interleaved};
+use scoring::Scoring;
+
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// A .gltf/.glb file or a built-in scene (`builtin:many-lights`, see `scenes`).
+    #[arg(long)]
+    pub scene: String,
+    /// Output size, WxH.
+    #[arg(long)]
+    pub size: String,
+    /// Measured frames per configuration (not with --budget-ms).
+    #[arg(long, required_unless_present = "budget_ms")]
+    pub frames: Option<u32>,
+    /// static, or orbit:DEG (turn DEG degrees per frame about the scene centre).
+    #[arg(long, default_value = "static")]
+    pub camera: String,
+    /// Comma-separated configurations and preset files (.toml).
+    #[arg(long, default_value = DEFAULT_CONFIGS)]
+    pub configs: String,
+    /// Equal-time mode: each configuration accumulates frames until its measured time
+    /// reaches this many milliseconds (still camera only).
+    #[arg(long)]
+    pub budget_ms: Option<f64>,
+    /// Output directory (created).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Frames rendered before measuring, so history builds up (not timed, not scored).
+    #[arg(long, default_value_t = 0)]
+    pub warmup: u32,
+    /// Samples per pixel of the reference (per frame of an orbit).
+    #[arg(long, default_value_t = 1024)]
+    pub reference_spp: u32,
+    /// Seed, `--set`, preset and effect set of every configuration. The bench applies
+    /// `jitter=false` first (see docs/bench.md); `--set jitter=true` turns it back on.
+    #[command(flatten)]
+    pub pipeline: PipelineArgs,
+    /// Reference cache directory (default: $RESTIR_CACHE_DIR, else target/restir-cache).
+    #[arg(long)]
+    pub cache_dir: Option<PathBuf>,
+    /// Equal-time mode stops a configuration after this many frames whatever its time.
+    #[arg(long, default_value_t = 10_000)]
+    pub max_frames: u32,
+    /// Light-count sweep on builtin:many-lights:N for these N (comma-separated): timing,
+    /// scene load and BVH build only, no reference.
+    #[arg(long, value_name = "N,N,...")]
+    pub sweep_lights: Option<String>,
+}
+
+/// Everything the writers need besides the results.
+pub struct BenchInfo {
+    pub scene: String,
+    pub size: (u32, u32),
+    pub camera: CameraPath,
+    pub frames: Option<u32>,
+    pub warmup: u32,
+    pub budget_ms: Option<f64>,
+    pub seed: u32,
+    pub device: String,
+    pub device_is_cpu: bool,
+    pub radius: RadiusChoice,
+    pub jitter: bool,
+    pub reference_spp: u32,
+    pub reference_noise_luma: Option<f64>,
+    pub reference_noise_rgb: Option<f64>,
+    pub reference_count: usize,
+}
+
+impl BenchInfo {
+    /// The sentence that goes next to every time.
+    pub fn timing_note(&self) -> &'static str {
+        timing_note(self.device_is_cpu)
+    }
+}
+
+pub fn timing_note(device_is_cpu: bool) -> &'static str {
+    if device_is_cpu {
+        "CPU adapter (lavapipe): pass times are CPU wall-clock; only ratios within one run are meaningful"
+    } else {
+        "GPU timestamp queries"
+    }
+}
+
+pub fn run(args: BenchArgs) -> anyhow::Result<()> {
+    let size = parse_size(&args.size)?;
+    let camera = CameraPath::parse(&args.camera)?;
+    if let Some(t) = args.budget_ms {
+        if !(t.is_finite() && t > 0.0) {
+            bail!("--budget-ms {t}: expected a positive number of milliseconds");
+        }
+        if camera != CameraPath::Static {
+            bail!("--budget-ms compares running averages, which need --camera static");
+        }
+        if args.warmup > 0 {
+            bail!("--warmup and --budget-ms do not mix: warm-up frames would be free time");
+        }
+    }
+    if args.frames == Some(0) {
+        bail!("--frames must be at least 1");
+    }
+    let (base, radius) = scale_radius(args.pipeline.settings(BASE_ASSIGNMENTS)?, size.1);
+    let configs = parse_configs(&args.configs, &base)?;
+    let effects = args.pipeline.effects()?;
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("--out {}: cannot create", args.out.display()))?;
+    if let Some(list) = &args.sweep_lights {
+        return sweep::run(&args, list, size, &configs, effects);
+    }
+
+    let started = Instant::now();
+    let scene = load_scene(&args.scene)?;
+    let gpu = Gpu::new_headless()?;
+    // One renderer per configuration, so their frames can interleave (see run_loop.rs).
+    let renderers = configs
+        .iter()
+        .map(|_| Renderer::new(gpu.clone(), &scene, size.0, size.1, base.clone()))
+        .collect::<Result<Vec<_>, _>>()?;
+    eprintln!(
+        "{}: loaded and uploaded {} times in {:.1} s",
+        args.scene,
+        configs.len(),
+        started.elapsed().as_secs_f64()
+    );
+    let mut renderers = renderers.into_iter();
+    let mut first = renderers.next().expect("at least one configuration");
+    let shot = Shot::of(first.camera(), first.scene_bounds().center(), camera);
+    let cache = ReferenceCache::new(
+        args.cache_dir
+            .clone()
+            .unwrap_or_else(ReferenceCache::default_dir),
+    );
+    let measured = args.frames.unwrap_or(1);
+    let reference_plan = ReferencePlan {
+        cache: &cache,
+        scene_spec: &args.scene,
+        scene: &scene,
+        spp: args.reference_spp,
+        jitter: base.jitter,
+        effects: effects.clone(),
+    };
+    let refs = references::obtain(&mut first, &reference_plan, &shot, args.warmup, measured)?;
+    let plan = RunPlan {
+        frames: measured,
+        warmup: args.warmup,
+        budget: args.budget_ms.map(|ms| Budget {
+            ms,
+            max_frames: args.max_frames.max(1),
+        }),
+        shot,
+        seed: args.pipeline.seed,
+        effects,
+    };
+    let runs = configs
+        .iter()
+        .zip(std::iter::once(first).chain(renderers))
+        .map(|(c, r)| {
+            Ok((
+                c.name.clone(),
+                ConfigRun::start(r, c, &plan, scoring_for(&refs, camera))?,
+            ))
+        })
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    let mut results: Vec<ConfigResult> = run_interleaved(runs, &plan)?
+        .into_iter()
+        .map(|(r, _)| r)
+        .collect();
+    compare_with_nee(&mut results);
+    let info = BenchInfo {
+        scene: args.scene.clone(),
+        size,
+        camera,
+        frames: args.budget_ms.is_none().then_some(measured),
+        warmup: args.warmup,
+        budget_ms: args.budget_ms,
+        seed: args.pipeline.seed,
+        device: gpu.adapter_name(),
+        device_is_cpu: gpu.is_cpu(),
+        radius,
+        jitter: base.jitter,
+        reference_spp: refs.spp,
+        reference_noise_luma: refs.noise_luma_rmse,
+        reference_noise_rgb: refs.noise_rgb_rmse,
+        reference_count: refs.images.len(),
+    };
+    write_outputs(&args.out, &info, &results)
+}
+
+fn scoring_for(refs: &References, camera: CameraPath) -> Scoring<'_> {
+    match camera {
+        CameraPath::Static => Scoring::still(&refs.images[0]),
+        CameraPath::Orbit(_) => Scoring::moving(&refs.images),
+    }
+}
+
+/// Time and MSE ratios relative to `nee` (when it ran).
+fn compare_with_nee(results: &mut [ConfigResult]) {
+    let Some(nee) = results.iter().find(|r| r.config.name == "nee").cloned() else {
+        return;
+    };
+    let nee_ms = nee.median_frame_ms();
+    let nee_frame_rmse = nee.scores.as_ref().map(|s| s.mean_luma_rmse);
+    for r in results.iter_mut() {
+        r.time_vs_nee = match (r.median_frame_ms(), nee_ms) {
+            (Some(a), Some(b)) if b > 0.0 => Some(a / b),
+            _ => None,
+        };
+        r.frame_mse_vs_nee = mse_ratio(r.scores.as_ref().map(|s| s.mean_luma_rmse), nee_frame_rmse);
+        if r.budget.is_some() {
+            r.budget_mse_vs_nee =
+                mse_ratio(r.final_accumulated_rmse(), nee.final_accumulated_rmse());
+        }
+    }
+}
+
+fn write_outputs(
+    out: &std::path::Path,
+    info: &BenchInfo,
+    results: &[ConfigResult],
+) -> anyhow::Result<()> {
+    csv::write_results(&out.join("results.csv"), info, results)?;
+    csv::write_frames(&out.join("frames.csv"), results)?;
+    let md = markdown::results(info, results);
+    std::fs::write(out.join("results.md"), &md)
+        .with_context(|| format!("{}: cannot write", out.display()))?;
+    let written = plots::write_all(out, info, results)?;
+    println!("{md}");
+    eprintln!(
+        "wrote {}/results.csv, frames.csv, results.md, {}",
+        out.display(),
+        written.join(", ")
+    );
+    Ok(())
+}

@@ -1,0 +1,201 @@
+//! The camera path of a bench and the reference images it is measured against: one for a
+//! still camera, one per measured frame for an orbit, each loaded from the reference cache
+//! or rendered (with progress on stderr) and stored there.
+
+use std::io::Write;
+
+use anyhow::{Context, bail};
+use glam::Vec3;
+use restir_render::effects::EffectSet;
+use restir_render::reference_cache::{Progress, ReferenceCache, ReferenceRequest};
+use restir_render::{Camera, LinearImage, Renderer, Scene};
+
+use crate::cli::camera_path::orbit;
+
+/// `--camera static|orbit:DEG`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CameraPath {
+    Static,
+    /// Turns about the vertical axis through the scene centre by this many degrees per frame.
+    Orbit(f32),
+}
+
+impl CameraPath {
+    pub fn parse(text: &str) -> anyhow::Result<CameraPath> {
+        if text == "static" {
+            return Ok(CameraPath::Static);
+        }
+        let degrees = text
+            .strip_prefix("orbit:")
+            .and_then(|d| d.parse::<f32>().ok())
+            .filter(|d| d.is_finite())
+            .with_context(|| {
+                format!("--camera '{text}': expected static or orbit:DEGREES_PER_FRAME")
+            })?;
+        Ok(if degrees == 0.0 {
+            CameraPath::Static
+        } else {
+            CameraPath::Orbit(degrees)
+        })
+    }
+
+    pub fn label(&self) -> String {
+        match self {
+            CameraPath::Static => "static".into(),
+            CameraPath::Orbit(d) => format!("orbit {d}°/frame"),
+        }
+    }
+}
+
+/// The camera of every frame: the scene's camera moved along the path.
+#[derive(Clone, Copy, Debug)]
+pub struct Shot {
+    pub start: Camera,
+    pub center: Vec3,
+    pub path: CameraPath,
+}
+
+impl Shot {
+    pub fn of(renderer_start: Camera, center: Vec3, path: CameraPath) -> Shot {
+        Shot {
+            start: renderer_start,
+            center,
+            path,
+        }
+    }
+
+    /// The camera at frame `frame` (counted from the first warm-up frame).
+    pub fn camera(&self, frame: u32) -> Camera {
+        match self.path {
+            CameraPath::Static => self.start,
+            CameraPath::Orbit(d) => orbit(self.start, self.center, d * frame as f32),
+        }
+    }
+}
+
+/// The references of the measured frames.
+pub struct References {
+    /// One image (still camera) or one per measured frame.
+    pub images: Vec<LinearImage>,
+    pub spp: u32,
+    /// The largest estimated own RMSE among them (see reference_cache docs).
+    pub noise_luma_rmse: Option<f64>,
+    pub noise_rgb_rmse: Option<f64>,
+    pub loaded: usize,
+    pub rendered: usize,
+    pub render_seconds: f64,
+}
+
+/// What the references are rendered with.
+pub struct ReferencePlan<'a> {
+    pub cache: &'a ReferenceCache,
+    pub scene_spec: &'a str,
+    pub scene: &'a Scene,
+    pub spp: u32,
+    pub jitter: bool,
+    /// `--effects` when forced, else what a still camera derives.
+    pub effects: Option<EffectSet>,
+}
+
+/// Loads or renders the references of frames `first..first + count` of `shot` (one for a
+/// still camera).
+pub fn obtain(
+    renderer: &mut Renderer,
+    plan: &ReferencePlan,
+    shot: &Shot,
+    first: u32,
+    count: u32,
+) -> anyhow::Result<References> {
+    let frames: Vec<u32> = match shot.path {
+        CameraPath::Static => vec![first],
+        CameraPath::Orbit(_) => (first..first + count).collect(),
+    };
+    let mut refs = References {
+        images: Vec::with_capacity(frames.len()),
+        spp: plan.spp,
+        noise_luma_rmse: None,
+        noise_rgb_rmse: None,
+        loaded: 0,
+        rendered: 0,
+        render_seconds: 0.0,
+    };
+    let size = renderer.size();
+    for (i, &frame) in frames.iter().enumerate() {
+        let mut request = ReferenceRequest::new(
+            plan.scene_spec,
+            plan.scene,
+            shot.camera(frame),
+            size,
+            plan.spp,
+            plan.jitter,
+        );
+        if let Some(e) = &plan.effects {
+            request.effects = e.clone();
+        }
+        let label = format!("reference {}/{}", i + 1, frames.len());
+        let mut progress = |p: &Progress| {
+            let eta = p
+                .eta()
+                .map(|d| format!(", ~{:.0} s left", d.as_secs_f64()))
+                .unwrap_or_default();
+            eprint!(
+                "\r{label}: {}/{} spp ({:.1} s{eta})   ",
+                p.samples_done,
+                p.samples_total,
+                p.elapsed.as_secs_f64()
+            );
+            let _ = std::io::stderr().flush();
+            true
+        };
+        let reference = plan
+            .cache
+            .get_or_render(renderer, &request, &mut progress)?;
+        if reference.from_cache {
+            refs.loaded += 1;
+        } else {
+            eprintln!();
+            refs.rendered += 1;
+            refs.render_seconds += reference.meta.render_seconds;
+        }
+        let max = |a: Option<f64>, b: Option<f64>| match (a, b) {
+            (Some(a), Some(b)) => Some(a.max(b)),
+            (a, b) => a.or(b),
+        };
+        refs.noise_luma_rmse = max(refs.noise_luma_rmse, reference.meta.noise_luma_rmse);
+        refs.noise_rgb_rmse = max(refs.noise_rgb_rmse, reference.meta.noise_rgb_rmse);
+        if reference.image.non_finite_count() > 0 {
+            bail!(
+                "{}: the reference has non-finite pixels",
+                reference.path.display()
+            );
+        }
+        refs.images.push(reference.image);
+    }
+    eprintln!(
+        "references: {} loaded from {}, {} rendered ({:.1} s), {} spp each",
+        refs.loaded,
+        plan.cache.dir().display(),
+        refs.rendered,
+        refs.render_seconds,
+        plan.spp
+    );
+    Ok(refs)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bench_camera_paths_parse() {
+        assert_eq!(CameraPath::parse("static").unwrap(), CameraPath::Static);
+        assert_eq!(
+            CameraPath::parse("orbit:0.5").unwrap(),
+            CameraPath::Orbit(0.5)
+        );
+        assert_eq!(CameraPath::parse("orbit:0").unwrap(), CameraPath::Static);
+        assert!(CameraPath::parse("orbit").is_err());
+        assert!(CameraPath::parse("orbit:nan").is_err());
+        assert!(CameraPath::parse("spin:3").is_err());
+    }
+}

@@ -1,0 +1,203 @@
+//! Running configurations: each on its own renderer, from a clean history with the same
+//! seed, along the camera path, with per-frame pass times from `collect_reports` and the
+//! scores of every measured frame.
+//!
+//! The runs are **interleaved**: one frame of each configuration in turn, rather than all
+//! frames of one and then the next. On a shared machine (lavapipe runs on the same CPU
+//! cores as everything else) the background load drifts during a bench; interleaving
+//! exposes every configuration to the same load, so their time *ratios* stay meaningful.
+
+use std::io::Write;
+
+use restir_render::Renderer;
+use restir_render::effects::EffectSet;
+use restir_render::stats::{FrameReport, StatsSummary};
+
+use super::configs::Config;
+use super::equal_time::{Budget, BudgetClock};
+use super::references::Shot;
+use super::scoring::{FrameScores, ScoreSummary, Scoring};
+
+/// How every configuration is run.
+pub struct RunPlan {
+    /// Measured frames (fixed mode); ignored with a budget.
+    pub frames: u32,
+    /// Frames rendered first so history builds up; neither timed nor scored.
+    pub warmup: u32,
+    pub budget: Option<Budget>,
+    pub shot: Shot,
+    pub seed: u32,
+    /// `--effects` when forced.
+    pub effects: Option<EffectSet>,
+}
+
+/// One measured frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FrameRecord {
+    /// 0 = first measured frame.
+    pub index: usize,
+    /// Sum of the frame's pass times.
+    pub ms: f64,
+    pub cumulative_ms: f64,
+    pub scores: FrameScores,
+}
+
+/// What one configuration measured.
+#[derive(Clone, Debug)]
+pub struct ConfigResult {
+    pub config: Config,
+    pub frames: Vec<FrameRecord>,
+    /// Median per-frame and per-pass times.
+    pub times: StatsSummary,
+    pub scores: Option<ScoreSummary>,
+    /// Equal-time mode: the clock when it stopped.
+    pub budget: Option<BudgetClock>,
+    /// Filled in once every configuration ran (see `mod.rs`): median frame time, per-frame
+    /// luma MSE and (equal-time mode) the running average's MSE, each relative to `nee`.
+    pub time_vs_nee: Option<f64>,
+    pub frame_mse_vs_nee: Option<f64>,
+    pub budget_mse_vs_nee: Option<f64>,
+}
+
+impl ConfigResult {
+    pub fn median_frame_ms(&self) -> Option<f64> {
+        self.times.frame_gpu_ms_median
+    }
+
+    /// The error equal-time mode compares: the running average's RGB RMSE.
+    pub fn final_accumulated_rmse(&self) -> Option<f64> {
+        self.scores.as_ref()?.accumulated_rgb_rmse
+    }
+}
+
+/// One configuration in progress on its own renderer.
+pub struct ConfigRun<'a> {
+    pub renderer: Renderer,
+    config: Config,
+    scoring: Scoring<'a>,
+    clock: Option<BudgetClock>,
+    records: Vec<FrameRecord>,
+    reports: Vec<FrameReport>,
+}
+
+impl<'a> ConfigRun<'a> {
+    /// Sets `renderer` up for `config` and renders the unmeasured frames: two that compile
+    /// every pipeline variant the run will use (still, then moved one step), so no measured
+    /// frame pays for a shader compile, then a clean history and the warm-up frames.
+    pub fn start(
+        mut renderer: Renderer,
+        config: &Config,
+        plan: &RunPlan,
+        scoring: Scoring<'a>,
+    ) -> anyhow::Result<ConfigRun<'a>> {
+        renderer.set_mode(config.mode);
+        renderer.set_settings(config.settings.clone());
+        renderer.set_seed(plan.seed);
+        renderer.force_effects(plan.effects.clone());
+        for frame in 0..2 {
+            renderer.set_camera(plan.shot.camera(frame));
+            renderer.render_frame()?;
+            renderer.collect_reports(true);
+        }
+        renderer.request_cut();
+        renderer.reset_accumulation();
+        for frame in 0..plan.warmup {
+            renderer.set_camera(plan.shot.camera(frame));
+            renderer.render_frame()?;
+            renderer.collect_reports(true);
+        }
+        renderer.reset_accumulation();
+        Ok(ConfigRun {
+            renderer,
+            config: config.clone(),
+            scoring,
+            clock: plan.budget.map(BudgetClock::new),
+            records: Vec::new(),
+            reports: Vec::new(),
+        })
+    }
+
+    pub fn done(&self, plan: &RunPlan) -> bool {
+        match &self.clock {
+            Some(c) => c.done(),
+            None => self.records.len() as u32 >= plan.frames,
+        }
+    }
+
+    /// Renders, times and scores the next measured frame.
+    pub fn step(&mut self, plan: &RunPlan) -> anyhow::Result<()> {
+        let index = self.records.len();
+        self.renderer
+            .set_camera(plan.shot.camera(plan.warmup + index as u32));
+        self.renderer.render_frame()?;
+        let report = self
+            .renderer
+            .collect_reports(true)
+            .into_iter()
+            .next_back()
+            .unwrap_or_default();
+        let ms = report.gpu_ms();
+        let cumulative_ms = self.records.last().map_or(0.0, |r| r.cumulative_ms) + ms;
+        if let Some(c) = &mut self.clock {
+            c.add(ms);
+        }
+        let scores = if self.scoring.wants_images() {
+            self.scoring.push(index, &self.renderer.read_radiance())?
+        } else {
+            FrameScores::default()
+        };
+        self.records.push(FrameRecord {
+            index,
+            ms,
+            cumulative_ms,
+            scores,
+        });
+        self.reports.push(report);
+        Ok(())
+    }
+
+    pub fn finish(self) -> anyhow::Result<(ConfigResult, Renderer)> {
+        let result = ConfigResult {
+            times: StatsSummary::from_reports(&self.reports, 0),
+            scores: self.scoring.summary()?,
+            config: self.config,
+            frames: self.records,
+            budget: self.clock,
+            time_vs_nee: None,
+            frame_mse_vs_nee: None,
+            budget_mse_vs_nee: None,
+        };
+        Ok((result, self.renderer))
+    }
+}
+
+/// Runs every started configuration to its end, one frame of each in turn.
+pub fn run_interleaved<'a>(
+    mut runs: Vec<(String, ConfigRun<'a>)>,
+    plan: &RunPlan,
+) -> anyhow::Result<Vec<(ConfigResult, Renderer)>> {
+    let mut round = 0;
+    while runs.iter().any(|(_, r)| !r.done(plan)) {
+        for (_, run) in runs.iter_mut().filter(|(_, r)| !r.done(plan)) {
+            run.step(plan)?;
+        }
+        round += 1;
+        let active: Vec<&str> = runs
+            .iter()
+            .filter(|(_, r)| !r.done(plan))
+            .map(|(l, _)| l.as_str())
+            .collect();
+        let total = if plan.budget.is_some() {
+            "?".to_string()
+        } else {
+            plan.frames.to_string()
+        };
+        eprint!(
+            "\rframe {round}/{total}, {} configurations still running   ",
+            active.len()
+        );
+        let _ = std::io::stderr().flush();
+    }
+    eprintln!();
+    runs.into_iter().map(|(_, r)| r.finish()).collect()
+}

@@ -1,0 +1,218 @@
+//! Frames in, notes §7's numbers out, using the renderer's metrics (`SequenceMetrics` for a
+//! still camera). With a moving camera each frame has its own reference: per-frame accuracy
+//! is measured against it, stability is the luma RMSE between consecutive *error* images
+//! (frame − its reference; for a still camera that is exactly the frame-to-frame RMSE, and
+//! with motion it leaves out the true change of the image), the luma ratio is averaged over
+//! frames, and the running average is not defined (n/a).
+
+use restir_render::LinearImage;
+use restir_render::metrics::{SequenceMetrics, luma_ratio, luma_rmse, rel_mse};
+
+/// One frame's numbers.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FrameScores {
+    pub luma_rmse: Option<f64>,
+    pub stability: Option<f64>,
+    pub accumulated_rgb_rmse: Option<f64>,
+}
+
+/// A run's numbers (notes §7).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ScoreSummary {
+    /// Per-frame accuracy: luma RMSE vs the reference, mean over frames.
+    pub mean_luma_rmse: f64,
+    /// Frame-to-frame luma RMSE (of the error images with a moving camera), mean.
+    pub mean_stability: f64,
+    /// RGB RMSE of the running average (still camera only).
+    pub accumulated_rgb_rmse: Option<f64>,
+    /// Relative MSE of the running average (still camera only).
+    pub accumulated_rel_mse: Option<f64>,
+    /// mean luminance(average) / mean luminance(reference) (still camera), or the mean over
+    /// frames of the per-frame ratio (moving camera).
+    pub luma_ratio: f64,
+    /// Non-finite pixels seen (each skipped by the metrics).
+    pub non_finite_pixels: usize,
+}
+
+pub enum Scoring<'a> {
+    /// Timing only (the light-count sweep).
+    Off,
+    Still {
+        reference: &'a LinearImage,
+        sequence: SequenceMetrics,
+    },
+    Moving {
+        /// One per measured frame.
+        references: &'a [LinearImage],
+        previous_error: Option<LinearImage>,
+        luma: Vec<f64>,
+        stability: Vec<f64>,
+        ratios: Vec<f64>,
+        non_finite: usize,
+    },
+}
+
+impl<'a> Scoring<'a> {
+    pub fn still(reference: &'a LinearImage) -> Scoring<'a> {
+        Scoring::Still {
+            reference,
+            sequence: SequenceMetrics::new(reference.clone()),
+        }
+    }
+
+    pub fn moving(references: &'a [LinearImage]) -> Scoring<'a> {
+        Scoring::Moving {
+            references,
+            previous_error: None,
+            luma: Vec::new(),
+            stability: Vec::new(),
+            ratios: Vec::new(),
+            non_finite: 0,
+        }
+    }
+
+    pub fn wants_images(&self) -> bool {
+        !matches!(self, Scoring::Off)
+    }
+
+    /// Scores measured frame `index`.
+    pub fn push(&mut self, index: usize, frame: &LinearImage) -> anyhow::Result<FrameScores> {
+        match self {
+            Scoring::Off => Ok(FrameScores::default()),
+            Scoring::Still { sequence, .. } => {
+                sequence.push(frame)?;
+                let report = sequence.report();
+                Ok(FrameScores {
+                    luma_rmse: report.per_frame_luma_rmse.last().copied(),
+                    stability: report
+                        .per_frame_stability_rmse
+                        .get(index.wrapping_sub(1))
+                        .copied(),
+                    accumulated_rgb_rmse: Some(report.accumulated_rgb_rmse),
+                })
+            }
+            Scoring::Moving {
+                references,
+                previous_error,
+                luma,
+                stability,
+                ratios,
+                non_finite,
+            } => {
+                let reference = references
+                    .get(index)
+                    .ok_or_else(|| anyhow::anyhow!("no reference for measured frame {index}"))?;
+                let error = difference(frame, reference);
+                *non_finite += frame.non_finite_count();
+                luma.push(luma_rmse(frame, reference)?);
+                ratios.push(luma_ratio(frame, reference)?);
+                let step = match previous_error {
+                    Some(previous) => Some(luma_rmse(&error, previous)?),
+                    None => None,
+                };
+                stability.extend(step);
+                *previous_error = Some(error);
+                Ok(FrameScores {
+                    luma_rmse: luma.last().copied(),
+                    stability: step,
+                    accumulated_rgb_rmse: None,
+                })
+            }
+        }
+    }
+
+    pub fn summary(&self) -> anyhow::Result<Option<ScoreSummary>> {
+        Ok(match self {
+            Scoring::Off => None,
+            Scoring::Still {
+                reference,
+                sequence,
+            } => {
+                let report = sequence.report();
+                Some(ScoreSummary {
+                    mean_luma_rmse: report.mean_luma_rmse,
+                    mean_stability: report.mean_stability_rmse,
+                    accumulated_rgb_rmse: Some(report.accumulated_rgb_rmse),
+                    accumulated_rel_mse: Some(rel_mse(&sequence.accumulated(), reference)?),
+                    luma_ratio: report.accumulated_luma_ratio,
+                    non_finite_pixels: report.non_finite_pixels,
+                })
+            }
+            Scoring::Moving {
+                luma,
+                stability,
+                ratios,
+                non_finite,
+                ..
+            } => Some(ScoreSummary {
+                mean_luma_rmse: mean(luma),
+                mean_stability: mean(stability),
+                accumulated_rgb_rmse: None,
+                accumulated_rel_mse: None,
+                luma_ratio: mean(ratios),
+                non_finite_pixels: *non_finite,
+            }),
+        })
+    }
+}
+
+fn mean(v: &[f64]) -> f64 {
+    if v.is_empty() {
+        0.0
+    } else {
+        v.iter().sum::<f64>() / v.len() as f64
+    }
+}
+
+/// frame − reference per channel (alpha 1): luminance is linear, so the luma RMSE of two
+/// such images is the RMSE of the change of the luma error.
+fn difference(frame: &LinearImage, reference: &LinearImage) -> LinearImage {
+    let pixels = frame
+        .pixels
+        .iter()
+        .zip(&reference.pixels)
+        .map(|(f, r)| [f[0] - r[0], f[1] - r[1], f[2] - r[2], 1.0])
+        .collect();
+    LinearImage {
+        width: frame.width,
+        height: frame.height,
+        pixels,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn flat(v: f32) -> LinearImage {
+        LinearImage::from_fn(4, 2, |_, _| [v, v, v, 1.0])
+    }
+
+    #[test]
+    fn bench_moving_stability_ignores_the_true_change_of_the_image() {
+        // Each frame is its reference + 0.1: the error never changes.
+        let refs = [flat(1.0), flat(2.0), flat(3.0)];
+        let mut s = Scoring::moving(&refs);
+        for (i, r) in refs.iter().enumerate() {
+            s.push(i, &flat(r.pixels[0][0] + 0.1)).unwrap();
+        }
+        let summary = s.summary().unwrap().unwrap();
+        assert!((summary.mean_luma_rmse - 0.1).abs() < 1e-6);
+        assert!(summary.mean_stability.abs() < 1e-6);
+        assert!(summary.accumulated_rgb_rmse.is_none());
+    }
+
+    #[test]
+    fn bench_still_scores_match_sequence_metrics() {
+        let reference = flat(1.0);
+        let mut s = Scoring::still(&reference);
+        let a = s.push(0, &flat(1.5)).unwrap();
+        let b = s.push(1, &flat(0.5)).unwrap();
+        assert_eq!(a.stability, None);
+        assert!((b.stability.unwrap() - 1.0).abs() < 1e-6);
+        // The running average is exact after two frames.
+        assert!(b.accumulated_rgb_rmse.unwrap() < 1e-6);
+        let summary = s.summary().unwrap().unwrap();
+        assert!((summary.luma_ratio - 1.0).abs() < 1e-6);
+    }
+}

@@ -1,0 +1,89 @@
+//! The one place the UI's plain state meets the renderer: before a frame the state is
+//! handed over (the renderer ignores what did not change), after it the renderer's
+//! outputs (reports, inspection, effect set) come back into the state.
+
+use restir_render::renderer::MAX_SIZE;
+use restir_render::{Renderer, ViewSettings};
+
+use super::camera::CameraState;
+use super::state::{InspectorState, ViewerState};
+
+/// Render-target size for a scene area of `area` physical pixels at `scale`; `None`
+/// while the area is empty (window minimised, panel covering everything).
+pub fn render_size(area: (f32, f32), scale: f32) -> Option<(u32, u32)> {
+    if !(area.0 >= 1.0 && area.1 >= 1.0) {
+        return None;
+    }
+    let side = |v: f32| ((v * scale).round().max(1.0) as u32).min(MAX_SIZE);
+    Some((side(area.0), side(area.1)))
+}
+
+/// Everything that goes into the next frame. The accumulation restarts when the camera
+/// moves or accumulation is switched on (the renderer itself restarts it on mode,
+/// parameter, scene and size changes).
+pub fn before_frame(renderer: &mut Renderer, state: &ViewerState) {
+    renderer.set_mode(state.mode);
+    renderer.set_settings(state.settings.clone());
+    let turned_on = state.view.accumulate && !renderer.view().accumulate;
+    renderer.set_view(state.view);
+    let moved = renderer.camera() != state.camera.camera;
+    if moved {
+        renderer.set_camera(state.camera.camera);
+    }
+    if moved || turned_on {
+        renderer.reset_accumulation();
+    }
+    renderer.set_inspected_pixel(state.inspector.pixel);
+}
+
+/// Shows a view change on a frozen frame (only the display pass runs again).
+pub fn redisplay_if_changed(renderer: &mut Renderer, view: &ViewSettings) -> anyhow::Result<()> {
+    if renderer.view() != view {
+        renderer.set_view(*view);
+        renderer.redisplay()?;
+    }
+    Ok(())
+}
+
+/// Reports, the inspected pixel and frame facts back into the state.
+pub fn after_frame(renderer: &mut Renderer, state: &mut ViewerState) {
+    for report in renderer.collect_reports(false) {
+        if let Some(inspection) = &report.inspection {
+            state.inspector.last = Some(inspection.clone());
+        }
+        state.stats.push_report(report);
+    }
+    state.render_size = renderer.size();
+    state.accumulated_frames = renderer.accumulated_frames();
+    state.scene.effects = renderer.last_effects().cloned();
+    state.scene.passes = renderer.last_passes().to_vec();
+}
+
+/// A new scene is in the renderer: its camera, facts and fresh statistics.
+pub fn scene_loaded(renderer: &Renderer, state: &mut ViewerState, spec: String) {
+    let motion = state.camera.motion;
+    state.camera = CameraState::new(renderer.camera(), renderer.scene_bounds());
+    state.camera.motion = motion;
+    state.scene.info = Some(renderer.scene_info().clone());
+    state.scene.spec = spec;
+    state.scene.error = None;
+    state.stats.clear();
+    state.inspector = InspectorState {
+        pixel: state.inspector.pixel,
+        ..Default::default()
+    };
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn render_size_scales_and_never_reaches_zero() {
+        assert_eq!(render_size((900.0, 720.0), 0.25), Some((225, 180)));
+        assert_eq!(render_size((3.0, 2.0), 0.1), Some((1, 1)));
+        assert_eq!(render_size((0.0, 720.0), 1.0), None);
+        assert_eq!(render_size((f32::NAN, 1.0), 1.0), None);
+        assert_eq!(render_size((1e6, 10.0), 1.0), Some((MAX_SIZE, 10)));
+    }
+}

@@ -1,0 +1,345 @@
+//! One window's viewer and its frame, in order: UI (panels edit the state) → actions →
+//! state into the renderer → render (unless frozen) → reports back → draw image + UI →
+//! present, with a screenshot when one is due.
+
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use restir_render::view::auto_exposure_ev;
+use restir_render::{Gpu, Renderer, Scene};
+use winit::dpi::PhysicalSize;
+use winit::window::Window;
+
+use super::Launch;
+use super::apply;
+use super::camera::CameraState;
+use super::egui_layer::EguiLayer;
+use super::gpu_surface::GpuSurface;
+use super::panels;
+use super::scene_loader::SceneLoader;
+use super::scene_view;
+use super::screenshot::{self, Shot, WindowCapture};
+use super::state::{Action, DeviceInfo, DisplayOptions, ViewerState};
+
+/// What the event loop should do after an event.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum After {
+    Continue,
+    Exit,
+}
+
+pub struct Viewer {
+    window: Arc<Window>,
+    gpu: Gpu,
+    surface: GpuSurface,
+    renderer: Renderer,
+    egui: EguiLayer,
+    pub state: ViewerState,
+    loader: SceneLoader,
+    screenshots: screenshot::Schedule,
+    exit_after_screenshot: bool,
+    frames_rendered: u64,
+    /// Set the exposure automatically once this many frames have rendered (after a
+    /// scene load, when the first frames have something to measure).
+    auto_exposure_at: Option<u64>,
+    last_redraw: Option<Instant>,
+    /// When the last frame was rendered (frozen: redraw a little longer, until its report
+    /// and inspection have come back).
+    last_render: Option<Instant>,
+    /// When egui asked to run again.
+    ui_wakeup: Option<Instant>,
+    /// Hidden behind other windows or on another workspace (where the platform says so).
+    occluded: bool,
+}
+
+/// How long a frozen viewer keeps redrawing after rendering a frame, so the frame's
+/// report and pixel inspection (read back asynchronously) reach the panels.
+const REPORT_GRACE: Duration = Duration::from_millis(500);
+
+/// Frames rendered before the automatic exposure of a new scene is measured.
+const AUTO_EXPOSURE_FRAMES: u64 = 3;
+
+impl Viewer {
+    pub fn new(window: Arc<Window>, launch: Launch, scene: &Scene) -> anyhow::Result<Viewer> {
+        let (surface, gpu) = GpuSurface::new(window.clone())?;
+        let display = DisplayOptions::for_adapter(gpu.is_cpu());
+        let size = window.inner_size();
+        let (w, h) = apply::render_size(
+            (size.width as f32, size.height as f32),
+            display.render_scale,
+        )
+        .unwrap_or((64, 64));
+        let mut renderer = Renderer::new(gpu.clone(), scene, w, h, launch.settings.clone())?;
+        let mut state = ViewerState::new(
+            launch.settings,
+            CameraState::new(renderer.camera(), renderer.scene_bounds()),
+            display,
+        );
+        state.view.view = launch.debug_view;
+        if let Some(preset) = &launch.preset {
+            state.preset_path = preset.display().to_string();
+        }
+        state.device = DeviceInfo {
+            adapter: gpu.adapter_name(),
+            is_cpu: gpu.is_cpu(),
+            timing: format!("{:?}", renderer.timing_mode()),
+        };
+        renderer.set_view(state.view);
+        apply::scene_loaded(&renderer, &mut state, launch.scene_spec);
+        window.set_title(&title(&state));
+        let egui = EguiLayer::new(
+            &window,
+            &gpu,
+            surface.format(),
+            &renderer,
+            state.display.smooth,
+        );
+        Ok(Viewer {
+            window,
+            gpu,
+            surface,
+            renderer,
+            egui,
+            state,
+            loader: SceneLoader::default(),
+            screenshots: screenshot::Schedule {
+                after: launch.screenshot_after,
+                ..Default::default()
+            },
+            exit_after_screenshot: launch.exit,
+            frames_rendered: 0,
+            auto_exposure_at: Some(AUTO_EXPOSURE_FRAMES),
+            last_redraw: None,
+            last_render: None,
+            ui_wakeup: None,
+            occluded: false,
+        })
+    }
+
+    pub fn window(&self) -> &Window {
+        &self.window
+    }
+
+    pub fn frames_rendered(&self) -> u64 {
+        self.frames_rendered
+    }
+
+    /// The surface size in physical pixels (0×0 while minimised).
+    pub fn surface_size(&self) -> (u32, u32) {
+        if self.surface.is_drawable() {
+            self.surface.size()
+        } else {
+            (0, 0)
+        }
+    }
+
+    /// Whether frames should be drawn now (false while minimised or occluded).
+    pub fn is_drawable(&self) -> bool {
+        self.surface.is_drawable() && !self.occluded
+    }
+
+    pub fn set_occluded(&mut self, occluded: bool) {
+        self.occluded = occluded;
+        self.window.request_redraw();
+    }
+
+    /// When the next frame should be drawn: `now` while rendering (progressive frames
+    /// never stop), when egui asks while frozen, never while minimised.
+    pub fn next_redraw(&self, now: Instant) -> Option<Instant> {
+        if !self.is_drawable() {
+            return None;
+        }
+        let inspector = &self.state.inspector;
+        let rendering = !inspector.frozen
+            || inspector.step
+            || self.loader.loading().is_some()
+            || self.last_render.is_some_and(|t| now - t < REPORT_GRACE);
+        if rendering { Some(now) } else { self.ui_wakeup }
+    }
+
+    /// Feeds a window event to egui (all keyboard and pointer input goes through egui);
+    /// input egui cares about draws a frame even while frozen.
+    pub fn egui_event(&mut self, event: &winit::event::WindowEvent) {
+        // (egui-winit asks to repaint on RedrawRequested itself: that would never idle.)
+        let repaint = self.egui.on_window_event(&self.window, event);
+        if repaint && !matches!(event, winit::event::WindowEvent::RedrawRequested) {
+            self.window.request_redraw();
+        }
+    }
+
+    /// A new window size; 0×0 (minimised) pauses drawing until the next real size.
+    pub fn resized(&mut self, size: PhysicalSize<u32>) {
+        self.surface.resize(&self.gpu, size.width, size.height);
+        if self.surface.is_drawable() {
+            self.window.request_redraw();
+        }
+    }
+
+    pub fn redraw(&mut self) -> anyhow::Result<After> {
+        if !self.is_drawable() {
+            return Ok(After::Continue);
+        }
+        let now = Instant::now();
+        if let Some(last) = self.last_redraw.replace(now) {
+            self.state
+                .stats
+                .push_frame_ms((now - last).as_secs_f64() * 1e3);
+        }
+        let image = self.egui.image();
+        let state = &mut self.state;
+        let mut area = egui::Rect::NOTHING;
+        let (mut output, ui_delay) = self.egui.run(&self.window, |ui| {
+            panels::shortcuts(ui.ctx(), state);
+            panels::side_panel(ui, state);
+            area = scene_view::show(ui, state, Some(image));
+        });
+        self.ui_wakeup = now.checked_add(ui_delay);
+        self.run_actions();
+        self.poll_loader();
+        let ppp = output.pixels_per_point;
+        let rendered = match self.render((area.width() * ppp, area.height() * ppp)) {
+            Ok(rendered) => rendered,
+            Err(e) => {
+                // Stopping: the UI's texture uploads will never be applied.
+                output.textures_delta.clear();
+                return Err(e);
+            }
+        };
+        self.egui
+            .bind_image(&self.gpu, &self.renderer, self.state.display.smooth);
+        let shot = self.screenshots.due(self.frames_rendered, rendered);
+        let capture = shot
+            .as_ref()
+            .map(|_| WindowCapture::new(&self.gpu, self.surface.format(), self.surface.size()));
+        let frame = self.surface.acquire(&self.gpu);
+        let targets: Vec<&wgpu::TextureView> = frame
+            .iter()
+            .map(|f| &f.view)
+            .chain(capture.iter().map(|c| &c.view))
+            .collect();
+        let (w, h) = self.surface.size();
+        self.egui.paint(&self.gpu, output, &targets, [w, h]);
+        if let Some(frame) = frame {
+            self.surface.present(&self.gpu, frame);
+        }
+        self.gpu.check()?;
+        match (shot, capture) {
+            (Some(Shot::AfterFrames(path)), Some(capture)) => {
+                let (w, h) = capture.save_png(&self.gpu, &path)?;
+                let frames = self.frames_rendered;
+                eprintln!(
+                    "screenshot: {w}x{h} window after {frames} frames -> {}",
+                    path.display()
+                );
+                if self.exit_after_screenshot {
+                    return Ok(After::Exit);
+                }
+            }
+            (Some(Shot::Requested), Some(capture)) => {
+                let stem = screenshot::stem(
+                    &self.state.screenshot_dir,
+                    &self.state.scene.spec,
+                    self.renderer.frame_index(),
+                );
+                let message = screenshot::save_all(&self.gpu, &capture, &self.renderer, &stem);
+                self.state.screenshot_message = Some(message);
+            }
+            _ => {}
+        }
+        Ok(After::Continue)
+    }
+
+    /// Holds the `--screenshot-after` shot (while the resize test script runs).
+    pub fn hold_screenshot(&mut self, hold: bool) {
+        self.screenshots.hold = hold;
+    }
+
+    /// Renders a frame unless frozen (a Step renders one); returns whether it did.
+    fn render(&mut self, area: (f32, f32)) -> anyhow::Result<bool> {
+        let state = &mut self.state;
+        let render_now = !state.inspector.frozen || std::mem::take(&mut state.inspector.step);
+        if render_now {
+            if let Some((w, h)) = apply::render_size(area, state.display.render_scale) {
+                self.renderer.resize(w, h)?;
+            }
+            state.camera.advance_auto();
+            apply::before_frame(&mut self.renderer, state);
+            self.renderer.render_frame()?;
+            self.frames_rendered += 1;
+            self.last_render = Some(Instant::now());
+            if self
+                .auto_exposure_at
+                .is_some_and(|at| self.frames_rendered >= at)
+            {
+                self.auto_exposure_at = None;
+                state.request(Action::AutoExposure);
+            }
+        } else {
+            apply::redisplay_if_changed(&mut self.renderer, &state.view)?;
+        }
+        apply::after_frame(&mut self.renderer, state);
+        Ok(render_now)
+    }
+
+    fn run_actions(&mut self) {
+        for action in std::mem::take(&mut self.state.actions) {
+            match action {
+                Action::LoadScene(spec) => {
+                    self.state.scene.error = None;
+                    self.loader.start(spec);
+                }
+                Action::Screenshot => self.screenshots.requested = true,
+                Action::AutoExposure => {
+                    let linear = if self.state.view.accumulate {
+                        self.renderer.read_accumulated()
+                    } else {
+                        self.renderer.read_radiance()
+                    };
+                    self.state.view.exposure_ev = auto_exposure_ev(&linear);
+                }
+                Action::ResetAccumulation => self.renderer.reset_accumulation(),
+                Action::CaptureReference => {
+                    let average = self.renderer.read_accumulated();
+                    if let Err(e) = self.renderer.set_reference_image(&average) {
+                        log::warn!("cannot use the average as reference: {e:#}");
+                    }
+                }
+            }
+        }
+        self.state.scene.loading = self.loader.loading().map(str::to_string);
+    }
+
+    /// A finished background load replaces the scene; a failed one keeps the old scene
+    /// and shows why.
+    fn poll_loader(&mut self) {
+        let Some((spec, result)) = self.loader.poll() else {
+            return;
+        };
+        self.state.scene.loading = None;
+        let uploaded = result.and_then(|scene| {
+            self.renderer
+                .set_scene(&scene)
+                .map_err(|e| format!("{e:#}"))
+        });
+        match uploaded {
+            Ok(()) => {
+                apply::scene_loaded(&self.renderer, &mut self.state, spec);
+                self.window.set_title(&title(&self.state));
+                self.auto_exposure_at = Some(self.frames_rendered + AUTO_EXPOSURE_FRAMES);
+            }
+            Err(e) => {
+                log::warn!("cannot load {spec}: {e}");
+                self.state.scene.error = Some(e);
+            }
+        }
+    }
+}
+
+fn title(state: &ViewerState) -> String {
+    let name = state
+        .scene
+        .info
+        .as_ref()
+        .map_or(state.scene.spec.as_str(), |i| i.name.as_str());
+    format!("ReSTIR lab — {name}")
+}

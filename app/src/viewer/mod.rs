@@ -1,0 +1,176 @@
+//! The interactive viewer (`restir-viewer` or `restir-viewer view`): a winit window with
+//! the renderer's image and egui panels that edit plain state (see `state.rs`).
+//!
+//! - `app.rs`: winit event loop; `frame.rs`: one frame from UI to present;
+//! - `apply.rs`: state → renderer → state; `gpu_surface.rs`: the swapchain;
+//! - `egui_layer.rs`: egui input and drawing; `scene_view.rs`: image, camera input, picking;
+//! - `camera.rs`: fly camera; `panels/`: one file per panel; `screenshot.rs`;
+//! - `scene_loader.rs`: background scene loads; `resize_script.rs`: the resize test.
+
+mod app;
+mod apply;
+mod camera;
+mod egui_layer;
+mod frame;
+mod gpu_surface;
+mod panels;
+mod resize_script;
+mod scene_loader;
+mod scene_view;
+mod screenshot;
+mod state;
+
+use std::path::PathBuf;
+
+use anyhow::{Context, bail};
+use clap::Args;
+use restir_render::{DebugView, Settings, load_scene};
+
+use crate::cli::setup::{parse_size, settings_from};
+
+pub const DEFAULT_SCENE: &str = "builtin:many-lights";
+pub const DEFAULT_WINDOW_SIZE: &str = "1280x720";
+
+#[derive(Args, Debug, Default)]
+pub struct ViewArgs {
+    /// A .gltf/.glb file or a built-in scene (`builtin:NAME`, see `scenes`)
+    /// [default: builtin:many-lights].
+    #[arg(long)]
+    pub scene: Option<String>,
+    /// A preset file (TOML, `name = value` per line) to start from.
+    #[arg(long)]
+    pub preset: Option<PathBuf>,
+    /// Window size in logical pixels, WxH [default: 1280x720].
+    #[arg(long)]
+    pub size: Option<String>,
+    /// final | source | m | rejection | w | normals | albedo | depth | motion | error
+    /// [default: final].
+    #[arg(long)]
+    pub debug_view: Option<String>,
+    /// After N rendered frames, write a PNG of the whole window (image and panels) to FILE.
+    #[arg(long, num_args = 2, value_names = ["N", "FILE.png"])]
+    pub screenshot_after: Vec<String>,
+    /// Exit (status 0) once the --screenshot-after PNG is written.
+    #[arg(long, requires = "screenshot_after")]
+    pub exit: bool,
+    /// Test hook: resize, minimise and restore the window while rendering.
+    #[arg(long, hide = true)]
+    pub test_resize_script: bool,
+}
+
+/// The validated command line: everything the window needs before it opens.
+pub struct Launch {
+    pub scene_spec: String,
+    pub settings: Settings,
+    /// `--preset`: also where the Pipeline panel saves and loads by default.
+    pub preset: Option<PathBuf>,
+    pub window_size: (u32, u32),
+    pub debug_view: DebugView,
+    pub screenshot_after: Option<(u64, PathBuf)>,
+    pub exit: bool,
+    pub resize_script: bool,
+}
+
+impl Launch {
+    fn from_args(args: ViewArgs) -> anyhow::Result<Launch> {
+        let debug_view_name = args.debug_view.as_deref().unwrap_or("final");
+        let debug_view = DebugView::from_name(debug_view_name).with_context(|| {
+            let names: Vec<_> = DebugView::ALL.iter().map(|v| v.name()).collect();
+            format!(
+                "--debug-view '{debug_view_name}': expected one of {}",
+                names.join(", ")
+            )
+        })?;
+        let screenshot_after = match args.screenshot_after.as_slice() {
+            [] => None,
+            [n, file] => {
+                let n: u64 = n.parse().ok().filter(|n| *n >= 1).with_context(|| {
+                    format!("--screenshot-after '{n}': expected a frame count of at least 1")
+                })?;
+                if !file.to_ascii_lowercase().ends_with(".png") {
+                    bail!("--screenshot-after: '{file}' is not a .png file");
+                }
+                Some((n, PathBuf::from(file)))
+            }
+            _ => bail!("--screenshot-after takes a frame count and a file: N FILE.png"),
+        };
+        Ok(Launch {
+            scene_spec: args.scene.unwrap_or_else(|| DEFAULT_SCENE.to_string()),
+            settings: settings_from(args.preset.as_ref(), &[])?,
+            preset: args.preset,
+            window_size: parse_size(args.size.as_deref().unwrap_or(DEFAULT_WINDOW_SIZE))?,
+            debug_view,
+            screenshot_after,
+            exit: args.exit,
+            resize_script: args.test_resize_script,
+        })
+    }
+}
+
+/// Opens the viewer and runs until the window closes (or `--exit`).
+pub fn run(args: ViewArgs) -> anyhow::Result<()> {
+    let launch = Launch::from_args(args)?;
+    // Load before opening a window: a bad --scene is a command-line error.
+    let scene = load_scene(&launch.scene_spec)?;
+    let event_loop = winit::event_loop::EventLoop::new()
+        .context("cannot open a window: no display (set DISPLAY or WAYLAND_DISPLAY, or use `render` headless)")?;
+    let mut app = app::App::new(launch, scene);
+    event_loop
+        .run_app(&mut app)
+        .context("the window's event loop failed")?;
+    match app.error.take() {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn arguments_are_checked_before_a_window_opens() {
+        let ok = Launch::from_args(ViewArgs {
+            screenshot_after: vec!["30".into(), "f.png".into()],
+            ..Default::default()
+        })
+        .unwrap();
+        assert_eq!(ok.scene_spec, DEFAULT_SCENE);
+        assert_eq!(ok.window_size, (1280, 720));
+        assert_eq!(ok.screenshot_after, Some((30, PathBuf::from("f.png"))));
+        let err = |args: ViewArgs| {
+            Launch::from_args(args)
+                .err()
+                .map(|e| e.to_string())
+                .unwrap_or_default()
+        };
+        assert!(
+            err(ViewArgs {
+                debug_view: Some("nope".into()),
+                ..Default::default()
+            })
+            .contains("--debug-view")
+        );
+        assert!(
+            err(ViewArgs {
+                screenshot_after: vec!["0".into(), "f.png".into()],
+                ..Default::default()
+            })
+            .contains("at least 1")
+        );
+        assert!(
+            err(ViewArgs {
+                screenshot_after: vec!["3".into(), "f.jpg".into()],
+                ..Default::default()
+            })
+            .contains(".png")
+        );
+        assert!(
+            err(ViewArgs {
+                size: Some("0x5".into()),
+                ..Default::default()
+            })
+            .contains("--size")
+        );
+    }
+}

@@ -1,0 +1,77 @@
+//! The side panel: one collapsible section per panel, each in its own file, each editing
+//! the plain `ViewerState` (never the renderer).
+
+pub mod camera;
+pub mod inspector;
+pub mod palette;
+pub mod pipeline;
+pub mod scene;
+pub mod stats;
+pub mod view;
+
+#[cfg(test)]
+mod tests;
+
+use egui::Ui;
+
+use super::state::{Action, ViewerState};
+
+/// Default width of the side panel in points.
+pub const PANEL_WIDTH: f32 = 380.0;
+
+/// The side panel (H hides it; dragging its edge resizes or closes it).
+pub fn side_panel(ui: &mut Ui, state: &mut ViewerState) {
+    scene::take_dropped_files(ui.ctx(), state);
+    let mut open = state.panel_open;
+    egui::Panel::right("controls")
+        .resizable(true)
+        .default_size(PANEL_WIDTH)
+        .size_range(200.0..=900.0)
+        .show_collapsible(ui, &mut open, |ui| {
+            // Fill the panel's width (labels wrap at it) instead of shrinking to the content,
+            // which would make the panel's width follow whatever section is open.
+            egui::ScrollArea::vertical()
+                .auto_shrink([false, true])
+                .show(ui, |ui| sections(ui, state));
+        });
+    state.panel_open = open;
+}
+
+fn sections(ui: &mut Ui, state: &mut ViewerState) {
+    let section = |title: &str, open: bool| {
+        egui::CollapsingHeader::new(title)
+            .id_salt(("section", title))
+            .default_open(open)
+    };
+    section("Pipeline", true).show(ui, |ui| pipeline::ui(ui, state));
+    section("View", true).show(ui, |ui| view::ui(ui, state));
+    section("Stats", true).show(ui, |ui| stats::ui(ui, state));
+    section("Camera", false).show(ui, |ui| camera::ui(ui, &mut state.camera));
+    section("Scene", false).show(ui, |ui| scene::ui(ui, state));
+    section("Pixel inspector", false).show(ui, |ui| inspector::ui(ui, &mut state.inspector));
+}
+
+/// Keys that work anywhere while no text field has focus: H (hide/show the panel), F12
+/// (screenshot), P (freeze), N (step one frame while frozen), Escape (drop the inspected
+/// pixel; deliberately not a quit key in a viewer kept open all day).
+pub fn shortcuts(ctx: &egui::Context, state: &mut ViewerState) {
+    if ctx.text_edit_focused() {
+        return;
+    }
+    let pressed = |key| ctx.input(|i| i.key_pressed(key));
+    if pressed(egui::Key::H) {
+        state.panel_open = !state.panel_open;
+    }
+    if pressed(egui::Key::F12) {
+        state.request(Action::Screenshot);
+    }
+    if pressed(egui::Key::P) {
+        state.inspector.frozen = !state.inspector.frozen;
+    }
+    if pressed(egui::Key::N) && state.inspector.frozen {
+        state.inspector.step = true;
+    }
+    if pressed(egui::Key::Escape) {
+        state.inspector.pixel = None;
+    }
+}

@@ -1,0 +1,133 @@
+//! The debug views' colours for the legends: a mirror of the palettes in
+//! shaders/display.wgsl (`source_color`, `reason_color`, `heatmap`). Those are linear
+//! colours that the display pass sRGB-encodes; `egui::Rgba` is linear too, so the legend
+//! swatches match the image exactly.
+
+use egui::{Color32, Rgba};
+use restir_render::shader_constants::{
+    SOURCE_INITIAL, SOURCE_NAMES, SOURCE_SPATIAL, SOURCE_TEMPORAL,
+};
+
+fn linear(c: [f32; 3]) -> Color32 {
+    Rgba::from_rgb(c[0], c[1], c[2]).into()
+}
+
+fn mix(a: [f32; 3], b: [f32; 3], t: f32) -> [f32; 3] {
+    std::array::from_fn(|i| a[i] + (b[i] - a[i]) * t)
+}
+
+/// Selection source (null is black).
+pub fn source_color(source: u32) -> Color32 {
+    linear(match source {
+        SOURCE_INITIAL => [0.15, 0.35, 1.0],
+        SOURCE_TEMPORAL => [0.1, 0.85, 0.25],
+        SOURCE_SPATIAL => [1.0, 0.55, 0.05],
+        _ => [0.0; 3],
+    })
+}
+
+/// Rejection reason `bit`: temporal 0..8, spatial 8..16 (lighter).
+pub fn reason_color(bit: u32) -> Color32 {
+    const PALETTE: [[f32; 3]; 8] = [
+        [1.0, 0.0, 0.0],
+        [1.0, 0.5, 0.0],
+        [1.0, 0.0, 1.0],
+        [0.0, 0.6, 1.0],
+        [0.0, 1.0, 1.0],
+        [1.0, 1.0, 0.0],
+        [0.6, 0.3, 0.1],
+        [1.0, 1.0, 1.0],
+    ];
+    let c = PALETTE[(bit & 7) as usize];
+    linear(if bit >= 8 {
+        mix(c, [1.0; 3], 0.5).map(|x| x * 0.8)
+    } else {
+        c
+    })
+}
+
+/// The 5-stop viridis ramp of the M, W and error views.
+pub fn heatmap(t: f32) -> Color32 {
+    const STOPS: [[f32; 3]; 5] = [
+        [0.267, 0.005, 0.329],
+        [0.229, 0.322, 0.546],
+        [0.128, 0.567, 0.551],
+        [0.369, 0.789, 0.383],
+        [0.993, 0.906, 0.144],
+    ];
+    let t = t.clamp(0.0, 1.0) * 4.0;
+    let i = (t.floor() as usize).min(3);
+    linear(mix(STOPS[i], STOPS[i + 1], t - i as f32))
+}
+
+/// A filled square of `color` in the text line.
+pub fn swatch(ui: &mut egui::Ui, color: Color32) -> egui::Response {
+    let size = egui::vec2(
+        ui.spacing().interact_size.y * 0.8,
+        ui.spacing().interact_size.y * 0.8,
+    );
+    let (rect, response) = ui.allocate_exact_size(size, egui::Sense::hover());
+    ui.painter().rect_filled(rect, 2.0, color);
+    ui.painter().rect_stroke(
+        rect,
+        2.0,
+        ui.visuals().widgets.noninteractive.bg_stroke,
+        egui::StrokeKind::Inside,
+    );
+    response
+}
+
+/// The selection sources in palette order, each a swatch and `text(name)`, two per row
+/// (a grid, not a wrapped row: a wrapped row of groups overflows and widens the panel).
+pub fn source_legend(ui: &mut egui::Ui, text: impl Fn(&str) -> String) {
+    egui::Grid::new(ui.next_auto_id())
+        .num_columns(2)
+        .show(ui, |ui| {
+            for (i, name) in SOURCE_NAMES.iter().enumerate() {
+                ui.horizontal(|ui| {
+                    swatch(ui, source_color(i as u32));
+                    ui.label(text(name));
+                });
+                if i % 2 == 1 {
+                    ui.end_row();
+                }
+            }
+        });
+}
+
+/// A horizontal heatmap ramp with labels at both ends.
+pub fn ramp(ui: &mut egui::Ui, low: &str, high: &str) {
+    ui.horizontal(|ui| {
+        ui.label(low);
+        let (rect, _) = ui.allocate_exact_size(egui::vec2(140.0, 12.0), egui::Sense::hover());
+        let steps = 28;
+        let w = rect.width() / steps as f32;
+        for s in 0..steps {
+            let x = rect.left() + s as f32 * w;
+            let cell = egui::Rect::from_min_size(
+                egui::pos2(x, rect.top()),
+                egui::vec2(w + 0.5, rect.height()),
+            );
+            ui.painter()
+                .rect_filled(cell, 0.0, heatmap((s as f32 + 0.5) / steps as f32));
+        }
+        ui.label(high);
+    });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn palette_matches_the_shader_in_srgb() {
+        // display.wgsl writes linear_to_srgb(colour): initial (0.15, 0.35, 1.0) → (108, 160, 255).
+        assert_eq!(
+            source_color(SOURCE_INITIAL),
+            Color32::from_rgb(108, 160, 255)
+        );
+        assert_eq!(source_color(0), Color32::BLACK);
+        assert_eq!(reason_color(0), Color32::from_rgb(255, 0, 0));
+        assert_eq!(heatmap(1.0), linear([0.993, 0.906, 0.144]));
+    }
+}

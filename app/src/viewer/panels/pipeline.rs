@@ -1,0 +1,215 @@
+//! The Pipeline panel: the estimator (mode) and every parameter of the `PARAMS` table,
+//! grouped by stage, with the table's documentation as tooltips. Nothing here names a
+//! parameter: a new row in render/src/settings.rs shows up on its own.
+
+use std::path::Path;
+
+use egui::{RichText, Ui};
+use restir_render::settings::{PARAMS, ParamDef, ParamKind, ParamValue, Stage, preset};
+use restir_render::{Mode, Settings};
+
+use crate::viewer::state::ViewerState;
+
+pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
+    mode_selector(ui, &mut state.mode);
+    for stage in stages() {
+        stage_ui(ui, &mut state.settings, stage);
+    }
+    ui.horizontal(|ui| {
+        if ui
+            .button("Reset to defaults")
+            .on_hover_text("Every parameter back to its default (restir-notes.md §5)")
+            .clicked()
+        {
+            state.settings = Settings::default();
+        }
+    });
+    presets_ui(ui, state);
+}
+
+/// The stages in the order the table first names them.
+fn stages() -> Vec<Stage> {
+    let mut out: Vec<Stage> = Vec::new();
+    for p in PARAMS {
+        if !out.contains(&p.stage) {
+            out.push(p.stage);
+        }
+    }
+    out
+}
+
+fn mode_selector(ui: &mut Ui, mode: &mut Mode) {
+    ui.horizontal(|ui| {
+        ui.label("Mode").on_hover_text(
+            "reference: progressive ground truth · nee: one light sample · ris: initial RIS, no reuse · restir: RIS with the reuse the settings enable",
+        );
+        for m in Mode::ALL {
+            ui.selectable_value(mode, m, m.name());
+        }
+    });
+    match *mode {
+        Mode::Nee => ui.weak("nee: 1 light candidate, no BSDF candidate, no reuse"),
+        Mode::Ris => ui.weak("ris: temporal and spatial reuse are off"),
+        Mode::Reference => ui.weak("reference: the pipeline parameters below do not apply"),
+        Mode::Restir => ui.weak("restir: as configured below"),
+    };
+}
+
+/// A stage as a collapsible group. A stage with an on/off switch (`temporal`,
+/// `spatial`) shows it in the group's header, so it stays reachable while the group is
+/// closed, and greys out the rest of the stage while it is off.
+fn stage_ui(ui: &mut Ui, settings: &mut Settings, stage: Stage) {
+    let switch = PARAMS
+        .iter()
+        .find(|p| p.stage == stage && is_stage_switch(p));
+    let id = ui.make_persistent_id(("stage", stage.label()));
+    egui::collapsing_header::CollapsingState::load_with_default_open(
+        ui.ctx(),
+        id,
+        stage == Stage::Initial,
+    )
+    .show_header(ui, |ui| match switch {
+        Some(def) => param_widget(ui, settings, def),
+        None => {
+            ui.label(stage.label());
+        }
+    })
+    .body(|ui| {
+        let enabled =
+            switch.is_none_or(|def| settings.get(def.name) == Some(ParamValue::Bool(true)));
+        ui.add_enabled_ui(enabled, |ui| {
+            for def in PARAMS
+                .iter()
+                .filter(|p| p.stage == stage && !is_stage_switch(p))
+            {
+                param_widget(ui, settings, def);
+            }
+        });
+    });
+}
+
+/// `temporal` and `spatial` switch their whole stage off (the pass is not dispatched).
+fn is_stage_switch(def: &ParamDef) -> bool {
+    matches!(
+        (def.stage, def.name),
+        (Stage::Temporal, "temporal") | (Stage::Spatial, "spatial")
+    )
+}
+
+/// One parameter's widget, chosen by its kind; the label is strong when the value
+/// differs from the default; hovering shows the table's documentation.
+pub fn param_widget(ui: &mut Ui, settings: &mut Settings, def: &ParamDef) {
+    let Some(value) = settings.get(def.name) else {
+        return;
+    };
+    let mut label = RichText::new(def.label);
+    if value != def.default_value() {
+        label = label.strong();
+    }
+    let doc = format!(
+        "{}\n\n`{}` · default {}",
+        def.doc,
+        def.name,
+        def.default_value()
+    );
+    let new_value = match (def.kind, value) {
+        (ParamKind::Bool, ParamValue::Bool(mut b)) => ui
+            .checkbox(&mut b, label)
+            .on_hover_text(doc)
+            .changed()
+            .then_some(ParamValue::Bool(b)),
+        (ParamKind::Int { min, max }, ParamValue::Int(mut i)) => {
+            slider(ui, &mut i, min..=max, label, doc).then_some(ParamValue::Int(i))
+        }
+        (ParamKind::Float { min, max }, ParamValue::Float(mut x)) => {
+            slider(ui, &mut x, min..=max, label, doc).then_some(ParamValue::Float(x))
+        }
+        (ParamKind::Choice(options), ParamValue::Choice(current)) => {
+            let mut chosen = current.clone();
+            egui::ComboBox::from_label(label)
+                .selected_text(&current)
+                .show_ui(ui, |ui| {
+                    for option in options {
+                        ui.selectable_value(&mut chosen, option.to_string(), *option);
+                    }
+                })
+                .response
+                .on_hover_text(doc);
+            (chosen != current).then_some(ParamValue::Choice(chosen))
+        }
+        (_, other) => {
+            ui.label(format!("{}: {other}", def.label));
+            None
+        }
+    };
+    if let Some(v) = new_value
+        && let Err(e) = settings.set(def.name, v)
+    {
+        log::warn!("{e}");
+    }
+}
+
+/// A slider over the parameter's range; true when moved. Ranges wider than a thousand
+/// get a logarithmic scale (M cap goes to 1e6, and 20 must stay reachable).
+fn slider<T: egui::emath::Numeric>(
+    ui: &mut Ui,
+    value: &mut T,
+    range: std::ops::RangeInclusive<T>,
+    label: RichText,
+    doc: String,
+) -> bool {
+    let wide = range.end().to_f64() - range.start().to_f64() >= 1000.0;
+    let slider = egui::Slider::new(value, range)
+        .text(label)
+        .logarithmic(wide)
+        .max_decimals(4);
+    ui.add(slider).on_hover_text(doc).changed()
+}
+
+fn presets_ui(ui: &mut Ui, state: &mut ViewerState) {
+    ui.horizontal(|ui| {
+        ui.label("Preset");
+        ui.add(
+            egui::TextEdit::singleline(&mut state.preset_path)
+                .desired_width(140.0)
+                .hint_text("file.toml"),
+        )
+        .on_hover_text(
+            "A preset file: one `name = value` line per parameter (the same files as --preset)",
+        );
+        if ui.button("Load").clicked() {
+            state.preset_message = Some(load_preset(state));
+        }
+        if ui.button("Save").clicked() {
+            let path = Path::new(&state.preset_path);
+            state.preset_message = Some(match preset::save(path, &state.settings) {
+                Ok(()) => format!("saved {}", path.display()),
+                Err(e) => format!("error: {e:#}"),
+            });
+        }
+    });
+    if let Some(message) = &state.preset_message {
+        let color = if message.starts_with("error") {
+            ui.visuals().error_fg_color
+        } else {
+            ui.visuals().weak_text_color()
+        };
+        ui.colored_label(color, message);
+    }
+}
+
+/// Loads the preset on top of the defaults (a preset names what it changes).
+fn load_preset(state: &mut ViewerState) -> String {
+    let path = Path::new(&state.preset_path);
+    match preset::load(path, &Settings::default()) {
+        Ok((settings, warnings)) => {
+            state.settings = settings;
+            if warnings.is_empty() {
+                format!("loaded {}", path.display())
+            } else {
+                format!("loaded {} ({})", path.display(), warnings.join("; "))
+            }
+        }
+        Err(e) => format!("error: {e:#}"),
+    }
+}

@@ -1,0 +1,134 @@
+//! The Scene panel: what is loaded (counts, light power range, the compiled effect set
+//! and why), the built-in scene picker and opening a glTF file by path or drag-and-drop.
+
+use egui::Ui;
+use restir_render::scene::builtin::builtin_names;
+
+use crate::viewer::state::{Action, ViewerState};
+
+pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
+    let scene = &state.scene;
+    if let Some(info) = &scene.info {
+        // Name and source may be long paths: wrapped labels, not grid cells.
+        ui.strong(&info.name);
+        if scene.spec != info.name {
+            ui.weak(&scene.spec);
+        }
+        egui::Grid::new("scene facts")
+            .num_columns(2)
+            .show(ui, |ui| {
+                let mut row = |k: &str, v: String| {
+                    ui.label(k);
+                    ui.label(v);
+                    ui.end_row();
+                };
+                row("Triangles", info.triangles.to_string());
+                row("Emissive triangles", info.emissive_triangles.to_string());
+                row("Punctual lights", info.punctual_lights.to_string());
+                row("Light table entries", info.light_table_entries.to_string());
+                row(
+                    "Light power",
+                    info.power_range
+                        .map_or("no lights".to_string(), |(lo, hi)| {
+                            format!("{lo:.3e} … {hi:.3e} (total {:.3e})", info.total_power)
+                        }),
+                );
+                row(
+                    "BVH",
+                    format!(
+                        "{} nodes, depth {}, {:.0} ms",
+                        info.bvh_nodes, info.bvh_depth, info.bvh_build_ms
+                    ),
+                );
+            });
+    }
+    let mut pick = None;
+    egui::ComboBox::from_label("Built-in scene")
+        .selected_text(builtin_label(&scene.spec))
+        .show_ui(ui, |ui| {
+            for name in builtin_names() {
+                if ui.selectable_label(scene.spec == name, &name).clicked() {
+                    pick = Some(name);
+                }
+            }
+        });
+    ui.horizontal(|ui| {
+        ui.add(
+            egui::TextEdit::singleline(&mut state.scene.open_path)
+                .desired_width(180.0)
+                .hint_text("path/to/scene.gltf"),
+        );
+        if ui.button("Open").clicked() && !state.scene.open_path.trim().is_empty() {
+            pick = Some(state.scene.open_path.trim().to_string());
+        }
+    });
+    ui.weak("…or drop a .gltf/.glb file on the window");
+    if let Some(spec) = pick {
+        state.request(Action::LoadScene(spec));
+    }
+    status(ui, state);
+    effects(ui, state);
+}
+
+fn builtin_label(spec: &str) -> &str {
+    if spec.starts_with("builtin:") {
+        spec
+    } else {
+        "(file)"
+    }
+}
+
+fn status(ui: &mut Ui, state: &ViewerState) {
+    if let Some(loading) = &state.scene.loading {
+        ui.horizontal(|ui| {
+            ui.spinner();
+            ui.label("loading…");
+        });
+        ui.weak(loading);
+    }
+    if let Some(error) = &state.scene.error {
+        ui.colored_label(
+            ui.visuals().error_fg_color,
+            format!("Could not load: {error}"),
+        );
+        ui.weak("The previous scene is still shown.");
+    }
+}
+
+fn effects(ui: &mut Ui, state: &ViewerState) {
+    let Some(effects) = &state.scene.effects else {
+        return;
+    };
+    let title = format!(
+        "Effects compiled: {} of {}",
+        effects.enabled.len(),
+        effects.reasons.len()
+    );
+    egui::CollapsingHeader::new(title)
+        .id_salt("effects")
+        .show(ui, |ui| {
+            for (effect, reason) in &effects.reasons {
+                let on = effects.contains(*effect);
+                ui.horizontal_wrapped(|ui| {
+                    ui.label(if on { "on " } else { "off" });
+                    ui.strong(effect.name());
+                    ui.weak(reason);
+                });
+            }
+            ui.label(format!("Passes: {}", state.scene.passes.join(" > ")));
+        });
+}
+
+/// Files dropped on the window replace the scene (the last one wins).
+pub fn take_dropped_files(ctx: &egui::Context, state: &mut ViewerState) {
+    let dropped = ctx.input(|i| {
+        i.raw
+            .dropped_files
+            .iter()
+            .map(|f| f.path().to_path_buf())
+            .next_back()
+    });
+    if let Some(path) = dropped {
+        state.request(Action::LoadScene(path.display().to_string()));
+    }
+}

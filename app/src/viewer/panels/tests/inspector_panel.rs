@@ -1,0 +1,106 @@
+//! The pixel inspector on a synthetic pixel.
+
+use super::*;
+
+fn reservoir(light: u32, m: f32, source: u32) -> GpuReservoir {
+    GpuReservoir {
+        light,
+        p_hat: 0.25,
+        uv: [0.125, 0.5],
+        w_sum: 3.5,
+        weight: 1.75,
+        m,
+        source,
+    }
+}
+
+pub(super) fn synthetic_inspection() -> PixelInspection {
+    let stage = |name: &str, r: GpuReservoir, point: Option<[f32; 3]>| StageReservoir {
+        stage: name.to_string(),
+        reservoir: r,
+        sample_point: point,
+    };
+    PixelInspection {
+        frame: 42,
+        pixel: (12, 34),
+        surface: GpuSurface {
+            position: [1.0, 2.0, 3.0],
+            depth: 4.5,
+            material: 3,
+            ..Default::default()
+        },
+        debug: GpuPixelDebug {
+            source: SOURCE_SPATIAL,
+            temporal_mask: REJECT_NORMAL | REJECT_DEPTH,
+            spatial_mask: REJECT_MATERIAL,
+            flags: DEBUG_FLAG_SPATIAL_CAP,
+            m_initial: 1.0,
+            m_temporal: 1.0,
+            m_spatial: 6.0,
+            weight: 1.75,
+            p_hat: 0.25,
+            spatial_accepted: 4,
+            ..Default::default()
+        },
+        stages: vec![
+            stage(
+                "initial",
+                reservoir(7, 1.0, SOURCE_INITIAL),
+                Some([0.5, 1.9, 0.25]),
+            ),
+            stage("temporal", reservoir(NO_LIGHT, 0.0, SOURCE_NULL), None),
+            stage(
+                "spatial 1",
+                reservoir(9, 6.0, SOURCE_SPATIAL),
+                Some([0.1, 1.9, 0.3]),
+            ),
+        ],
+    }
+}
+
+#[test]
+fn the_inspector_shows_every_field_of_a_pixel() {
+    let mut s = state();
+    s.inspector.pixel = Some((12, 34));
+    s.inspector.last = Some(synthetic_inspection());
+    let h = harness(
+        |ui, s: &mut ViewerState| inspector::ui(ui, &mut s.inspector),
+        s,
+    );
+    for text in [
+        "Pixel 12, 34",
+        "Frame 42",
+        "material 3",
+        "Final: source spatial",
+        "initial",
+        "temporal",
+        "spatial 1",
+        "(0.125, 0.500)",
+        "(0.500, 1.900, 0.250)",
+        "null",
+        "1.7500e0",
+        "3.5000e0",
+        "Temporal rejections: 0b00011000 normal, depth",
+        "Spatial rejections: 0b00000100 material",
+        "Spatial neighbours merged: 4",
+        "spatial M cap fired",
+    ] {
+        assert!(shows(&h, text), "the inspector does not show '{text}'");
+    }
+    // Light ids as their own cells.
+    assert!(h.query_by_label("7").is_some() && h.query_by_label("9").is_some());
+}
+
+#[test]
+fn freeze_and_step_are_plain_flags() {
+    let mut h = harness(
+        |ui, s: &mut ViewerState| inspector::ui(ui, &mut s.inspector),
+        state(),
+    );
+    h.get_by_label("Freeze").click();
+    h.run();
+    assert!(h.state().inspector.frozen);
+    h.get_by_label("Step").click();
+    h.run();
+    assert!(h.state().inspector.step);
+}

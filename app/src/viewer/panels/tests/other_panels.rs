@@ -1,0 +1,110 @@
+//! The View, Scene and Stats panels.
+
+use super::*;
+
+#[test]
+fn the_rejection_legend_toggles_and_isolates_reasons() {
+    let mut s = state();
+    s.view.view = DebugView::Rejection;
+    let mut h = harness(view::ui, s);
+    h.get_by_role_and_label(Role::CheckBox, "show temporal normal")
+        .click();
+    h.run();
+    assert_eq!(h.state().view.reason_mask, 0xffff & !(1 << 3));
+    // "only" buttons row by row, temporal then spatial: depth is row 4.
+    h.get_all_by_label("only").nth(2 * 4 + 1).unwrap().click();
+    h.run();
+    assert_eq!(
+        h.state().view.reason_mask,
+        1 << (8 + 4),
+        "spatial depth alone"
+    );
+    h.get_by_label("All").click();
+    h.run();
+    assert_eq!(h.state().view.reason_mask, 0xffff);
+}
+
+#[test]
+fn view_buttons_queue_actions() {
+    let mut h = harness(view::ui, state());
+    h.get_by_label("Auto").click();
+    h.run();
+    h.get_by_label("Screenshot (F12)").click();
+    h.run();
+    assert_eq!(
+        h.state().actions,
+        vec![Action::AutoExposure, Action::Screenshot]
+    );
+    h.get_by_label("Accumulate").click();
+    h.run();
+    assert!(h.state().view.accumulate);
+}
+
+#[test]
+fn the_scene_panel_shows_load_errors_and_queues_loads() {
+    let mut s = state();
+    s.scene.spec = "builtin:cornell".into();
+    s.scene.error = Some("broken.gltf: not a glTF file".into());
+    s.scene.open_path = "some/scene.gltf".into();
+    let mut h = harness(scene::ui, s);
+    assert!(shows(&h, "broken.gltf: not a glTF file"));
+    assert!(shows(&h, "previous scene is still shown"));
+    h.get_by_label("Open").click();
+    h.run();
+    assert_eq!(
+        h.state().actions,
+        vec![Action::LoadScene("some/scene.gltf".into())]
+    );
+}
+
+/// Ten frames of plausible counters and pass times.
+pub(super) fn with_reports(mut s: ViewerState) -> ViewerState {
+    let mut c = vec![0u32; STAT_COUNT as usize];
+    c[STAT_SURFACE_PIXELS as usize] = 1000;
+    c[(STAT_SOURCE + SOURCE_TEMPORAL) as usize] = 600;
+    c[(STAT_SOURCE + SOURCE_SPATIAL) as usize] = 400;
+    c[(STAT_TEMPORAL_REJECT + 3) as usize] = 250;
+    c[STAT_TEMPORAL_CAP as usize] = 100;
+    c[STAT_FALLBACK_TRIED as usize] = 551_140;
+    for frame in 0..10 {
+        s.stats.push_report(FrameReport {
+            frame,
+            counters: FrameCounters(c.clone()),
+            pass_ms: vec![("initial", 2.0), ("shade", 1.0), ("gbuffer resolve", 0.5)],
+            inspection: None,
+        });
+        s.stats.push_frame_ms(50.0);
+    }
+    s.device.adapter = "llvmpipe (LLVM 15.0.6, 256 bits) (Vulkan)".into();
+    s.device.is_cpu = true;
+    s
+}
+
+#[test]
+fn the_stats_panel_summarises_reports() {
+    let h = harness(
+        |ui, s: &mut ViewerState| stats::ui(ui, s),
+        with_reports(state()),
+    );
+    for text in [
+        "Frame 50.0 ms (20.0 fps)",
+        "initial: 2.00 ms",
+        "temporal 60.0 %",
+        "spatial 40.0 %",
+        "temporal 10.0 %",
+        "25.0 %",
+    ] {
+        assert!(shows(&h, text), "the stats panel does not show '{text}'");
+    }
+}
+
+#[test]
+fn the_error_view_can_take_the_average_as_its_reference() {
+    let mut s = state();
+    s.view.view = DebugView::Error;
+    let mut h = harness(view::ui, s);
+    h.get_by_label("Use the running average as reference")
+        .click();
+    h.run();
+    assert_eq!(h.state().actions, vec![Action::CaptureReference]);
+}

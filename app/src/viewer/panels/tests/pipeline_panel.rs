@@ -1,0 +1,111 @@
+//! The Pipeline panel: switches, sliders, presets, the mode.
+
+use super::*;
+
+#[test]
+fn toggling_reuse_stages_and_moving_a_slider_change_the_settings() {
+    let mut h = harness(pipeline::ui, state());
+    h.get_by_label("Temporal reuse").click();
+    h.run();
+    assert!(!h.state().settings.temporal);
+    h.get_by_label("Spatial reuse").click();
+    h.run();
+    assert!(!h.state().settings.spatial);
+    h.get_by_role_and_label(Role::Slider, "Light candidates")
+        .set_value_accesskit(7.0);
+    h.run();
+    assert_eq!(h.state().settings.light_candidates, 7);
+    // Only what was touched changed.
+    let expected = Settings {
+        temporal: false,
+        spatial: false,
+        light_candidates: 7,
+        ..Settings::default()
+    };
+    assert_eq!(h.state().settings, expected);
+    h.get_by_label("Temporal reuse").click();
+    h.run();
+    assert!(h.state().settings.temporal);
+}
+
+#[test]
+fn every_parameter_of_the_table_has_a_widget_with_its_doc() {
+    let mut h = harness(
+        |ui, s: &mut ViewerState| {
+            // Every stage group open.
+            ui.ctx().memory_mut(|m| m.set_everything_is_visible(true));
+            pipeline::ui(ui, s);
+        },
+        state(),
+    );
+    for def in restir_render::settings::PARAMS {
+        assert!(
+            shows(&h, def.label),
+            "no widget labelled '{}' for {}",
+            def.label,
+            def.name
+        );
+    }
+    h.get_by_role_and_label(Role::Slider, "M cap").hover();
+    h.run();
+    let doc = restir_render::settings::Settings::def("m_cap").unwrap().doc;
+    assert!(
+        shows(&h, &doc[..40]),
+        "hovering M cap shows its documentation"
+    );
+}
+
+#[test]
+fn loading_a_preset_restores_the_settings() {
+    let path = temp_file("preset.toml");
+    let saved = Settings {
+        m_cap: 7.5,
+        spatial: false,
+        light_candidates: 12,
+        ..Settings::default()
+    };
+    preset::save(&path, &saved).unwrap();
+    let mut s = state();
+    s.preset_path = path.display().to_string();
+    let mut h = harness(pipeline::ui, s);
+    h.get_by_label("Temporal reuse").click();
+    h.run();
+    assert!(!h.state().settings.temporal);
+    h.get_by_label("Load").click();
+    h.run();
+    assert_eq!(h.state().settings, saved);
+    assert!(
+        h.state()
+            .preset_message
+            .as_deref()
+            .unwrap_or("")
+            .starts_with("loaded")
+    );
+    // Save writes what is shown; a missing file is an error in the panel, settings kept.
+    h.get_by_label("Reset to defaults").click();
+    h.run();
+    assert_eq!(h.state().settings, Settings::default());
+    h.get_by_label("Save").click();
+    h.run();
+    assert_eq!(preset::load(&path, &saved).unwrap().0, Settings::default());
+    h.state_mut().preset_path = temp_file("missing.toml").display().to_string();
+    h.get_by_label("Load").click();
+    h.run();
+    assert!(
+        h.state()
+            .preset_message
+            .as_deref()
+            .unwrap_or("")
+            .starts_with("error")
+    );
+    assert_eq!(h.state().settings, Settings::default());
+    std::fs::remove_file(&path).ok();
+}
+
+#[test]
+fn the_mode_selector_sets_the_mode() {
+    let mut h = harness(pipeline::ui, state());
+    h.get_by_label("ris").click();
+    h.run();
+    assert_eq!(h.state().mode, restir_render::Mode::Ris);
+}

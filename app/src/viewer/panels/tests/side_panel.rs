@@ -1,0 +1,119 @@
+//! The whole side panel: its width, the shortcuts, file drops.
+
+use super::inspector_panel::synthetic_inspection;
+use super::other_panels::with_reports;
+use super::*;
+
+/// Content must wrap or scroll inside the panel, never widen it (a wider panel shrinks
+/// the scene area, which resizes the render targets and restarts accumulation). Every
+/// section is open and filled; the harness also fails on any glyph the fonts lack.
+#[test]
+fn the_side_panel_keeps_its_width_whatever_it_shows() {
+    let mut s = with_reports(state());
+    s.inspector.pixel = Some((12, 34));
+    s.inspector.last = Some(synthetic_inspection());
+    s.view.view = DebugView::Rejection;
+    s.camera.save_viewpoint();
+    s.scene.spec = "builtin:many-lights".into();
+    s.scene.info = Some(restir_render::gpu_scene::SceneInfo {
+        name: "many-lights".into(),
+        triangles: 123_456,
+        emissive_triangles: 4096,
+        punctual_lights: 2,
+        light_table_entries: 4098,
+        power_range: Some((1e-3, 2e2)),
+        total_power: 1234.5,
+        bvh_nodes: 250_000,
+        bvh_depth: 31,
+        bvh_build_ms: 812.0,
+        bounds_min: [-1.0; 3],
+        bounds_max: [1.0; 3],
+    });
+    s.scene.effects = Some(restir_render::effects::EffectSet::all());
+    s.scene.passes = vec![
+        "gbuffer raster",
+        "initial",
+        "temporal",
+        "spatial",
+        "shade",
+        "display",
+    ];
+    s.scene.loading = Some("/some/long/path/to/a/scene/with/a/long/name.gltf".into());
+    s.scene.error = Some("/some/long/path/to/a/scene/with/a/long/name.gltf: not a glTF file (unexpected end of input)".into());
+    s.screenshot_message = Some("saved ./restir-builtin_many-lights-00042.png and ./restir-builtin_many-lights-00042-image.png".into());
+    s.preset_message = Some(
+        "error: /a/long/path/preset.toml: cannot read preset: No such file or directory".into(),
+    );
+    let mut h = Harness::builder()
+        .with_size(egui::vec2(1280.0, 4000.0))
+        .build_ui_state(
+            |ui, s: &mut ViewerState| {
+                ui.ctx().memory_mut(|m| m.set_everything_is_visible(true));
+                side_panel(ui, s);
+            },
+            s,
+        );
+    // The loading spinner repaints forever: step instead of running until idle.
+    h.run_steps(4);
+    let edge = h.get_by_label("Resize panel").rect().left();
+    assert!(
+        edge >= 1280.0 - PANEL_WIDTH - 16.0,
+        "the panel grew to {} points",
+        1280.0 - edge
+    );
+}
+
+#[test]
+fn the_side_panel_draws_and_the_shortcuts_work() {
+    let app = |ui: &mut egui::Ui, s: &mut ViewerState| {
+        shortcuts(ui.ctx(), s);
+        side_panel(ui, s);
+    };
+    let mut h = Harness::builder()
+        .with_size(egui::vec2(1280.0, 720.0))
+        .build_ui_state(app, state());
+    h.run();
+    assert!(h.query_by_label("Pipeline").is_some());
+    for key in [egui::Key::H, egui::Key::F12, egui::Key::P, egui::Key::N] {
+        h.key_press(key);
+        h.run();
+    }
+    let s = h.state();
+    assert!(!s.panel_open && s.inspector.frozen && s.inspector.step);
+    assert_eq!(s.actions, vec![Action::Screenshot]);
+    // Typing in a text field is not a shortcut.
+    h.state_mut().panel_open = true;
+    h.run();
+    let field = h
+        .get_all_by_value("preset.toml")
+        .find(|n| n.accesskit_node().role() == Role::TextInput);
+    field.expect("the preset path field").focus();
+    h.key_press(egui::Key::H);
+    h.run();
+    assert!(h.state().panel_open);
+}
+
+/// A file as the window system hands it over on a drop.
+#[derive(Debug)]
+struct Dropped(std::path::PathBuf);
+
+impl egui::DroppedFile for Dropped {
+    fn path(&self) -> &std::path::Path {
+        &self.0
+    }
+    fn bytes(&self) -> Result<Vec<u8>, String> {
+        std::fs::read(&self.0).map_err(|e| e.to_string())
+    }
+}
+
+#[test]
+fn a_file_dropped_on_the_window_loads_as_the_scene() {
+    let mut h = harness(side_panel, state());
+    let file: egui::DroppedFileHandle = std::sync::Arc::new(Dropped("/scenes/sponza.glb".into()));
+    h.input_mut().dropped_files.push(file);
+    h.run();
+    assert_eq!(
+        h.state().actions,
+        vec![Action::LoadScene("/scenes/sponza.glb".into())]
+    );
+}

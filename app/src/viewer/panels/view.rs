@@ -1,0 +1,184 @@
+//! The View panel: what is shown (final image or a debug view, with its legend), exposure
+//! and tonemapper, progressive accumulation, render scale and screenshots. None of this
+//! changes the estimate.
+
+use egui::Ui;
+use restir_render::shader_constants::REJECT_REASON_NAMES;
+use restir_render::{DebugView, Tonemapper};
+
+use super::palette::{ramp, reason_color, source_legend, swatch};
+use crate::viewer::state::{Action, DisplayOptions, ViewerState};
+
+pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
+    egui::ComboBox::from_label("Debug view")
+        .selected_text(state.view.view.name())
+        .show_ui(ui, |ui| {
+            for v in DebugView::ALL {
+                ui.selectable_value(&mut state.view.view, v, v.name())
+                    .on_hover_text(describe(v));
+            }
+        })
+        .response
+        .on_hover_text(describe(state.view.view));
+    legend(ui, state);
+    ui.separator();
+
+    ui.horizontal(|ui| {
+        ui.add(
+            egui::Slider::new(&mut state.view.exposure_ev, -16.0..=16.0)
+                .text("Exposure (EV)")
+                .max_decimals(2),
+        );
+        if ui
+            .button("Auto")
+            .on_hover_text("Log-average luminance of this frame to middle grey")
+            .clicked()
+        {
+            state.request(Action::AutoExposure);
+        }
+    });
+    egui::ComboBox::from_label("Tonemapper")
+        .selected_text(state.view.tonemapper.name())
+        .show_ui(ui, |ui| {
+            for t in Tonemapper::ALL {
+                ui.selectable_value(&mut state.view.tonemapper, t, t.name());
+            }
+        });
+    ui.horizontal(|ui| {
+        ui.checkbox(&mut state.view.accumulate, "Accumulate")
+            .on_hover_text("Show the running average of frames; it restarts on any change of camera, scene, size, mode or parameter");
+        ui.weak(format!("{} frames", state.accumulated_frames));
+        if ui.small_button("Restart").clicked() {
+            state.request(Action::ResetAccumulation);
+        }
+    });
+    ui.separator();
+    display_ui(
+        ui,
+        &mut state.display,
+        state.render_size,
+        state.device.is_cpu,
+    );
+    ui.separator();
+    screenshot_ui(ui, state);
+}
+
+fn describe(v: DebugView) -> &'static str {
+    match v {
+        DebugView::Final => "The tonemapped image",
+        DebugView::Source => "Which stage's candidate survived: initial, temporal or spatial",
+        DebugView::M => "Confidence M of the final reservoir, 0 to the M cap",
+        DebugView::Rejection => {
+            "Why reuse candidates were rejected (first reason among those enabled below)"
+        }
+        DebugView::Weight => {
+            "Contribution weight W on a log scale, 1e-4 to 1e4; null samples black"
+        }
+        DebugView::Normals => "Shading normals as colour",
+        DebugView::Albedo => "Base colour",
+        DebugView::Depth => "View depth relative to the scene size (near is bright)",
+        DebugView::Motion => "Screen-space motion to the previous frame (grey: none)",
+        DebugView::Error => "|frame - reference| luminance (needs a reference image)",
+    }
+}
+
+fn legend(ui: &mut Ui, state: &mut ViewerState) {
+    match state.view.view {
+        DebugView::Source => source_legend(ui, str::to_string),
+        DebugView::M => ramp(ui, "0", &format!("M cap ({})", state.settings.m_cap)),
+        DebugView::Weight => ramp(ui, "W 1e-4", "1e4"),
+        DebugView::Error => {
+            ramp(ui, "0", "1 (at this exposure)");
+            let capture = ui
+                .button("Use the running average as reference")
+                .on_hover_text(
+                    "Accumulate the reference mode for a while, capture, then switch modes",
+                );
+            if capture.clicked() {
+                state.request(Action::CaptureReference);
+            }
+        }
+        DebugView::Rejection => rejection_legend(ui, &mut state.view.reason_mask),
+        _ => {}
+    }
+}
+
+/// One row per reason, one column per stage: its colour, a toggle (shown in the view or
+/// not) and "only" to show that reason alone.
+fn rejection_legend(ui: &mut Ui, mask: &mut u32) {
+    ui.horizontal(|ui| {
+        if ui.small_button("All").clicked() {
+            *mask = 0xffff;
+        }
+        if ui.small_button("None").clicked() {
+            *mask = 0;
+        }
+        ui.weak("black: nothing rejected");
+    });
+    egui::Grid::new("rejection legend")
+        .num_columns(3)
+        .show(ui, |ui| {
+            ui.label("");
+            ui.strong("temporal");
+            ui.strong("spatial");
+            ui.end_row();
+            for (i, name) in REJECT_REASON_NAMES.iter().enumerate() {
+                ui.label(*name);
+                for (stage, base) in [("temporal", 0u32), ("spatial", 8)] {
+                    let bit = base + i as u32;
+                    ui.horizontal(|ui| {
+                        swatch(ui, reason_color(bit));
+                        let mut on = *mask & (1 << bit) != 0;
+                        if ui
+                            .checkbox(&mut on, "")
+                            .on_hover_text(format!("show {stage} {name}"))
+                            .changed()
+                        {
+                            *mask ^= 1 << bit;
+                        }
+                        if ui
+                            .small_button("only")
+                            .on_hover_text(format!("show {stage} {name} alone"))
+                            .clicked()
+                        {
+                            *mask = 1 << bit;
+                        }
+                    });
+                }
+                ui.end_row();
+            }
+        });
+}
+
+fn display_ui(ui: &mut Ui, display: &mut DisplayOptions, render_size: (u32, u32), is_cpu: bool) {
+    ui.add(egui::Slider::new(&mut display.render_scale, DisplayOptions::SCALE_RANGE).text("Render scale").max_decimals(2))
+        .on_hover_text(if is_cpu {
+            "Render at this fraction of the window's pixels. A CPU adapter (lavapipe) starts small to stay interactive."
+        } else {
+            "Render at this fraction of the window's pixels"
+        });
+    ui.horizontal(|ui| {
+        ui.checkbox(&mut display.smooth, "Smooth upscaling");
+        ui.weak(format!("{}×{} px", render_size.0, render_size.1));
+    });
+}
+
+fn screenshot_ui(ui: &mut Ui, state: &mut ViewerState) {
+    ui.horizontal(|ui| {
+        if ui
+            .button("Screenshot (F12)")
+            .on_hover_text("PNG of the window and of the image, EXR of the linear radiance")
+            .clicked()
+        {
+            state.request(Action::Screenshot);
+        }
+        ui.add(
+            egui::TextEdit::singleline(&mut state.screenshot_dir)
+                .desired_width(120.0)
+                .hint_text("folder"),
+        );
+    });
+    if let Some(message) = &state.screenshot_message {
+        ui.weak(message);
+    }
+}

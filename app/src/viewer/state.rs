@@ -1,0 +1,188 @@
+//! Everything the panels edit, as plain data. The UI never touches the GPU: it edits
+//! these structs and queues `Action`s; `apply.rs` hands them to the renderer each frame.
+//! That keeps every panel testable without a device (see `panels/tests.rs`).
+
+use std::collections::VecDeque;
+
+use restir_render::effects::EffectSet;
+use restir_render::gpu_scene::SceneInfo;
+use restir_render::renderer::PixelInspection;
+use restir_render::stats::FrameReport;
+use restir_render::{Mode, Settings, ViewSettings};
+
+use super::camera::CameraState;
+
+/// Something the UI asks for that needs the renderer or the file system.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Action {
+    /// Replace the scene (`builtin:NAME` or a glTF path); on failure the old one stays.
+    LoadScene(String),
+    /// Write a screenshot (PNG of the window and of the image, EXR of the radiance).
+    Screenshot,
+    /// Set the exposure from the current frame's log-average luminance.
+    AutoExposure,
+    /// Restart the running average.
+    ResetAccumulation,
+    /// Make the running average the error view's reference (e.g. after accumulating the
+    /// reference mode for a while).
+    CaptureReference,
+}
+
+/// How the rendered image maps onto the window.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DisplayOptions {
+    /// The renderer renders at (scene area in physical pixels) × this, shown scaled up.
+    pub render_scale: f32,
+    /// Bilinear upscaling; off shows each rendered pixel as a crisp block (the inspector's
+    /// pixel is then visible as one block).
+    pub smooth: bool,
+}
+
+impl DisplayOptions {
+    pub const SCALE_RANGE: std::ops::RangeInclusive<f32> = 0.1..=2.0;
+
+    /// A CPU adapter (lavapipe) renders ~0.5 Mpixel/s: a quarter of the window keeps it
+    /// interactive. Real GPUs render at window size.
+    pub fn for_adapter(is_cpu: bool) -> DisplayOptions {
+        DisplayOptions {
+            render_scale: if is_cpu { 0.25 } else { 1.0 },
+            smooth: false,
+        }
+    }
+}
+
+/// The pixel inspector's selection and what came back for it.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct InspectorState {
+    /// The inspected pixel in render-target coordinates.
+    pub pixel: Option<(u32, u32)>,
+    /// While frozen no new frame is rendered (camera and settings wait).
+    pub frozen: bool,
+    /// Render exactly one frame while frozen.
+    pub step: bool,
+    /// The latest inspection that came back for `pixel`.
+    pub last: Option<PixelInspection>,
+}
+
+/// The sliding window of frame reports the Stats panel summarises.
+#[derive(Clone, Debug, Default)]
+pub struct StatsHistory {
+    pub reports: VecDeque<FrameReport>,
+    /// Wall-clock milliseconds between presented frames (CPU + GPU, what the user feels).
+    pub frame_ms: VecDeque<f64>,
+}
+
+impl StatsHistory {
+    /// Frames summarised (about two seconds at 30 fps).
+    pub const WINDOW: usize = 64;
+    /// Frames kept for the history plot.
+    pub const HISTORY: usize = 240;
+
+    pub fn push_report(&mut self, report: FrameReport) {
+        self.reports.push_back(report);
+        while self.reports.len() > Self::HISTORY {
+            self.reports.pop_front();
+        }
+    }
+
+    pub fn push_frame_ms(&mut self, ms: f64) {
+        self.frame_ms.push_back(ms);
+        while self.frame_ms.len() > Self::HISTORY {
+            self.frame_ms.pop_front();
+        }
+    }
+
+    /// The most recent `WINDOW` reports, oldest first.
+    pub fn window(&self) -> Vec<FrameReport> {
+        let skip = self.reports.len().saturating_sub(Self::WINDOW);
+        self.reports.iter().skip(skip).cloned().collect()
+    }
+
+    pub fn clear(&mut self) {
+        self.reports.clear();
+        self.frame_ms.clear();
+    }
+}
+
+/// What the Scene panel shows and edits.
+#[derive(Clone, Debug, Default)]
+pub struct SceneState {
+    /// What the current scene was loaded from (`builtin:NAME` or a path).
+    pub spec: String,
+    pub info: Option<SceneInfo>,
+    pub effects: Option<EffectSet>,
+    pub passes: Vec<&'static str>,
+    /// A scene being loaded in the background.
+    pub loading: Option<String>,
+    /// The last load error (the old scene is kept).
+    pub error: Option<String>,
+    /// The path field of the Open row.
+    pub open_path: String,
+}
+
+/// Facts about the device, for the Stats panel.
+#[derive(Clone, Debug, Default)]
+pub struct DeviceInfo {
+    pub adapter: String,
+    pub is_cpu: bool,
+    pub timing: String,
+}
+
+/// The whole editable state of the viewer.
+#[derive(Clone, Debug)]
+pub struct ViewerState {
+    pub settings: Settings,
+    pub mode: Mode,
+    pub view: ViewSettings,
+    pub display: DisplayOptions,
+    pub camera: CameraState,
+    pub inspector: InspectorState,
+    pub stats: StatsHistory,
+    pub scene: SceneState,
+    pub device: DeviceInfo,
+    /// The preset file the Pipeline panel saves to and loads from.
+    pub preset_path: String,
+    /// Preset load/save result (error or confirmation).
+    pub preset_message: Option<String>,
+    /// Where screenshots go.
+    pub screenshot_dir: String,
+    /// The last screenshot's files, or why it failed.
+    pub screenshot_message: Option<String>,
+    /// Whether the side panel is shown (H toggles).
+    pub panel_open: bool,
+    /// Render-target size and accumulated frames, for display.
+    pub render_size: (u32, u32),
+    pub accumulated_frames: u32,
+    pub actions: Vec<Action>,
+}
+
+impl ViewerState {
+    pub fn new(settings: Settings, camera: CameraState, display: DisplayOptions) -> ViewerState {
+        ViewerState {
+            settings,
+            mode: Mode::Restir,
+            view: ViewSettings::default(),
+            display,
+            camera,
+            inspector: InspectorState::default(),
+            stats: StatsHistory::default(),
+            scene: SceneState::default(),
+            device: DeviceInfo::default(),
+            preset_path: "preset.toml".to_string(),
+            preset_message: None,
+            screenshot_dir: ".".to_string(),
+            screenshot_message: None,
+            panel_open: true,
+            render_size: (0, 0),
+            accumulated_frames: 0,
+            actions: Vec::new(),
+        }
+    }
+
+    /// Queues an action once (a button clicked on two passes of one frame is one click).
+    pub fn request(&mut self, action: Action) {
+        if !self.actions.contains(&action) {
+            self.actions.push(action);
+        }
+    }
+}

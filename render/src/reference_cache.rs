@@ -1,0 +1,299 @@
+//! Converged reference images (notes §7), cached on disk.
+//!
+//! A reference is the average of many frames of `Mode::Reference` (the unbiased
+//! light + BSDF MIS estimator). Rendering one takes seconds to minutes, so it is stored as
+//! an untonemapped EXR under the cache directory (`$RESTIR_CACHE_DIR`, else
+//! `target/restir-cache`), keyed by a hash of everything it depends on (see `key.rs`), with
+//! a JSON file beside it holding the key text and what is known about the image (spp, its
+//! own noise, how long it took).
+//!
+//! Two ways to get one:
+//! - [`ReferenceCache::get_or_render`] on a renderer you already have (the `bench`
+//!   command): loads the cached image, or renders it on that renderer with a progress
+//!   callback (which can cancel) and stores it;
+//! - [`ReferenceJob::spawn`] in the background on its own renderer (the viewer's accuracy
+//!   panel): poll it each frame for progress, then take the result.
+//!
+//! **The reference's own noise.** Every per-frame RMSE measured against a reference of
+//! finite spp is inflated: E[RMSE²] = MSE_true + Var_ref. The renderer estimates its own
+//! RMSE from the image after the first half of the frames, `a`, and the full average `f`:
+//! a − f = ½(a − b) for the halves a and b, so RMSE(a, f) estimates RMSE(f) for k = n/2
+//! (in general RMSE(f) ≈ RMSE(a, f)·√(k/(n−k))). Reports state it next to the spp.
+
+mod job;
+mod key;
+mod render;
+
+pub use job::{JobState, ReferenceJob};
+pub use key::{CACHE_VERSION, Fnv64, ReferenceKey, key_of};
+use render::reference_settings;
+pub use render::{render_reference, spp_per_frame};
+
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use anyhow::Context;
+use serde::{Deserialize, Serialize};
+
+use crate::Renderer;
+use crate::effects::{EffectSet, SceneFeatures};
+use crate::image::LinearImage;
+use crate::scene::{Camera, Scene};
+
+/// The seed of every reference: fixed and different from any seed a benchmark uses, so the
+/// reference's random numbers are independent of the frames measured against it, and one
+/// cached reference serves every `--seed`.
+pub const REFERENCE_SEED: u32 = 0x7e5e_ed01;
+
+/// What to render: the scene, the view and how converged.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ReferenceRequest {
+    /// The scene as `load_scene` takes it: `builtin:NAME` or a .gltf/.glb path.
+    pub scene: String,
+    pub camera: Camera,
+    pub width: u32,
+    pub height: u32,
+    /// Total samples per pixel.
+    pub spp: u32,
+    /// Sub-pixel jitter: off, the reference shades the rasterised pixel-centre surfaces
+    /// (compare against frames rendered with `jitter=false` to measure lighting alone).
+    pub jitter: bool,
+    /// The pipeline variant (WGSL defines) the reference is compiled with.
+    pub effects: EffectSet,
+    pub seed: u32,
+}
+
+impl ReferenceRequest {
+    /// A request for `scene` (loaded from `scene_spec`) with the effect set a still camera
+    /// derives for it and [`REFERENCE_SEED`].
+    pub fn new(
+        scene_spec: &str,
+        scene: &Scene,
+        camera: Camera,
+        (width, height): (u32, u32),
+        spp: u32,
+        jitter: bool,
+    ) -> ReferenceRequest {
+        let settings = reference_settings(jitter, 1);
+        ReferenceRequest {
+            scene: scene_spec.to_string(),
+            camera,
+            width,
+            height,
+            spp: spp.max(1),
+            jitter,
+            effects: EffectSet::detect(&SceneFeatures::of(scene), &settings, false),
+            seed: REFERENCE_SEED,
+        }
+    }
+
+    pub fn key(&self) -> anyhow::Result<ReferenceKey> {
+        key_of(self)
+    }
+}
+
+/// Progress of a reference being rendered.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Progress {
+    pub samples_done: u32,
+    pub samples_total: u32,
+    pub elapsed: Duration,
+}
+
+impl Progress {
+    /// 0..=1.
+    pub fn fraction(&self) -> f64 {
+        self.samples_done as f64 / self.samples_total.max(1) as f64
+    }
+
+    /// Time left at the rate so far (None before the first frame is done).
+    pub fn eta(&self) -> Option<Duration> {
+        (self.samples_done > 0).then(|| {
+            self.elapsed
+                .mul_f64((self.samples_total - self.samples_done) as f64 / self.samples_done as f64)
+        })
+    }
+}
+
+/// What is known about a reference image (the JSON beside the EXR).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ReferenceMeta {
+    /// The key text (see `key.rs`); a cached file is used only when it matches exactly.
+    pub key: String,
+    pub spp: u32,
+    pub frames: u32,
+    pub spp_per_frame: u32,
+    /// Estimated luma RMSE of the reference itself (None for a one-frame reference).
+    pub noise_luma_rmse: Option<f64>,
+    /// Estimated RGB RMSE of the reference itself.
+    pub noise_rgb_rmse: Option<f64>,
+    pub render_seconds: f64,
+    pub adapter: String,
+}
+
+/// A reference image and where it came from.
+#[derive(Clone, Debug)]
+pub struct Reference {
+    pub image: LinearImage,
+    pub meta: ReferenceMeta,
+    /// The EXR in the cache.
+    pub path: PathBuf,
+    /// True when it was loaded, false when it was rendered by this call.
+    pub from_cache: bool,
+}
+
+/// The error a cancelled render returns (`err.downcast_ref::<Cancelled>()`).
+#[derive(Debug, thiserror::Error)]
+#[error("reference rendering was cancelled")]
+pub struct Cancelled;
+
+/// A directory of cached references.
+#[derive(Clone, Debug)]
+pub struct ReferenceCache {
+    dir: PathBuf,
+}
+
+impl ReferenceCache {
+    pub fn new(dir: impl Into<PathBuf>) -> ReferenceCache {
+        ReferenceCache { dir: dir.into() }
+    }
+
+    /// `$RESTIR_CACHE_DIR`, else `target/restir-cache` (relative to the working directory).
+    pub fn default_dir() -> PathBuf {
+        match std::env::var_os("RESTIR_CACHE_DIR") {
+            Some(dir) if !dir.is_empty() => PathBuf::from(dir),
+            _ => PathBuf::from("target").join("restir-cache"),
+        }
+    }
+
+    pub fn at_default_dir() -> ReferenceCache {
+        ReferenceCache::new(ReferenceCache::default_dir())
+    }
+
+    pub fn dir(&self) -> &Path {
+        &self.dir
+    }
+
+    /// The EXR and JSON paths of a key.
+    pub fn paths(&self, key: &ReferenceKey) -> (PathBuf, PathBuf) {
+        let stem = key.stem();
+        (
+            self.dir.join(format!("{stem}.exr")),
+            self.dir.join(format!("{stem}.json")),
+        )
+    }
+
+    /// The cached reference of `request`, if there is one that matches its key exactly.
+    /// A damaged or mismatching entry is treated as missing (and logged).
+    pub fn load(&self, request: &ReferenceRequest) -> anyhow::Result<Option<Reference>> {
+        let key = request.key()?;
+        let (exr, json) = self.paths(&key);
+        if !exr.is_file() || !json.is_file() {
+            return Ok(None);
+        }
+        let loaded = (|| -> anyhow::Result<Option<Reference>> {
+            let meta: ReferenceMeta = serde_json::from_slice(&std::fs::read(&json)?)?;
+            if meta.key != key.description {
+                log::warn!(
+                    "{}: key differs (hash collision?); re-rendering",
+                    json.display()
+                );
+                return Ok(None);
+            }
+            let image = LinearImage::load_exr(&exr)?;
+            anyhow::ensure!(
+                (image.width, image.height) == (request.width, request.height),
+                "{}: image is {}x{}, expected {}x{}",
+                exr.display(),
+                image.width,
+                image.height,
+                request.width,
+                request.height
+            );
+            Ok(Some(Reference {
+                image,
+                meta,
+                path: exr.clone(),
+                from_cache: true,
+            }))
+        })();
+        Ok(loaded.unwrap_or_else(|e| {
+            log::warn!("cached reference unusable, re-rendering: {e:#}");
+            None
+        }))
+    }
+
+    /// Loads the reference, or renders it on `renderer` (whose scene must be
+    /// `request.scene`) and stores it. `progress` is called after every reference frame
+    /// (and once before the first); returning false cancels with [`Cancelled`]. After a
+    /// render the renderer is left in `Mode::Reference` with the reference's settings,
+    /// camera, seed and effect set: set what you need next.
+    pub fn get_or_render(
+        &self,
+        renderer: &mut Renderer,
+        request: &ReferenceRequest,
+        progress: &mut dyn FnMut(&Progress) -> bool,
+    ) -> anyhow::Result<Reference> {
+        if let Some(reference) = self.load(request)? {
+            return Ok(reference);
+        }
+        let (image, meta) = render_reference(renderer, request, progress)?;
+        let path = self.store(&request.key()?, &image, &meta)?;
+        Ok(Reference {
+            image,
+            meta,
+            path,
+            from_cache: false,
+        })
+    }
+
+    /// Writes an image and its metadata (through temporary files, so a reader never sees
+    /// half an entry). Returns the EXR's path.
+    pub fn store(
+        &self,
+        key: &ReferenceKey,
+        image: &LinearImage,
+        meta: &ReferenceMeta,
+    ) -> anyhow::Result<PathBuf> {
+        std::fs::create_dir_all(&self.dir).with_context(|| {
+            format!("{}: cannot create the reference cache", self.dir.display())
+        })?;
+        let (exr, json) = self.paths(key);
+        let unique = format!("{}-{:?}", std::process::id(), std::thread::current().id());
+        let tmp_exr = exr.with_extension(format!("{unique}.tmp.exr"));
+        let tmp_json = json.with_extension(format!("{unique}.tmp.json"));
+        image.save_exr(&tmp_exr)?;
+        std::fs::write(&tmp_json, serde_json::to_string_pretty(meta)?)
+            .with_context(|| format!("{}: cannot write", tmp_json.display()))?;
+        // The image first: `load` needs both, and checks the JSON's key.
+        std::fs::rename(&tmp_exr, &exr)
+            .with_context(|| format!("{}: cannot write", exr.display()))?;
+        std::fs::rename(&tmp_json, &json)
+            .with_context(|| format!("{}: cannot write", json.display()))?;
+        Ok(exr)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn progress_fraction_and_eta() {
+        let p = Progress {
+            samples_done: 25,
+            samples_total: 100,
+            elapsed: Duration::from_secs(1),
+        };
+        assert_eq!(p.fraction(), 0.25);
+        assert_eq!(p.eta(), Some(Duration::from_secs(3)));
+        assert_eq!(
+            Progress {
+                samples_done: 0,
+                ..p
+            }
+            .eta(),
+            None
+        );
+    }
+}

@@ -1,0 +1,196 @@
+//! The cache key of a reference image: a canonical text naming everything the reference
+//! depends on (scene content, camera, size, spp, jitter, effect set, seed, and the shaders
+//! that render it), and a stable 64-bit hash of that text for the file name.
+//!
+//! The text is stored beside the image and compared on load, so a hash collision can never
+//! hand back the wrong image.
+
+use std::path::Path;
+
+use anyhow::Context;
+
+use super::ReferenceRequest;
+use crate::shader_source::compose;
+
+/// Bump when something a reference depends on changes in a way the key cannot see (a
+/// built-in scene generator, the reference estimator's Rust side).
+pub const CACHE_VERSION: u32 = 1;
+
+/// FNV-1a, 64 bit: stable across platforms, Rust versions and runs (std's `DefaultHasher`
+/// promises none of that). Not cryptographic; the stored key text guards against collisions.
+#[derive(Clone, Copy)]
+pub struct Fnv64(u64);
+
+impl Default for Fnv64 {
+    fn default() -> Self {
+        Fnv64(0xcbf2_9ce4_8422_2325)
+    }
+}
+
+impl Fnv64 {
+    pub fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 ^= b as u64;
+            self.0 = self.0.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+
+    pub fn finish(self) -> u64 {
+        self.0
+    }
+
+    pub fn of(bytes: &[u8]) -> u64 {
+        let mut h = Fnv64::default();
+        h.write(bytes);
+        h.finish()
+    }
+}
+
+/// A reference's identity: the canonical description and its hash.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ReferenceKey {
+    pub hash: u64,
+    /// One `name=value` per line (stored in the cache's JSON and compared on load).
+    pub description: String,
+}
+
+impl ReferenceKey {
+    /// The file stem in the cache directory.
+    pub fn stem(&self) -> String {
+        format!("ref-{:016x}", self.hash)
+    }
+}
+
+/// The key of `request`. Reads the scene file (and, for .gltf, the buffers and images it
+/// names) to hash its bytes; built-in scenes are keyed by name and [`CACHE_VERSION`].
+pub fn key_of(request: &ReferenceRequest) -> anyhow::Result<ReferenceKey> {
+    let scene = scene_fingerprint(&request.scene)?;
+    let c = &request.camera;
+    // Bit patterns, so the key never depends on how a float prints.
+    let bits = |v: &[f32]| {
+        v.iter()
+            .map(|x| format!("{:08x}", x.to_bits()))
+            .collect::<Vec<_>>()
+            .join(",")
+    };
+    let defines = request.effects.defines();
+    let mut shaders = Fnv64::default();
+    for entry in [
+        "gbuffer_raster.wgsl",
+        "gbuffer_resolve.wgsl",
+        "reference.wgsl",
+    ] {
+        match compose(entry, &defines) {
+            Ok(text) => shaders.write(text.as_bytes()),
+            Err(e) => shaders.write(e.to_string().as_bytes()),
+        }
+    }
+    let description = format!(
+        "version={CACHE_VERSION}\nscene={}\nscene_content={scene:016x}\ncamera_position={}\n\
+         camera_rotation={}\ncamera_yfov={}\nsize={}x{}\nspp={}\njitter={}\neffects={}\n\
+         seed={}\nshaders={:016x}\n",
+        request.scene,
+        bits(&c.position.to_array()),
+        bits(&c.rotation.to_array()),
+        bits(&[c.yfov]),
+        request.width,
+        request.height,
+        request.spp,
+        request.jitter,
+        request.effects,
+        request.seed,
+        shaders.finish(),
+    );
+    Ok(ReferenceKey {
+        hash: Fnv64::of(description.as_bytes()),
+        description,
+    })
+}
+
+/// Hash of the scene's source: the built-in name, or the bytes of the file and of the
+/// external files a .gltf refers to.
+fn scene_fingerprint(spec: &str) -> anyhow::Result<u64> {
+    if let Some(name) = spec.strip_prefix("builtin:") {
+        return Ok(Fnv64::of(format!("builtin:{name}").as_bytes()));
+    }
+    let path = Path::new(spec);
+    let bytes = std::fs::read(path)
+        .with_context(|| format!("{spec}: cannot read the scene to key its reference"))?;
+    let mut h = Fnv64::default();
+    h.write(&bytes);
+    let is_gltf = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("gltf"));
+    if is_gltf {
+        let dir = path.parent().unwrap_or(Path::new("."));
+        for uri in external_uris(&bytes) {
+            h.write(uri.as_bytes());
+            // A missing file makes the scene fail to load anyway; key it by name only.
+            if let Ok(data) = std::fs::read(dir.join(percent_decode(&uri))) {
+                h.write(&data);
+            }
+        }
+    }
+    Ok(h.finish())
+}
+
+/// The non-`data:` URIs of a .gltf's buffers and images, in file order.
+fn external_uris(gltf_json: &[u8]) -> Vec<String> {
+    let Ok(doc) = serde_json::from_slice::<serde_json::Value>(gltf_json) else {
+        return Vec::new();
+    };
+    ["buffers", "images"]
+        .iter()
+        .filter_map(|list| doc.get(list)?.as_array())
+        .flatten()
+        .filter_map(|item| item.get("uri")?.as_str())
+        .filter(|uri| !uri.starts_with("data:"))
+        .map(str::to_string)
+        .collect()
+}
+
+/// `%XX` escapes as glTF URIs use them (UTF-8 bytes); anything malformed is kept as is.
+fn percent_decode(uri: &str) -> String {
+    let bytes = uri.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        let hex = (bytes[i] == b'%')
+            .then(|| std::str::from_utf8(bytes.get(i + 1..i + 3)?).ok())
+            .flatten()
+            .and_then(|h| u8::from_str_radix(h, 16).ok());
+        match hex {
+            Some(b) => {
+                out.push(b);
+                i += 3;
+            }
+            None => {
+                out.push(bytes[i]);
+                i += 1;
+            }
+        }
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fnv_matches_the_published_test_vectors() {
+        assert_eq!(Fnv64::of(b""), 0xcbf2_9ce4_8422_2325);
+        assert_eq!(Fnv64::of(b"a"), 0xaf63_dc4c_8601_ec8c);
+        assert_eq!(Fnv64::of(b"foobar"), 0x8594_4171_f739_67e8);
+    }
+
+    #[test]
+    fn gltf_uris_are_found_and_decoded() {
+        let json = br#"{"buffers":[{"uri":"a%20b.bin"},{"uri":"data:application/octet-stream;base64,AA=="}],
+                        "images":[{"uri":"tex.png"},{"bufferView":0}]}"#;
+        assert_eq!(external_uris(json), vec!["a%20b.bin", "tex.png"]);
+        assert_eq!(percent_decode("a%20b.bin"), "a b.bin");
+        assert_eq!(percent_decode("100%"), "100%");
+        assert_eq!(percent_decode("%zz"), "%zz");
+    }
+}

@@ -1,0 +1,21 @@
+// Light tiles (restir-notes.md §6): draw LIGHT_TILE_COUNT × LIGHT_TILE_SIZE lights from the
+// power alias table once per frame, each packed with its point, radiance and source pdf.
+// The initial pass then picks candidates uniformly from one tile per pixel block: still
+// samples of p_src (the tile entries are i.i.d. draws from it), but read from a few KB
+// that a whole block shares instead of from the full light table.
+#include "common/frame_bindings.wgsl"
+#include "common/lights.wgsl"
+
+@group(2) @binding(0) var<storage, read_write> light_tiles: array<TileSample>;
+
+@compute @workgroup_size(64)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = id.x;
+    if i >= LIGHT_TILE_COUNT * LIGHT_TILE_SIZE || frame.light_count == 0u {
+        return;
+    }
+    // A stream of its own: the "pixel" (i, 0xffffffff) lies outside every image.
+    var rng = rng_seed(vec2<u32>(i, 0xffffffffu), STREAM_LIGHT_TILES);
+    let y = sample_light(&rng);
+    light_tiles[i] = pack_tile_sample(y, light_point(y.light, y.uv));
+}

@@ -44,7 +44,7 @@ impl App {
                 launch.window_size.1,
             ));
         let window = Arc::new(event_loop.create_window(attributes)?);
-        let mut viewer = Viewer::new(window, launch, &scene)?;
+        let mut viewer = Viewer::new(window, launch, Arc::new(scene))?;
         viewer.hold_screenshot(self.script.is_some());
         self.viewer = Some(viewer);
         Ok(())

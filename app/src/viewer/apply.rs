@@ -51,6 +51,7 @@ pub fn after_frame(renderer: &mut Renderer, state: &mut ViewerState) {
         if let Some(inspection) = &report.inspection {
             state.inspector.last = Some(inspection.clone());
         }
+        state.accuracy.curves.record_report(&report);
         state.stats.push_report(report);
     }
     state.render_size = renderer.size();

@@ -1,16 +1,19 @@
 //! One window's viewer and its frame, in order: UI (panels edit the state) → actions →
-//! state into the renderer → render (unless frozen) → reports back → draw image + UI →
-//! present, with a screenshot when one is due.
+//! state into the renderer → render (unless frozen) → accuracy (reference, score) →
+//! reports back → draw image + UI → present, with a screenshot when one is due.
 
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
+use restir_render::reference_cache::ReferenceCache;
 use restir_render::view::auto_exposure_ev;
-use restir_render::{Gpu, Renderer, Scene};
+use restir_render::{DebugView, Gpu, Renderer, Scene};
 use winit::dpi::PhysicalSize;
 use winit::window::Window;
 
 use super::Launch;
+use super::accuracy::AccuracyState;
+use super::accuracy::tracker::{AccuracyTracker, SceneSource};
 use super::apply;
 use super::camera::CameraState;
 use super::egui_layer::EguiLayer;
@@ -35,6 +38,9 @@ pub struct Viewer {
     renderer: Renderer,
     egui: EguiLayer,
     pub state: ViewerState,
+    /// The scene shown, kept for the accuracy panel's reference jobs.
+    scene: Arc<Scene>,
+    accuracy: AccuracyTracker,
     loader: SceneLoader,
     screenshots: screenshot::Schedule,
     exit_after_screenshot: bool,
@@ -60,7 +66,7 @@ const REPORT_GRACE: Duration = Duration::from_millis(500);
 const AUTO_EXPOSURE_FRAMES: u64 = 3;
 
 impl Viewer {
-    pub fn new(window: Arc<Window>, launch: Launch, scene: &Scene) -> anyhow::Result<Viewer> {
+    pub fn new(window: Arc<Window>, launch: Launch, scene: Arc<Scene>) -> anyhow::Result<Viewer> {
         let (surface, gpu) = GpuSurface::new(window.clone())?;
         let display = DisplayOptions::for_adapter(gpu.is_cpu());
         let size = window.inner_size();
@@ -69,7 +75,7 @@ impl Viewer {
             display.render_scale,
         )
         .unwrap_or((64, 64));
-        let mut renderer = Renderer::new(gpu.clone(), scene, w, h, launch.settings.clone())?;
+        let mut renderer = Renderer::new(gpu.clone(), &scene, w, h, launch.settings.clone())?;
         let mut state = ViewerState::new(
             launch.settings,
             CameraState::new(renderer.camera(), renderer.scene_bounds()),
@@ -84,6 +90,7 @@ impl Viewer {
             is_cpu: gpu.is_cpu(),
             timing: format!("{:?}", renderer.timing_mode()),
         };
+        state.accuracy = AccuracyState::new(gpu.is_cpu());
         renderer.set_view(state.view);
         apply::scene_loaded(&renderer, &mut state, launch.scene_spec);
         window.set_title(&title(&state));
@@ -101,6 +108,11 @@ impl Viewer {
             renderer,
             egui,
             state,
+            scene,
+            accuracy: AccuracyTracker::new(
+                ReferenceCache::at_default_dir(),
+                AccuracyTracker::SETTLE,
+            ),
             loader: SceneLoader::default(),
             screenshots: screenshot::Schedule {
                 after: launch.screenshot_after,
@@ -277,8 +289,25 @@ impl Viewer {
         } else {
             apply::redisplay_if_changed(&mut self.renderer, &state.view)?;
         }
-        apply::after_frame(&mut self.renderer, state);
+        self.follow_accuracy(render_now);
+        apply::after_frame(&mut self.renderer, &mut self.state);
         Ok(render_now)
+    }
+
+    /// The accuracy tracker follows the view the frame was rendered with (a moved camera
+    /// drops the old reference) before it scores the frame against the reference.
+    fn follow_accuracy(&mut self, rendered: bool) {
+        let state = &mut self.state;
+        let source = SceneSource {
+            spec: &state.scene.spec,
+            scene: &self.scene,
+        };
+        let wanted = state.accuracy.panel_open || state.view.view == DebugView::Error;
+        self.accuracy
+            .update(&mut self.renderer, &source, &mut state.accuracy, wanted);
+        if rendered {
+            self.accuracy.measure(&self.renderer, &mut state.accuracy);
+        }
     }
 
     fn run_actions(&mut self) {
@@ -298,12 +327,6 @@ impl Viewer {
                     self.state.view.exposure_ev = auto_exposure_ev(&linear);
                 }
                 Action::ResetAccumulation => self.renderer.reset_accumulation(),
-                Action::CaptureReference => {
-                    let average = self.renderer.read_accumulated();
-                    if let Err(e) = self.renderer.set_reference_image(&average) {
-                        log::warn!("cannot use the average as reference: {e:#}");
-                    }
-                }
             }
         }
         self.state.scene.loading = self.loader.loading().map(str::to_string);
@@ -319,10 +342,12 @@ impl Viewer {
         let uploaded = result.and_then(|scene| {
             self.renderer
                 .set_scene(&scene)
-                .map_err(|e| format!("{e:#}"))
+                .map_err(|e| format!("{e:#}"))?;
+            Ok(scene)
         });
         match uploaded {
-            Ok(()) => {
+            Ok(scene) => {
+                self.scene = Arc::new(scene);
                 apply::scene_loaded(&self.renderer, &mut self.state, spec);
                 self.window.set_title(&title(&self.state));
                 self.auto_exposure_at = Some(self.frames_rendered + AUTO_EXPOSURE_FRAMES);

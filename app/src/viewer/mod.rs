@@ -5,8 +5,10 @@
 //! - `apply.rs`: state → renderer → state; `gpu_surface.rs`: the swapchain;
 //! - `egui_layer.rs`: egui input and drawing; `scene_view.rs`: image, camera input, picking;
 //! - `camera.rs`: fly camera; `panels/`: one file per panel; `screenshot.rs`;
+//! - `accuracy/`: the live accuracy measurement behind the Accuracy panel;
 //! - `scene_loader.rs`: background scene loads; `resize_script.rs`: the resize test.
 
+mod accuracy;
 mod app;
 mod apply;
 mod camera;

@@ -7,9 +7,10 @@ use std::collections::VecDeque;
 use restir_render::effects::EffectSet;
 use restir_render::gpu_scene::SceneInfo;
 use restir_render::renderer::PixelInspection;
-use restir_render::stats::FrameReport;
+use restir_render::stats::{FrameCounters, FrameReport};
 use restir_render::{Mode, Settings, ViewSettings};
 
+use super::accuracy::AccuracyState;
 use super::camera::CameraState;
 
 /// Something the UI asks for that needs the renderer or the file system.
@@ -23,9 +24,6 @@ pub enum Action {
     AutoExposure,
     /// Restart the running average.
     ResetAccumulation,
-    /// Make the running average the error view's reference (e.g. after accumulating the
-    /// reference mode for a while).
-    CaptureReference,
 }
 
 /// How the rendered image maps onto the window.
@@ -70,6 +68,9 @@ pub struct StatsHistory {
     pub reports: VecDeque<FrameReport>,
     /// Wall-clock milliseconds between presented frames (CPU + GPU, what the user feels).
     pub frame_ms: VecDeque<f64>,
+    /// Every counter summed since the scene loaded: a frame with non-finite values must
+    /// stay visible in the Stats panel after it leaves the summary window.
+    pub since_load: FrameCounters,
 }
 
 impl StatsHistory {
@@ -79,6 +80,7 @@ impl StatsHistory {
     pub const HISTORY: usize = 240;
 
     pub fn push_report(&mut self, report: FrameReport) {
+        self.since_load.add(&report.counters);
         self.reports.push_back(report);
         while self.reports.len() > Self::HISTORY {
             self.reports.pop_front();
@@ -101,6 +103,7 @@ impl StatsHistory {
     pub fn clear(&mut self) {
         self.reports.clear();
         self.frame_ms.clear();
+        self.since_load = FrameCounters::default();
     }
 }
 
@@ -138,6 +141,7 @@ pub struct ViewerState {
     pub camera: CameraState,
     pub inspector: InspectorState,
     pub stats: StatsHistory,
+    pub accuracy: AccuracyState,
     pub scene: SceneState,
     pub device: DeviceInfo,
     /// The preset file the Pipeline panel saves to and loads from.
@@ -166,6 +170,8 @@ impl ViewerState {
             camera,
             inspector: InspectorState::default(),
             stats: StatsHistory::default(),
+            // The cheaper reference until the viewer knows its device.
+            accuracy: AccuracyState::new(true),
             scene: SceneState::default(),
             device: DeviceInfo::default(),
             preset_path: "preset.toml".to_string(),

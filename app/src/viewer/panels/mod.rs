@@ -1,6 +1,8 @@
 //! The side panel: one collapsible section per panel, each in its own file, each editing
 //! the plain `ViewerState` (never the renderer).
 
+pub mod accuracy;
+pub mod accuracy_plots;
 pub mod camera;
 pub mod inspector;
 pub mod palette;
@@ -22,6 +24,8 @@ pub const PANEL_WIDTH: f32 = 380.0;
 /// The side panel (H hides it; dragging its edge resizes or closes it).
 pub fn side_panel(ui: &mut Ui, state: &mut ViewerState) {
     scene::take_dropped_files(ui.ctx(), state);
+    // Stays false while the panel is hidden (H): `sections` sets it when drawn.
+    state.accuracy.panel_open = false;
     let mut open = state.panel_open;
     egui::Panel::right("controls")
         .resizable(true)
@@ -45,6 +49,11 @@ fn sections(ui: &mut Ui, state: &mut ViewerState) {
     };
     section("Pipeline", true).show(ui, |ui| pipeline::ui(ui, state));
     section("View", true).show(ui, |ui| view::ui(ui, state));
+    // Measuring reads every frame back: it runs while this section is drawn open.
+    state.accuracy.panel_open = section("Accuracy", false)
+        .show(ui, |ui| accuracy::ui(ui, state))
+        .body_returned
+        .is_some();
     section("Stats", true).show(ui, |ui| stats::ui(ui, state));
     section("Camera", false).show(ui, |ui| camera::ui(ui, &mut state.camera));
     section("Scene", false).show(ui, |ui| scene::ui(ui, state));

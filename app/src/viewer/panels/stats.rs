@@ -1,12 +1,13 @@
-//! The Stats panel: frame time, per-pass times (bars and a history plot), and what the
-//! reuse did over the last frames: rejections by reason, selection sources, M-cap hits.
+//! The Stats panel: frame time, per-pass times (bars and a history plot), what the
+//! reuse did over the last frames (rejections by reason, selection sources, M-cap hits)
+//! and the non-finite guard's counters per pass.
 
 use std::collections::BTreeMap;
 
-use egui::{Color32, Ui};
+use egui::{Color32, RichText, Ui};
 use egui_plot::{Line, Plot, PlotPoints};
-use restir_render::shader_constants::REJECT_REASON_NAMES;
-use restir_render::stats::{FrameReport, StatsSummary};
+use restir_render::shader_constants::{GUARDED_PASS_NAMES, REJECT_REASON_NAMES, STAT_NONFINITE};
+use restir_render::stats::{FrameCounters, FrameReport, StatsSummary};
 
 use super::palette::source_legend;
 use crate::viewer::state::{StatsHistory, ViewerState};
@@ -28,6 +29,7 @@ pub fn ui(ui: &mut Ui, state: &ViewerState) {
     pass_bars(ui, &summary.pass_ms_median);
     history_plot(ui, &state.stats);
     reuse(ui, &summary);
+    non_finite(ui, &summary, &state.stats.since_load);
 }
 
 /// Width of the longest pass bar, in points.
@@ -69,7 +71,7 @@ fn pass_bars(ui: &mut Ui, pass_ms: &BTreeMap<String, f64>) {
 
 /// A fixed colour per pass name, shared by its bar and its plot line (the bars are the
 /// plot's legend).
-fn pass_color(name: &str) -> Color32 {
+pub fn pass_color(name: &str) -> Color32 {
     let hash = name
         .bytes()
         .fold(2166136261u32, |h, b| (h ^ b as u32).wrapping_mul(16777619));
@@ -144,12 +146,6 @@ fn reuse(ui: &mut Ui, s: &StatsSummary) {
         s.fallback_used,
         s.boiling_dropped
     ));
-    if s.non_finite_total() > 0 {
-        ui.colored_label(
-            ui.visuals().warn_fg_color,
-            format!("non-finite values replaced: {:?}", s.non_finite_by_pass),
-        );
-    }
     ui.label("Rejections (per surface pixel; spatial counts every neighbour)");
     egui::Grid::new("rejections")
         .num_columns(3)
@@ -166,6 +162,40 @@ fn reuse(ui: &mut Ui, s: &StatsSummary) {
                 ui.label(name);
                 ui.label(percent(count(&s.temporal_rejections) / pixels));
                 ui.label(percent(count(&s.spatial_rejections) / pixels));
+                ui.end_row();
+            }
+        });
+}
+
+/// The guard's counters (issue 5): NaN/Inf values each pass produced or read and
+/// replaced. Any count is a bug to chase, so non-zero ones stand out; the "since load"
+/// column keeps a single bad frame visible after it leaves the summary window.
+fn non_finite(ui: &mut Ui, window: &StatsSummary, since_load: &FrameCounters) {
+    ui.label("Non-finite values replaced, per pass");
+    let alarm = ui.visuals().error_fg_color;
+    let count = |n: u64| {
+        let text = RichText::new(n.to_string());
+        if n > 0 {
+            text.color(alarm).strong()
+        } else {
+            text.weak()
+        }
+    };
+    egui::Grid::new("non-finite")
+        .num_columns(3)
+        .striped(true)
+        .show(ui, |ui| {
+            ui.strong("pass");
+            ui.strong(format!("last {} frames", window.frames));
+            ui.strong("since load");
+            ui.end_row();
+            for (i, name) in GUARDED_PASS_NAMES.iter().enumerate() {
+                let recent = window.non_finite_by_pass.get(*name).copied().unwrap_or(0);
+                let total = since_load.get(STAT_NONFINITE + i as u32);
+                let label = RichText::new(*name);
+                ui.label(if total > 0 { label.color(alarm) } else { label });
+                ui.label(count(recent));
+                ui.label(count(total));
                 ui.end_row();
             }
         });

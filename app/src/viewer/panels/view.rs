@@ -6,6 +6,7 @@ use egui::Ui;
 use restir_render::shader_constants::REJECT_REASON_NAMES;
 use restir_render::{DebugView, Tonemapper};
 
+use super::accuracy;
 use super::palette::{ramp, reason_color, source_legend, swatch};
 use crate::viewer::state::{Action, DisplayOptions, ViewerState};
 
@@ -78,7 +79,9 @@ fn describe(v: DebugView) -> &'static str {
         DebugView::Albedo => "Base colour",
         DebugView::Depth => "View depth relative to the scene size (near is bright)",
         DebugView::Motion => "Screen-space motion to the previous frame (grey: none)",
-        DebugView::Error => "|frame - reference| luminance (needs a reference image)",
+        DebugView::Error => {
+            "|frame - reference| luminance against the reference of the Accuracy panel (obtained in the background while the camera stands still)"
+        }
     }
 }
 
@@ -89,14 +92,8 @@ fn legend(ui: &mut Ui, state: &mut ViewerState) {
         DebugView::Weight => ramp(ui, "W 1e-4", "1e4"),
         DebugView::Error => {
             ramp(ui, "0", "1 (at this exposure)");
-            let capture = ui
-                .button("Use the running average as reference")
-                .on_hover_text(
-                    "Accumulate the reference mode for a while, capture, then switch modes",
-                );
-            if capture.clicked() {
-                state.request(Action::CaptureReference);
-            }
+            // The reference is the Accuracy panel's; until it is there the view shows |frame|.
+            accuracy::reference_status(ui, &state.accuracy);
         }
         DebugView::Rejection => rejection_legend(ui, &mut state.view.reason_mask),
         _ => {}

@@ -51,6 +51,7 @@ fn shows(h: &Harness<'_, ViewerState>, text: &str) -> bool {
     h.query_all_by_label_contains(text).next().is_some()
 }
 
+mod accuracy_panel;
 mod inspector_panel;
 mod other_panels;
 mod pipeline_panel;

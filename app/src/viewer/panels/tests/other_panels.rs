@@ -99,12 +99,20 @@ fn the_stats_panel_summarises_reports() {
 }
 
 #[test]
-fn the_error_view_can_take_the_average_as_its_reference() {
-    let mut s = state();
-    s.view.view = DebugView::Error;
-    let mut h = harness(view::ui, s);
-    h.get_by_label("Use the running average as reference")
-        .click();
-    h.run();
-    assert_eq!(h.state().actions, vec![Action::CaptureReference]);
+fn the_stats_panel_shows_non_finite_values_per_pass() {
+    let mut s = with_reports(state());
+    let mut c = vec![0u32; STAT_COUNT as usize];
+    c[(STAT_NONFINITE + PASS_TEMPORAL) as usize] = 17;
+    s.stats.push_report(FrameReport {
+        frame: 10,
+        counters: FrameCounters(c),
+        ..Default::default()
+    });
+    let h = harness(|ui, s: &mut ViewerState| stats::ui(ui, s), s);
+    assert!(shows(&h, "Non-finite values replaced, per pass"));
+    for name in GUARDED_PASS_NAMES {
+        assert!(shows(&h, name), "no row for the {name} pass");
+    }
+    // The temporal row: its count in the window and since the scene loaded.
+    assert_eq!(h.get_all_by_label("17").count(), 2);
 }

@@ -1,5 +1,6 @@
 //! The whole side panel: its width, the shortcuts, file drops.
 
+use super::accuracy_panel::{measure_frame, ready};
 use super::inspector_panel::synthetic_inspection;
 use super::other_panels::with_reports;
 use super::*;
@@ -44,6 +45,18 @@ fn the_side_panel_keeps_its_width_whatever_it_shows() {
     s.preset_message = Some(
         "error: /a/long/path/preset.toml: cannot read preset: No such file or directory".into(),
     );
+    s.accuracy.reference = ready();
+    s.accuracy.measure_ms = Some(2.5);
+    for frame in 0..40 {
+        // Four curves with long labels, as after a few parameter changes.
+        if frame % 10 == 0 {
+            s.settings.m_cap += 1.0;
+            s.settings.spatial_neighbours += 1;
+            s.settings.temporal = !s.settings.temporal;
+            s.settings.jitter = false;
+        }
+        measure_frame(&mut s, frame);
+    }
     let mut h = Harness::builder()
         .with_size(egui::vec2(1280.0, 4000.0))
         .build_ui_state(

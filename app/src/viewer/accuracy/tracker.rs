@@ -1,0 +1,292 @@
+//! The GPU side of the accuracy measurement: follows the view, gets its reference with a
+//! background `ReferenceJob` (cached on disk), uploads it for the error view, and scores
+//! displayed frames against it with `SequenceMetrics`. Owned by the viewer's frame loop,
+//! never by the UI; it writes what the panel shows into `AccuracyState`.
+
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use restir_render::LinearImage;
+use restir_render::metrics::SequenceMetrics;
+use restir_render::reference_cache::{
+    JobState, Reference, ReferenceCache, ReferenceJob, ReferenceRequest,
+};
+use restir_render::{Camera, Gpu, Renderer, Scene};
+
+use super::{AccuracyState, Config, CurvePoint, ReferenceInfo, ReferenceStatus};
+
+/// The scene the renderer shows, as a reference job needs it.
+pub struct SceneSource<'a> {
+    /// `builtin:NAME` or the file it was loaded from (part of the cache key).
+    pub spec: &'a str,
+    pub scene: &'a Arc<Scene>,
+}
+
+/// What the reference depends on that the viewer can change.
+#[derive(Clone, Debug, PartialEq)]
+struct ViewKey {
+    scene: String,
+    camera: Camera,
+    size: (u32, u32),
+    jitter: bool,
+    spp: u32,
+}
+
+impl ViewKey {
+    /// The same image: curves measured against either reference stay comparable.
+    fn same_image(&self, other: &ViewKey) -> bool {
+        (&self.scene, self.camera, self.size) == (&other.scene, other.camera, other.size)
+    }
+}
+
+/// Keeps measuring to about a quarter of the viewer's time: after a measurement that
+/// took `c`, the next waits `3c`. On lavapipe at the default render size a measurement
+/// takes a few ms against frames of ~100 ms, so every frame is measured; on a GPU at
+/// 1080p a 33 MB readback plus metrics over 2 Mpixels (tens of ms) would otherwise cut
+/// the frame rate several times over.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Throttle {
+    next: Option<Instant>,
+}
+
+impl Throttle {
+    /// The share of wall time measuring may take.
+    const SHARE: f64 = 0.25;
+
+    pub fn due(&self, now: Instant) -> bool {
+        self.next.is_none_or(|t| now >= t)
+    }
+
+    pub fn measured(&mut self, end: Instant, cost: Duration) {
+        self.next = Some(end + cost.mul_f64((1.0 - Self::SHARE) / Self::SHARE));
+    }
+}
+
+pub struct AccuracyTracker {
+    cache: ReferenceCache,
+    /// How long the view must stay unchanged before a reference starts (a fly-through
+    /// would otherwise start and cancel a job every frame).
+    settle: Duration,
+    /// A second device on the viewer's adapter for the reference jobs. Sharing the
+    /// viewer's, each viewer pass (timed by waiting for the device on CPU adapters) waits
+    /// for the reference frame in flight: on lavapipe (2 cores, `builtin:many-lights`)
+    /// the viewer drew 3 frames in 25 s that way, 10 with a device of its own.
+    device: Option<Gpu>,
+    view: Option<ViewKey>,
+    view_since: Instant,
+    job: Option<ReferenceJob>,
+    reference: Option<LinearImage>,
+    /// The metrics of the current curve (its id) against `reference`.
+    metrics: Option<(u64, SequenceMetrics)>,
+    throttle: Throttle,
+    last_measured: Option<u64>,
+    /// Whether the renderer holds an uploaded reference (to clear when it goes stale).
+    uploaded: bool,
+}
+
+impl AccuracyTracker {
+    /// Half a second of stillness: longer than a pause between key presses while flying.
+    pub const SETTLE: Duration = Duration::from_millis(500);
+
+    pub fn new(cache: ReferenceCache, settle: Duration) -> AccuracyTracker {
+        AccuracyTracker {
+            cache,
+            settle,
+            device: None,
+            view: None,
+            view_since: Instant::now(),
+            job: None,
+            reference: None,
+            metrics: None,
+            throttle: Throttle::default(),
+            last_measured: None,
+            uploaded: false,
+        }
+    }
+
+    /// Every redraw: follows the view, starts the reference job once the view is still
+    /// (if `wanted`), polls it and uploads its image when it arrives.
+    pub fn update(
+        &mut self,
+        renderer: &mut Renderer,
+        scene: &SceneSource,
+        state: &mut AccuracyState,
+        wanted: bool,
+    ) {
+        let now = Instant::now();
+        let key = ViewKey {
+            scene: scene.spec.to_string(),
+            camera: renderer.camera(),
+            size: renderer.size(),
+            jitter: renderer.settings().jitter,
+            spp: state.reference_spp,
+        };
+        if self.view.as_ref() != Some(&key) {
+            self.view_changed(renderer, state, key, now);
+        }
+        if self.reference.is_some() {
+            return;
+        }
+        let Some(job) = &mut self.job else {
+            state.reference = if !wanted {
+                ReferenceStatus::Idle
+            } else if now - self.view_since < self.settle {
+                ReferenceStatus::WaitingForStill
+            } else {
+                self.start(renderer.gpu(), scene)
+            };
+            return;
+        };
+        state.reference = match job.poll() {
+            JobState::Starting => ReferenceStatus::Starting,
+            JobState::Rendering(p) => ReferenceStatus::Rendering(*p),
+            // The failed job stays, so it is not retried every frame; a view change does.
+            JobState::Failed(e) => ReferenceStatus::Failed(e.clone()),
+            JobState::Cancelled => ReferenceStatus::Failed("cancelled".into()),
+            JobState::Done(_) => match self.job.take().map(ReferenceJob::wait) {
+                Some(Ok(reference)) => self.accept(renderer, reference),
+                Some(Err(e)) => ReferenceStatus::Failed(format!("{e:#}")),
+                None => unreachable!("polled above"),
+            },
+        };
+    }
+
+    /// After a rendered frame: scores it against the reference when the panel is open
+    /// and the throttle allows (or `every_frame`).
+    pub fn measure(&mut self, renderer: &Renderer, state: &mut AccuracyState) {
+        let start = Instant::now();
+        let Some(reference) = &self.reference else {
+            return;
+        };
+        if !state.panel_open || !(state.every_frame || self.throttle.due(start)) {
+            return;
+        }
+        // `render_frame` has moved the index past the frame just rendered.
+        let frame = renderer.frame_index().saturating_sub(1);
+        let config = Config {
+            mode: renderer.mode(),
+            settings: renderer.settings().clone(),
+        };
+        let id = state.curves.curve_for(&config, frame);
+        if self.metrics.as_ref().is_none_or(|(m, _)| *m != id) {
+            self.metrics = Some((id, SequenceMetrics::new(reference.clone())));
+        }
+        let Some((_, metrics)) = &mut self.metrics else {
+            unreachable!("set above")
+        };
+        if let Err(e) = metrics.push(&renderer.read_radiance()) {
+            // Cannot happen while the view key holds the size; never worth a panic.
+            log::warn!("accuracy: {e}");
+            return;
+        }
+        let report = metrics.report();
+        let first = state
+            .curves
+            .current
+            .as_ref()
+            .map_or(frame, |c| c.first_frame);
+        state.curves.push(CurvePoint {
+            x: frame - first + 1,
+            frame,
+            luma_rmse: report.per_frame_luma_rmse.last().copied().unwrap_or(0.0),
+            stability: report.per_frame_stability_rmse.last().copied(),
+            accumulated_rgb_rmse: report.accumulated_rgb_rmse,
+            luma_ratio: report.accumulated_luma_ratio,
+            pass_ms: Vec::new(),
+        });
+        let end = Instant::now();
+        self.throttle.measured(end, end - start);
+        state.measure_ms = Some((end - start).as_secs_f64() * 1e3);
+        state.frames_skipped = self
+            .last_measured
+            .map_or(0, |last| frame.saturating_sub(last + 1));
+        self.last_measured = Some(frame);
+    }
+
+    /// A new view: the job and reference go; curves of another image are dropped, those
+    /// of the same image (new spp or jitter) kept for comparison.
+    fn view_changed(
+        &mut self,
+        renderer: &mut Renderer,
+        state: &mut AccuracyState,
+        key: ViewKey,
+        now: Instant,
+    ) {
+        match &self.view {
+            Some(old) if old.same_image(&key) => state.curves.end_current(Some("new reference")),
+            _ => state.curves.clear(),
+        }
+        // Dropping a job cancels it after the frame it is rendering.
+        self.job = None;
+        self.reference = None;
+        self.metrics = None;
+        self.last_measured = None;
+        if std::mem::take(&mut self.uploaded) {
+            // A stale reference would draw a plausible but wrong heatmap; black makes the
+            // error view show |frame| until the new reference arrives (its legend says so).
+            let (w, h) = renderer.size();
+            let _ = renderer.set_reference_image(&LinearImage::new(w, h));
+        }
+        self.view = Some(key);
+        self.view_since = now;
+    }
+
+    fn start(&mut self, gpu: &Gpu, scene: &SceneSource) -> ReferenceStatus {
+        let key = self.view.as_ref().expect("set by update");
+        let request = ReferenceRequest::new(
+            scene.spec,
+            scene.scene,
+            key.camera,
+            key.size,
+            key.spp,
+            key.jitter,
+        );
+        let device = self
+            .device
+            .get_or_insert_with(|| {
+                Gpu::from_adapter(gpu.instance.clone(), gpu.adapter.clone()).unwrap_or_else(|e| {
+                    log::warn!(
+                        "accuracy: no second device ({e}); the reference shares the viewer's"
+                    );
+                    gpu.clone()
+                })
+            })
+            .clone();
+        self.job = Some(ReferenceJob::spawn(
+            self.cache.clone(),
+            request,
+            device,
+            scene.scene.clone(),
+        ));
+        ReferenceStatus::Starting
+    }
+
+    fn accept(&mut self, renderer: &mut Renderer, reference: Reference) -> ReferenceStatus {
+        if let Err(e) = renderer.set_reference_image(&reference.image) {
+            return ReferenceStatus::Failed(format!("{e:#}"));
+        }
+        self.uploaded = true;
+        let info = ReferenceInfo {
+            meta: reference.meta,
+            from_cache: reference.from_cache,
+            path: reference.path,
+        };
+        self.reference = Some(reference.image);
+        ReferenceStatus::Ready(info)
+    }
+}
+
+#[cfg(test)]
+mod throttle_tests {
+    use super::*;
+
+    #[test]
+    fn measuring_keeps_to_a_quarter_of_the_time() {
+        let mut t = Throttle::default();
+        let now = Instant::now();
+        assert!(t.due(now));
+        t.measured(now, Duration::from_millis(10));
+        assert!(!t.due(now + Duration::from_millis(29)));
+        assert!(t.due(now + Duration::from_millis(30)));
+    }
+}

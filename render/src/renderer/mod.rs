@@ -1,19 +1,24 @@
 //! The renderer: owns the device resources of one scene at one size and renders frames.
-//! `record.rs` records a frame's passes in order (reading it top to bottom is reading
-//! the algorithm); `bind_groups.rs` caches the bind groups the ping-pong needs;
-//! `readback.rs` brings images and per-pixel records back to the CPU.
+//! `setup.rs` creates it; `record.rs` records a frame's passes in order (reading it top to
+//! bottom is reading the algorithm); `uniforms.rs` fills the per-frame uniforms;
+//! `bind_groups.rs` caches the bind groups the ping-pong needs; `reports.rs` gathers each
+//! frame's counters, times and inspected pixel; `readback.rs` brings images and per-pixel
+//! records back to the CPU; `inspect.rs` is the pixel inspector's capture.
 
 mod bind_groups;
 mod inspect;
 mod readback;
 mod record;
+mod reports;
+mod setup;
+mod uniforms;
 
 pub use inspect::{PixelInspection, StageReservoir};
+pub use setup::check_size;
 
 use std::collections::HashMap;
 
 use glam::Mat4;
-use wgpu::util::DeviceExt;
 
 use crate::effects::{EffectSet, SceneFeatures};
 use crate::frame_targets::FrameTargets;
@@ -22,18 +27,15 @@ use crate::gpu::timing::{PassTimer, TimingMode};
 use crate::gpu::{Gpu, GpuError};
 use crate::gpu_scene::{GpuScene, SceneInfo};
 use crate::gpu_types::*;
-use crate::passes::{
-    ComputePass, PASS_INFO_SLOTS, PASS_INFO_STRIDE, PassLayouts, gbuffer::GBufferPass,
-};
+use crate::passes::{ComputePass, PassLayouts, gbuffer::GBufferPass};
 use crate::scene::{Camera, Scene};
 use crate::settings::Settings;
-use crate::shader_constants::{LIGHT_TILE_COUNT, LIGHT_TILE_SIZE, STAT_COUNT};
-use crate::stats::{FrameCounters, FrameReport};
+use crate::stats::FrameCounters;
 use crate::view::{Mode, ViewSettings};
 
 use bind_groups::BindGroupCache;
 
-/// Largest output the renderer accepts (each side), and the smallest.
+/// Largest output the renderer accepts (each side).
 pub const MAX_SIZE: u32 = 8192;
 
 /// Pipelines compiled for one set of defines, built on first use.
@@ -99,153 +101,7 @@ pub struct Renderer {
     last_passes: Vec<&'static str>,
 }
 
-fn tile_buffer(gpu: &Gpu, entries: u64) -> wgpu::Buffer {
-    gpu.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("light tiles"),
-        size: entries * std::mem::size_of::<GpuTileSample>() as u64,
-        usage: wgpu::BufferUsages::STORAGE,
-        mapped_at_creation: false,
-    })
-}
-
-/// Replaces the placeholder by the full light-tile buffer on first use.
-fn ensure_light_tiles(gpu: &Gpu, tiles: &mut wgpu::Buffer) {
-    let full = (LIGHT_TILE_COUNT * LIGHT_TILE_SIZE) as u64;
-    if tiles.size() < full * std::mem::size_of::<GpuTileSample>() as u64 {
-        *tiles = tile_buffer(gpu, full);
-    }
-}
-
-/// Validated output size.
-pub fn check_size(width: u32, height: u32) -> Result<(), GpuError> {
-    if width == 0 || height == 0 || width > MAX_SIZE || height > MAX_SIZE {
-        return Err(GpuError::Unsupported {
-            adapter: "renderer".into(),
-            problem: format!("output size {width}x{height} is outside 1..={MAX_SIZE} per side"),
-        });
-    }
-    Ok(())
-}
-
 impl Renderer {
-    pub fn new(
-        gpu: Gpu,
-        scene: &Scene,
-        width: u32,
-        height: u32,
-        settings: Settings,
-    ) -> anyhow::Result<Renderer> {
-        check_size(width, height)?;
-        let layouts = PassLayouts::new(&gpu);
-        let gpu_scene = GpuScene::upload(&gpu, scene, &layouts.scene)?;
-        let targets = FrameTargets::new(&gpu, width, height);
-        let uniform = |label: &str, size: usize| {
-            gpu.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: size as u64,
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            })
-        };
-        let frame_uniform = uniform("frame", std::mem::size_of::<GpuFrame>());
-        let params_uniform = uniform("params", std::mem::size_of::<GpuParams>());
-        let display_uniform = uniform("display", std::mem::size_of::<GpuDisplay>());
-        let pass_info_data: Vec<u8> = (0..PASS_INFO_SLOTS)
-            .flat_map(|i| {
-                let mut slot = vec![0u8; PASS_INFO_STRIDE as usize];
-                let info = GpuPassInfo {
-                    pass_index: i,
-                    is_last: 0,
-                    _pad: [0; 2],
-                };
-                slot[..16].copy_from_slice(bytemuck::bytes_of(&info));
-                slot
-            })
-            .collect();
-        let pass_info = gpu
-            .device
-            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("pass info"),
-                contents: &pass_info_data,
-                usage: wgpu::BufferUsages::UNIFORM,
-            });
-        let light_tiles = tile_buffer(&gpu, 1);
-        let stats_size = STAT_COUNT as u64 * 4;
-        let stats_buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("stats"),
-            size: stats_size,
-            usage: wgpu::BufferUsages::STORAGE
-                | wgpu::BufferUsages::COPY_SRC
-                | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let frame_bind_group = crate::passes::buffer_bind_group(
-            &gpu,
-            "frame",
-            &layouts.frame,
-            &[&frame_uniform, &params_uniform, &stats_buffer],
-        );
-        let timer = PassTimer::new(&gpu);
-        // lavapipe's compute timestamps do not bracket the dispatch: time CPU adapters by
-        // the clock, one pass per submission (see TimingMode::WallClock).
-        let timing_mode = if gpu.is_cpu() {
-            TimingMode::WallClock
-        } else if gpu.timestamps {
-            TimingMode::Timestamps
-        } else {
-            TimingMode::Off
-        };
-        let stats_ring = ReadbackRing::new(&gpu.device, stats_size, 4, "stats readback");
-        let camera = scene.default_camera();
-        Ok(Renderer {
-            layouts,
-            variants: HashMap::new(),
-            scene: gpu_scene,
-            features: SceneFeatures::of(scene),
-            bind_groups: BindGroupCache::default(),
-            targets,
-            frame_uniform,
-            params_uniform,
-            display_uniform,
-            pass_info,
-            light_tiles,
-            stats_buffer,
-            frame_bind_group,
-            timer,
-            stats_ring,
-            inspect_ring: ReadbackRing::new(
-                &gpu.device,
-                inspect::INSPECT_BYTES,
-                3,
-                "inspect readback",
-            ),
-            inspected_pixel: None,
-            pending_inspections: HashMap::new(),
-            arrived_inspections: HashMap::new(),
-            timing_mode,
-            pending_counters: HashMap::new(),
-            pending_times: HashMap::new(),
-            mode: Mode::Restir,
-            settings,
-            view: ViewSettings::default(),
-            forced_effects: None,
-            camera,
-            prev_camera: None,
-            prev_view_proj: None,
-            frame_index: 0,
-            seed: 0,
-            ping_pong: PingPong::default(),
-            history_valid: false,
-            cut_requested: false,
-            accumulated_frames: 0,
-            prev_jitter: glam::Vec2::ZERO,
-            last_final: None,
-            last_effects: None,
-            last_passes: Vec::new(),
-            gpu,
-        })
-    }
-
     pub fn gpu(&self) -> &Gpu {
         &self.gpu
     }
@@ -459,56 +315,5 @@ impl Renderer {
 
     pub fn inspected_pixel(&self) -> Option<(u32, u32)> {
         self.inspected_pixel
-    }
-
-    /// Reports (counters and pass timings) of frames whose readbacks have arrived.
-    /// With `wait`, blocks until every submitted frame's report is in.
-    pub fn collect_reports(&mut self, wait: bool) -> Vec<FrameReport> {
-        if wait {
-            self.gpu.wait_idle();
-        } else {
-            let _ = self.gpu.device.poll(wgpu::PollType::Poll);
-        }
-        for (frame, bytes) in self.stats_ring.collect() {
-            self.pending_counters
-                .insert(frame, FrameCounters(bytemuck::pod_collect_to_vec(&bytes)));
-        }
-        self.pending_times.extend(self.timer.collect());
-        for (frame, bytes) in self.inspect_ring.collect() {
-            if let Some(pending) = self.pending_inspections.remove(&frame) {
-                let scene = &self.scene;
-                if let Some(i) =
-                    pending.finish(frame, &bytes, |light, uv| scene.sample_point(light, uv))
-                {
-                    self.arrived_inspections.insert(frame, i);
-                }
-            }
-        }
-        // Counters, timings and the inspection of a frame travel in the same submission
-        // but come back separately: a report is complete when all are in (timings only
-        // when timestamps are on).
-        let mut ready: Vec<u64> = self
-            .pending_counters
-            .keys()
-            .copied()
-            .filter(|f| !self.timer.enabled() || wait || self.pending_times.contains_key(f))
-            .filter(|f| !self.pending_inspections.contains_key(f))
-            .collect();
-        ready.sort_unstable();
-        let reports = ready
-            .into_iter()
-            .map(|frame| FrameReport {
-                frame,
-                counters: self.pending_counters.remove(&frame).unwrap_or_default(),
-                pass_ms: self.pending_times.remove(&frame).unwrap_or_default(),
-                inspection: self.arrived_inspections.remove(&frame),
-            })
-            .collect();
-        // Timings whose counters were dropped (ring full) would otherwise pile up.
-        let oldest = self.frame_index.saturating_sub(16);
-        self.pending_times.retain(|f, _| *f >= oldest);
-        self.pending_inspections.retain(|f, _| *f >= oldest);
-        self.arrived_inspections.retain(|f, _| *f >= oldest);
-        reports
     }
 }

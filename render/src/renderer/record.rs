@@ -3,15 +3,12 @@
 
 use std::collections::BTreeSet;
 
-use glam::Vec2;
-
 use super::bind_groups::{Key, Uniforms};
 use super::inspect::InspectCapture;
 use super::{PingPong, PipelineVariant, Renderer};
 use crate::effects::EffectSet;
 use crate::gpu::timing::FrameRecorder;
 use crate::gpu::{Gpu, GpuError};
-use crate::gpu_types::{GpuDisplay, GpuFrame};
 use crate::passes::{
     ComputePass, PASS_INFO_SLOTS, PASS_INFO_STRIDE, PassLayouts, display, gbuffer::GBufferPass,
     initial, presample, reference, shade, spatial, temporal,
@@ -19,18 +16,6 @@ use crate::passes::{
 use crate::settings::Settings;
 use crate::shader_constants::{LIGHT_TILE_COUNT, LIGHT_TILE_SIZE, REFERENCE_SAMPLES_PER_DISPATCH};
 use crate::view::Mode;
-
-/// Radical inverse in base b (Halton sequence) for sub-pixel jitter.
-fn halton(mut index: u32, base: u32) -> f32 {
-    let mut f = 1.0;
-    let mut r = 0.0;
-    while index > 0 {
-        f /= base as f32;
-        r += f * (index % base) as f32;
-        index /= base;
-    }
-    r
-}
 
 /// The first of `count` reservoir buffers that is neither `a` nor `b`.
 fn other(count: usize, a: usize, b: usize) -> usize {
@@ -88,45 +73,6 @@ impl Renderer {
         s
     }
 
-    /// Writes the frame uniform; returns (unjittered view-projection, jitter).
-    fn write_frame_uniform(&mut self, settings: &Settings) -> (glam::Mat4, Vec2) {
-        let (width, height) = self.size();
-        let camera = self.camera;
-        let aspect = width as f32 / height as f32;
-        let near = (self.scene.scale * 1e-5).max(1e-30);
-        let view_proj = camera.projection_matrix(aspect, near) * camera.view_matrix();
-        let jitter = if settings.jitter && self.mode != Mode::Reference {
-            let i = (self.frame_index % 64) as u32 + 1;
-            Vec2::new(halton(i, 2), halton(i, 3)) - 0.5
-        } else {
-            Vec2::ZERO
-        };
-        let frame = GpuFrame {
-            view_proj: view_proj.to_cols_array_2d(),
-            inv_view_proj: view_proj.inverse().to_cols_array_2d(),
-            prev_view_proj: self.prev_view_proj.unwrap_or(view_proj).to_cols_array_2d(),
-            camera_position: camera.position.into(),
-            frame_index: self.frame_index as u32,
-            prev_camera_position: self
-                .prev_camera
-                .map_or(camera.position, |c| c.position)
-                .into(),
-            seed: self.seed,
-            jitter: jitter.into(),
-            size: [width, height],
-            scene_scale: self.scene.scale,
-            history_valid: self.history_valid as u32,
-            light_count: self.scene.light_count,
-            punctual_count: self.scene.punctual_count,
-            prev_jitter: self.prev_jitter.into(),
-            _pad: [0; 2],
-        };
-        self.gpu
-            .queue
-            .write_buffer(&self.frame_uniform, 0, bytemuck::bytes_of(&frame));
-        (view_proj, jitter)
-    }
-
     /// Renders one frame with the current camera, mode, settings and view, and submits it.
     pub fn render_frame(&mut self) -> Result<(), GpuError> {
         let settings = self.effective_settings();
@@ -173,7 +119,7 @@ impl Renderer {
         }
         if tiles_on {
             names.push("presample lights");
-            super::ensure_light_tiles(&self.gpu, &mut self.light_tiles);
+            super::setup::ensure_light_tiles(&self.gpu, &mut self.light_tiles);
         }
         let variant = self.variants.entry(variant_key(&defines)).or_default();
         if variant.gbuffer.is_none() && needs_gbuffer {
@@ -396,29 +342,8 @@ impl Renderer {
     }
 
     /// Whether the display shows the running average (the reference always does).
-    fn shows_accumulation(&self) -> bool {
+    pub(super) fn shows_accumulation(&self) -> bool {
         self.view.accumulate || self.mode == Mode::Reference
-    }
-
-    fn write_display_uniform(&self, settings: &Settings) {
-        let display = GpuDisplay {
-            scale: if self.shows_accumulation() {
-                1.0 / self.accumulated_frames.max(1) as f32
-            } else {
-                1.0
-            },
-            exposure: 2f32.powf(self.view.exposure_ev.clamp(-60.0, 60.0)),
-            tonemapper: self.view.tonemapper.gpu_code(),
-            view: self.view.view.gpu_code(),
-            reason_mask: self.view.reason_mask,
-            m_scale: settings.m_cap,
-            // The uploaded reference is already an average.
-            reference_scale: 1.0,
-            _pad: 0,
-        };
-        self.gpu
-            .queue
-            .write_buffer(&self.display_uniform, 0, bytemuck::bytes_of(&display));
     }
 
     /// Re-runs only the display pass on the last frame's buffers (after a change of view,
@@ -464,17 +389,7 @@ impl Renderer {
 
 #[cfg(test)]
 mod tests {
-    use super::{halton, other};
-
-    #[test]
-    fn halton_is_in_unit_interval_and_low_discrepancy() {
-        let xs: Vec<f32> = (1..=64).map(|i| halton(i, 2)).collect();
-        assert!(xs.iter().all(|x| (0.0..1.0).contains(x)));
-        let mean = xs.iter().sum::<f32>() / 64.0;
-        assert!((mean - 0.5).abs() < 0.02);
-        assert_eq!(halton(1, 2), 0.5);
-        assert_eq!(halton(2, 3), 2.0 / 3.0);
-    }
+    use super::other;
 
     #[test]
     fn stages_never_write_a_buffer_they_read() {

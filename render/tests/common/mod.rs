@@ -71,3 +71,9 @@ pub fn per_frame_errors(r: &mut Renderer, reference: &LinearImage, frames: u32) 
         stability / (frames - 1).max(1) as f64,
     )
 }
+
+/// The spatial radius for a test image `width` pixels wide: the default 30 px is meant for
+/// ~1080p; tests use 8 px per 128 (README, "Measured bias and settings at small sizes").
+pub fn radius_for(width: u32) -> String {
+    format!("spatial_radius={}", (width / 16).max(4))
+}

@@ -1,0 +1,171 @@
+//! Creating a renderer: the layouts, the scene upload, the size-dependent targets and the
+//! small uniform, stats and readback buffers every frame uses.
+
+use std::collections::HashMap;
+
+use wgpu::util::DeviceExt;
+
+use super::{MAX_SIZE, PingPong, Renderer};
+use crate::effects::SceneFeatures;
+use crate::frame_targets::FrameTargets;
+use crate::gpu::readback::ReadbackRing;
+use crate::gpu::timing::{PassTimer, TimingMode};
+use crate::gpu::{Gpu, GpuError};
+use crate::gpu_scene::GpuScene;
+use crate::gpu_types::*;
+use crate::passes::{PASS_INFO_SLOTS, PASS_INFO_STRIDE, PassLayouts};
+use crate::scene::Scene;
+use crate::settings::Settings;
+use crate::shader_constants::{LIGHT_TILE_COUNT, LIGHT_TILE_SIZE, STAT_COUNT};
+use crate::view::{Mode, ViewSettings};
+
+use super::bind_groups::BindGroupCache;
+use super::inspect;
+
+fn tile_buffer(gpu: &Gpu, entries: u64) -> wgpu::Buffer {
+    gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("light tiles"),
+        size: entries * std::mem::size_of::<GpuTileSample>() as u64,
+        usage: wgpu::BufferUsages::STORAGE,
+        mapped_at_creation: false,
+    })
+}
+
+/// Replaces the placeholder by the full light-tile buffer on first use.
+pub(super) fn ensure_light_tiles(gpu: &Gpu, tiles: &mut wgpu::Buffer) {
+    let full = (LIGHT_TILE_COUNT * LIGHT_TILE_SIZE) as u64;
+    if tiles.size() < full * std::mem::size_of::<GpuTileSample>() as u64 {
+        *tiles = tile_buffer(gpu, full);
+    }
+}
+
+/// Validated output size.
+pub fn check_size(width: u32, height: u32) -> Result<(), GpuError> {
+    if width == 0 || height == 0 || width > MAX_SIZE || height > MAX_SIZE {
+        return Err(GpuError::Unsupported {
+            adapter: "renderer".into(),
+            problem: format!("output size {width}x{height} is outside 1..={MAX_SIZE} per side"),
+        });
+    }
+    Ok(())
+}
+
+impl Renderer {
+    pub fn new(
+        gpu: Gpu,
+        scene: &Scene,
+        width: u32,
+        height: u32,
+        settings: Settings,
+    ) -> anyhow::Result<Renderer> {
+        check_size(width, height)?;
+        let layouts = PassLayouts::new(&gpu);
+        let gpu_scene = GpuScene::upload(&gpu, scene, &layouts.scene)?;
+        let targets = FrameTargets::new(&gpu, width, height);
+        let uniform = |label: &str, size: usize| {
+            gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: size as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        };
+        let frame_uniform = uniform("frame", std::mem::size_of::<GpuFrame>());
+        let params_uniform = uniform("params", std::mem::size_of::<GpuParams>());
+        let display_uniform = uniform("display", std::mem::size_of::<GpuDisplay>());
+        let pass_info_data: Vec<u8> = (0..PASS_INFO_SLOTS)
+            .flat_map(|i| {
+                let mut slot = vec![0u8; PASS_INFO_STRIDE as usize];
+                let info = GpuPassInfo {
+                    pass_index: i,
+                    is_last: 0,
+                    _pad: [0; 2],
+                };
+                slot[..16].copy_from_slice(bytemuck::bytes_of(&info));
+                slot
+            })
+            .collect();
+        let pass_info = gpu
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("pass info"),
+                contents: &pass_info_data,
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+        let light_tiles = tile_buffer(&gpu, 1);
+        let stats_size = STAT_COUNT as u64 * 4;
+        let stats_buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("stats"),
+            size: stats_size,
+            usage: wgpu::BufferUsages::STORAGE
+                | wgpu::BufferUsages::COPY_SRC
+                | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let frame_bind_group = crate::passes::buffer_bind_group(
+            &gpu,
+            "frame",
+            &layouts.frame,
+            &[&frame_uniform, &params_uniform, &stats_buffer],
+        );
+        let timer = PassTimer::new(&gpu);
+        // lavapipe's compute timestamps do not bracket the dispatch: time CPU adapters by
+        // the clock, one pass per submission (see TimingMode::WallClock).
+        let timing_mode = if gpu.is_cpu() {
+            TimingMode::WallClock
+        } else if gpu.timestamps {
+            TimingMode::Timestamps
+        } else {
+            TimingMode::Off
+        };
+        let stats_ring = ReadbackRing::new(&gpu.device, stats_size, 4, "stats readback");
+        let camera = scene.default_camera();
+        Ok(Renderer {
+            layouts,
+            variants: HashMap::new(),
+            scene: gpu_scene,
+            features: SceneFeatures::of(scene),
+            bind_groups: BindGroupCache::default(),
+            targets,
+            frame_uniform,
+            params_uniform,
+            display_uniform,
+            pass_info,
+            light_tiles,
+            stats_buffer,
+            frame_bind_group,
+            timer,
+            stats_ring,
+            inspect_ring: ReadbackRing::new(
+                &gpu.device,
+                inspect::INSPECT_BYTES,
+                3,
+                "inspect readback",
+            ),
+            inspected_pixel: None,
+            pending_inspections: HashMap::new(),
+            arrived_inspections: HashMap::new(),
+            timing_mode,
+            pending_counters: HashMap::new(),
+            pending_times: HashMap::new(),
+            mode: Mode::Restir,
+            settings,
+            view: ViewSettings::default(),
+            forced_effects: None,
+            camera,
+            prev_camera: None,
+            prev_view_proj: None,
+            frame_index: 0,
+            seed: 0,
+            ping_pong: PingPong::default(),
+            history_valid: false,
+            cut_requested: false,
+            accumulated_frames: 0,
+            prev_jitter: glam::Vec2::ZERO,
+            last_final: None,
+            last_effects: None,
+            last_passes: Vec::new(),
+            gpu,
+        })
+    }
+}

@@ -1,0 +1,78 @@
+use super::*;
+
+#[test]
+fn defaults_follow_the_notes() {
+    let s = Settings::default();
+    assert_eq!(s.light_candidates, 32);
+    assert_eq!(s.bsdf_candidates, 1);
+    assert_eq!(s.m_cap, 20.0);
+    assert!((s.normal_threshold - 25f32.to_radians().cos()).abs() < 1e-3);
+    assert_eq!(s.depth_threshold, 0.1);
+    assert_eq!(s.target_ratio_clamp, 10.0);
+    assert_eq!(
+        (s.spatial_neighbours, s.spatial_radius, s.spatial_passes),
+        (5, 30.0, 1)
+    );
+    assert!(s.permutation && s.temporal && s.spatial);
+    assert_eq!(s.boiling_filter, 0.0);
+}
+
+#[test]
+fn every_row_round_trips_through_get_and_set() {
+    for def in PARAMS {
+        let mut s = Settings::default();
+        let v = s.get(def.name).unwrap();
+        assert_eq!(s.set(def.name, v.clone()), Ok(None), "{}", def.name);
+        assert_eq!(s.get(def.name), Some(v));
+    }
+}
+
+#[test]
+fn out_of_range_values_are_clamped_with_a_warning() {
+    let mut s = Settings::default();
+    let w = s.set_from_str("light_candidates", "100000").unwrap();
+    assert_eq!(s.light_candidates, 256);
+    assert!(w.unwrap().contains("light_candidates"));
+    s.set_from_str("m_cap", "-5").unwrap();
+    assert_eq!(s.m_cap, 0.0);
+    assert!(s.set_from_str("m_cap", "nan").is_err());
+    assert!(s.set_from_str("temporal", "maybe").is_err());
+    assert!(matches!(
+        s.set_from_str("nope", "1"),
+        Err(SettingsError::Unknown(_))
+    ));
+    assert!(s.set_from_str("bias_correction", "magic").is_err());
+    s.set_from_str("bias_correction", "pairwise").unwrap();
+    assert_eq!(s.bias_correction, BiasCorrection::Pairwise);
+}
+
+#[test]
+fn presets_round_trip_and_reject_unknown_keys_and_types() {
+    let s = Settings {
+        m_cap: 7.5,
+        temporal: false,
+        bias_correction: BiasCorrection::Pairwise,
+        ..Settings::default()
+    };
+    let text = preset::to_toml(&s);
+    let (back, warnings) = preset::parse(&text, &Settings::default()).unwrap();
+    assert_eq!(back, s);
+    assert!(warnings.is_empty());
+    let err = preset::parse("m_cup = 3\n", &Settings::default()).unwrap_err();
+    assert!(err.to_string().contains("m_cup"));
+    let err = preset::parse("temporal = \"yes\"\n", &Settings::default()).unwrap_err();
+    assert!(err.to_string().contains("temporal"));
+    assert!(preset::parse("this is not toml", &Settings::default()).is_err());
+}
+
+#[test]
+fn gpu_params_reflect_checks_and_flags() {
+    let mut s = Settings::default();
+    assert_eq!(s.gpu_params().checks, 0xff);
+    s.check_normal = false;
+    s.check_target_ratio = false;
+    let p = s.gpu_params();
+    assert_eq!(p.checks & REJECT_NORMAL, 0);
+    assert_eq!(p.target_ratio_clamp, 0.0);
+    assert_eq!(p.flags & PARAM_FLAG_PERMUTATION, PARAM_FLAG_PERMUTATION);
+}

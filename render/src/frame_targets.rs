@@ -49,6 +49,7 @@ fn target(
     height: u32,
     format: wgpu::TextureFormat,
     usage: wgpu::TextureUsages,
+    view_formats: &[wgpu::TextureFormat],
 ) -> wgpu::Texture {
     gpu.device.create_texture(&wgpu::TextureDescriptor {
         label: Some(label),
@@ -62,7 +63,7 @@ fn target(
         dimension: wgpu::TextureDimension::D2,
         format,
         usage,
-        view_formats: &[],
+        view_formats,
     })
 }
 
@@ -79,6 +80,7 @@ impl FrameTargets {
             height,
             gbuffer::VISIBILITY_FORMAT,
             wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+            &[],
         );
         let depth = target(
             gpu,
@@ -87,23 +89,20 @@ impl FrameTargets {
             height,
             gbuffer::DEPTH_FORMAT,
             wgpu::TextureUsages::RENDER_ATTACHMENT,
+            &[],
         );
-        let display = gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("display"),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: display::OUTPUT_FORMAT,
-            usage: wgpu::TextureUsages::STORAGE_BINDING
+        let display = target(
+            gpu,
+            "display",
+            width,
+            height,
+            display::OUTPUT_FORMAT,
+            wgpu::TextureUsages::STORAGE_BINDING
                 | wgpu::TextureUsages::TEXTURE_BINDING
                 | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[wgpu::TextureFormat::Rgba8UnormSrgb],
-        });
+            // The viewer samples it through an sRGB view.
+            &[wgpu::TextureFormat::Rgba8UnormSrgb],
+        );
         let display_view = display.create_view(&Default::default());
         let display_srgb_view = display.create_view(&wgpu::TextureViewDescriptor {
             format: Some(wgpu::TextureFormat::Rgba8UnormSrgb),

@@ -67,7 +67,9 @@ impl PixelInspection {
 pub struct InspectCapture {
     pixel: (u32, u32),
     index: u64,
-    staging: Option<wgpu::Buffer>,
+    /// The renderer's persistent staging buffer (allocated once, reused every frame: the
+    /// ring copies out of it before the next frame's copies land in queue order).
+    staging: wgpu::Buffer,
     stages: Vec<String>,
 }
 
@@ -78,31 +80,29 @@ pub struct PendingInspection {
 }
 
 impl InspectCapture {
-    pub fn new(pixel: (u32, u32), size: (u32, u32)) -> InspectCapture {
+    pub fn new(pixel: (u32, u32), size: (u32, u32), staging: wgpu::Buffer) -> InspectCapture {
         let (x, y) = (pixel.0.min(size.0 - 1), pixel.1.min(size.1 - 1));
         InspectCapture {
             pixel: (x, y),
             index: (y * size.0 + x) as u64,
-            staging: None,
+            staging,
             stages: Vec::new(),
         }
     }
 
-    fn staging(&mut self, device: &wgpu::Device) -> &wgpu::Buffer {
-        self.staging.get_or_insert_with(|| {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("inspect"),
-                size: INSPECT_BYTES,
-                usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
-                mapped_at_creation: false,
-            })
+    /// The staging buffer every capture writes into.
+    pub fn staging_buffer(device: &wgpu::Device) -> wgpu::Buffer {
+        device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("inspect"),
+            size: INSPECT_BYTES,
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
         })
     }
 
     /// Copies the pixel's reservoir from buffer `reservoirs` as the next stage.
     pub fn copy_reservoir(
         &mut self,
-        device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         t: &FrameTargets,
         reservoirs: usize,
@@ -125,12 +125,10 @@ impl InspectCapture {
             stage.to_string()
         };
         self.stages.push(name);
-        let index = self.index;
-        let staging = self.staging(device).clone();
         encoder.copy_buffer_to_buffer(
             &t.reservoirs[reservoirs],
-            index * RESERVOIR_BYTES,
-            &staging,
+            self.index * RESERVOIR_BYTES,
+            &self.staging,
             SURFACE_BYTES + DEBUG_BYTES + slot * RESERVOIR_BYTES,
             RESERVOIR_BYTES,
         );
@@ -138,25 +136,23 @@ impl InspectCapture {
 
     /// Copies the pixel's surface and final debug record.
     pub fn copy_pixel_records(
-        &mut self,
-        device: &wgpu::Device,
+        &self,
         encoder: &mut wgpu::CommandEncoder,
         t: &FrameTargets,
         surfaces: usize,
     ) {
         let index = self.index;
-        let staging = self.staging(device).clone();
         encoder.copy_buffer_to_buffer(
             &t.surfaces[surfaces],
             index * SURFACE_BYTES,
-            &staging,
+            &self.staging,
             0,
             SURFACE_BYTES,
         );
         encoder.copy_buffer_to_buffer(
             &t.debug,
             index * DEBUG_BYTES,
-            &staging,
+            &self.staging,
             SURFACE_BYTES,
             DEBUG_BYTES,
         );
@@ -170,9 +166,7 @@ impl InspectCapture {
         ring: &mut ReadbackRing,
         frame: u64,
     ) {
-        if let Some(staging) = &self.staging {
-            ring.copy_from(device, encoder, staging, INSPECT_BYTES, frame);
-        }
+        ring.copy_from(device, encoder, &self.staging, INSPECT_BYTES, frame);
     }
 
     pub fn into_pending(self) -> PendingInspection {

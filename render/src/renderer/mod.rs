@@ -73,6 +73,7 @@ pub struct Renderer {
     timer: PassTimer,
     stats_ring: ReadbackRing,
     inspect_ring: ReadbackRing,
+    inspect_staging: wgpu::Buffer,
     inspected_pixel: Option<(u32, u32)>,
     pending_inspections: HashMap<u64, inspect::PendingInspection>,
     /// Inspections read back, waiting for their frame's counters (a separate readback).
@@ -97,7 +98,8 @@ pub struct Renderer {
     cut_requested: bool,
     accumulated_frames: u32,
     last_final: Option<usize>,
-    last_effects: Option<EffectSet>,
+    /// The effect set of the last frame (reused while its inputs stay the same).
+    last_effects: Option<std::sync::Arc<record::ActiveEffects>>,
     last_passes: Vec<&'static str>,
 }
 
@@ -188,7 +190,7 @@ impl Renderer {
 
     /// The effect set of the last rendered frame and the passes it dispatched.
     pub fn last_effects(&self) -> Option<&EffectSet> {
-        self.last_effects.as_ref()
+        self.last_effects.as_ref().map(|e| &e.set)
     }
 
     pub fn last_passes(&self) -> &[&'static str] {

@@ -6,7 +6,9 @@ use std::collections::BTreeSet;
 use super::bind_groups::{Key, Uniforms};
 use super::inspect::InspectCapture;
 use super::{PingPong, PipelineVariant, Renderer};
-use crate::effects::EffectSet;
+use std::sync::Arc;
+
+use crate::effects::{Effect, EffectSet};
 use crate::gpu::timing::FrameRecorder;
 use crate::gpu::{Gpu, GpuError};
 use crate::passes::{
@@ -24,8 +26,44 @@ fn other(count: usize, a: usize, b: usize) -> usize {
         .expect("enough reservoir buffers")
 }
 
-fn variant_key(defines: &BTreeSet<String>) -> String {
-    defines.iter().cloned().collect::<Vec<_>>().join(",")
+/// The effect set of a frame, its WGSL defines and the key of its pipeline variant,
+/// computed when the inputs change and shared until they change again.
+pub(super) struct ActiveEffects {
+    pub set: EffectSet,
+    pub defines: BTreeSet<String>,
+    pub key: String,
+    /// What it was derived from (`None` settings when forced by `--effects`).
+    inputs: Option<(Settings, bool)>,
+}
+
+impl Renderer {
+    /// The effect set for this frame: forced, or derived from the scene and settings
+    /// (cached: the common frame allocates nothing here).
+    fn active_effects(&mut self, settings: &Settings, moved: bool) -> Arc<ActiveEffects> {
+        let inputs = self
+            .forced_effects
+            .is_none()
+            .then(|| (settings.clone(), moved));
+        let unchanged = |last: &ActiveEffects| {
+            last.inputs == inputs
+                && (inputs.is_some() || Some(&last.set) == self.forced_effects.as_ref())
+        };
+        if let Some(last) = self.last_effects.as_ref().filter(|l| unchanged(l)) {
+            return last.clone();
+        }
+        let set = match &self.forced_effects {
+            Some(forced) => forced.clone(),
+            None => EffectSet::detect(&self.features, settings, moved),
+        };
+        let defines = set.defines();
+        let key = defines.iter().cloned().collect::<Vec<_>>().join(",");
+        Arc::new(ActiveEffects {
+            set,
+            defines,
+            key,
+            inputs,
+        })
+    }
 }
 
 /// The compiled pass `name` of `variant`, compiling it on first use.
@@ -86,11 +124,8 @@ impl Renderer {
         }
         self.cut_requested = false;
 
-        let effects = match &self.forced_effects {
-            Some(forced) => forced.clone(),
-            None => EffectSet::detect(&self.features, &settings, moved),
-        };
-        let defines = effects.defines();
+        let active = self.active_effects(&settings, moved);
+        let (effects, defines, key) = (&active.set, &active.defines, active.key.as_str());
         let (view_proj, jitter) = self.write_frame_uniform(&settings);
         self.gpu.queue.write_buffer(
             &self.params_uniform,
@@ -104,7 +139,7 @@ impl Renderer {
         let needs_gbuffer = realtime || !settings.jitter;
         let temporal_on = realtime && settings.temporal;
         let spatial_on = realtime && settings.spatial && settings.spatial_neighbours > 0;
-        let tiles_on = realtime && effects.contains(crate::effects::Effect::LightTiles);
+        let tiles_on = realtime && effects.contains(Effect::LightTiles);
         let mut names = vec!["display"];
         if realtime {
             names.extend(["initial", "shade"]);
@@ -121,14 +156,14 @@ impl Renderer {
             names.push("presample lights");
             super::setup::ensure_light_tiles(&self.gpu, &mut self.light_tiles);
         }
-        let variant = self.variants.entry(variant_key(&defines)).or_default();
+        let variant = self.variants.entry(key.to_string()).or_default();
         if variant.gbuffer.is_none() && needs_gbuffer {
-            variant.gbuffer = Some(GBufferPass::new(&self.gpu, &self.layouts, &defines)?);
+            variant.gbuffer = Some(GBufferPass::new(&self.gpu, &self.layouts, defines)?);
         }
         for name in &names {
-            pass(variant, &self.gpu, &self.layouts, &defines, name)?;
+            pass(variant, &self.gpu, &self.layouts, defines, name)?;
         }
-        let variant = &self.variants[&variant_key(&defines)];
+        let variant = &self.variants[key];
 
         self.accumulated_frames += 1;
         let show_accumulation = self.shows_accumulation();
@@ -148,7 +183,9 @@ impl Renderer {
         let buffers = self.targets.reservoirs.len();
         let size = self.size();
         let mut dispatched: Vec<&'static str> = Vec::new();
-        let mut capture = self.inspected_pixel.map(|p| InspectCapture::new(p, size));
+        let mut capture = self
+            .inspected_pixel
+            .map(|p| InspectCapture::new(p, size, self.inspect_staging.clone()));
         let mut rec = FrameRecorder::new(&self.gpu, &mut self.timer, self.timing_mode);
         rec.encoder().clear_buffer(&self.stats_buffer, 0, None);
         let uniforms = Uniforms {
@@ -207,13 +244,7 @@ impl Renderer {
             variant.passes["initial"].record(&mut rec, [&frame_group, &scene_group, &g], size);
             dispatched.push("initial");
             if let Some(c) = &mut capture {
-                c.copy_reservoir(
-                    &self.gpu.device,
-                    rec.encoder(),
-                    &self.targets,
-                    current,
-                    "initial",
-                );
+                c.copy_reservoir(rec.encoder(), &self.targets, current, "initial");
             }
             if temporal_on {
                 let out = other(buffers, current, history);
@@ -227,13 +258,7 @@ impl Renderer {
                 dispatched.push("temporal");
                 current = out;
                 if let Some(c) = &mut capture {
-                    c.copy_reservoir(
-                        &self.gpu.device,
-                        rec.encoder(),
-                        &self.targets,
-                        current,
-                        "temporal",
-                    );
+                    c.copy_reservoir(rec.encoder(), &self.targets, current, "temporal");
                 }
             }
             if spatial_on {
@@ -254,13 +279,7 @@ impl Renderer {
                     );
                     current = out;
                     if let Some(c) = &mut capture {
-                        c.copy_reservoir(
-                            &self.gpu.device,
-                            rec.encoder(),
-                            &self.targets,
-                            current,
-                            "spatial",
-                        );
+                        c.copy_reservoir(rec.encoder(), &self.targets, current, "spatial");
                     }
                 }
                 dispatched.push("spatial");
@@ -301,7 +320,7 @@ impl Renderer {
         );
         dispatched.push("display");
         if let Some(c) = &mut capture {
-            c.copy_pixel_records(&self.gpu.device, rec.encoder(), &self.targets, surfaces);
+            c.copy_pixel_records(rec.encoder(), &self.targets, surfaces);
         }
 
         let frame = self.frame_index;
@@ -336,7 +355,7 @@ impl Renderer {
         self.prev_view_proj = Some(view_proj);
         self.prev_jitter = jitter;
         self.frame_index += 1;
-        self.last_effects = Some(effects);
+        self.last_effects = Some(active.clone());
         self.last_passes = dispatched;
         Ok(())
     }
@@ -351,13 +370,18 @@ impl Renderer {
     pub fn redisplay(&mut self) -> Result<(), GpuError> {
         let settings = self.effective_settings();
         self.write_display_uniform(&settings);
-        let defines = self
-            .last_effects
-            .as_ref()
-            .map(|e| e.defines())
-            .unwrap_or_default();
-        let variant = self.variants.entry(variant_key(&defines)).or_default();
-        let display_pass = pass(variant, &self.gpu, &self.layouts, &defines, "display")?;
+        // The display pass of the last frame's variant (any variant's would do).
+        let Some(active) = self.last_effects.clone() else {
+            return Ok(());
+        };
+        let variant = self.variants.entry(active.key.clone()).or_default();
+        let display_pass = pass(
+            variant,
+            &self.gpu,
+            &self.layouts,
+            &active.defines,
+            "display",
+        )?;
         let uniforms = Uniforms {
             pass_info: &self.pass_info,
             display: &self.display_uniform,

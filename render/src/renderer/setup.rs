@@ -142,6 +142,7 @@ impl Renderer {
                 3,
                 "inspect readback",
             ),
+            inspect_staging: inspect::InspectCapture::staging_buffer(&gpu.device),
             inspected_pixel: None,
             pending_inspections: HashMap::new(),
             arrived_inspections: HashMap::new(),

@@ -7,7 +7,7 @@
 //! reservoir buffers suffice. The second surface buffer and the third reservoir buffer
 //! (the history) are allocated the first time temporal reuse runs.
 
-use crate::gpu::Gpu;
+use crate::gpu::{Gpu, texture_2d};
 use crate::gpu_types::{GpuPixelDebug, GpuReservoir, GpuSurface};
 use crate::passes::{display, gbuffer};
 
@@ -42,38 +42,13 @@ fn pixel_buffer(gpu: &Gpu, label: &str, pixels: u64, stride: usize) -> wgpu::Buf
     })
 }
 
-fn target(
-    gpu: &Gpu,
-    label: &str,
-    width: u32,
-    height: u32,
-    format: wgpu::TextureFormat,
-    usage: wgpu::TextureUsages,
-    view_formats: &[wgpu::TextureFormat],
-) -> wgpu::Texture {
-    gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some(label),
-        size: wgpu::Extent3d {
-            width,
-            height,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format,
-        usage,
-        view_formats,
-    })
-}
-
 impl FrameTargets {
     pub fn new(gpu: &Gpu, width: u32, height: u32) -> FrameTargets {
         let pixels = width as u64 * height as u64;
         let surface = std::mem::size_of::<GpuSurface>();
         let reservoir = std::mem::size_of::<GpuReservoir>();
         let color = std::mem::size_of::<[f32; 4]>();
-        let visibility = target(
+        let visibility = texture_2d(
             gpu,
             "visibility",
             width,
@@ -82,7 +57,7 @@ impl FrameTargets {
             wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
             &[],
         );
-        let depth = target(
+        let depth = texture_2d(
             gpu,
             "depth",
             width,
@@ -91,7 +66,7 @@ impl FrameTargets {
             wgpu::TextureUsages::RENDER_ATTACHMENT,
             &[],
         );
-        let display = target(
+        let display = texture_2d(
             gpu,
             "display",
             width,

@@ -56,8 +56,13 @@ pub fn after_frame(renderer: &mut Renderer, state: &mut ViewerState) {
     }
     state.render_size = renderer.size();
     state.accumulated_frames = renderer.accumulated_frames();
-    state.scene.effects = renderer.last_effects().cloned();
-    state.scene.passes = renderer.last_passes().to_vec();
+    // Copied only when they change (an effect set carries a sentence per effect).
+    if state.scene.effects.as_ref() != renderer.last_effects() {
+        state.scene.effects = renderer.last_effects().cloned();
+    }
+    if state.scene.passes != renderer.last_passes() {
+        state.scene.passes = renderer.last_passes().to_vec();
+    }
 }
 
 /// A new scene is in the renderer: its camera, facts and fresh statistics.

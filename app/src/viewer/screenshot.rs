@@ -18,20 +18,15 @@ impl WindowCapture {
         format: wgpu::TextureFormat,
         (width, height): (u32, u32),
     ) -> WindowCapture {
-        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("window capture"),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
+        let texture = restir_render::gpu::texture_2d(
+            gpu,
+            "window capture",
+            width,
+            height,
             format,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            &[],
+        );
         let view = texture.create_view(&Default::default());
         WindowCapture { texture, view }
     }

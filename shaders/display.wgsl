@@ -11,6 +11,7 @@
 @group(2) @binding(4) var<storage, read> reference: array<vec4<f32>>;
 @group(2) @binding(5) var<uniform> display: Display;
 @group(2) @binding(6) var output: texture_storage_2d<rgba8unorm, write>;
+@group(2) @binding(7) var<storage, read> comparison: array<vec4<f32>>;
 
 const NO_SURFACE_COLOR: vec3<f32> = vec3<f32>(0.08, 0.08, 0.08);
 
@@ -56,7 +57,7 @@ fn source_color(source: u32) -> vec3<f32> {
     }
 }
 
-// One colour per rejection reason (bit index): temporal 0..7, spatial 8..15 (lighter).
+// One colour per temporal rejection reason (bit index 0..7).
 fn reason_color(bit: u32) -> vec3<f32> {
     var palette = array<vec3<f32>, 8>(
         vec3<f32>(1.0, 0.0, 0.0),   // off-screen: red
@@ -68,8 +69,13 @@ fn reason_color(bit: u32) -> vec3<f32> {
         vec3<f32>(0.6, 0.3, 0.1),   // target ≤ 0: brown
         vec3<f32>(1.0, 1.0, 1.0),   // target ratio: white
     );
-    let c = palette[bit & 7u];
-    return select(c, mix(c, vec3<f32>(1.0), 0.5) * 0.8, bit >= 8u);
+    return palette[bit & 7u];
+}
+
+// Fraction of spatial neighbours rejected: black (none) to a mid grey (all), darker than
+// every reason colour so the two never read alike.
+fn spatial_count_color(fraction: f32) -> vec3<f32> {
+    return vec3<f32>(0.45 * clamp(fraction, 0.0, 1.0));
 }
 
 fn debug_color(index: u32, pixel: vec2<u32>) -> vec3<f32> {
@@ -81,6 +87,11 @@ fn debug_color(index: u32, pixel: vec2<u32>) -> vec3<f32> {
         // |frame − reference| relative to the exposure's white point.
         return heatmap(abs(value - truth) * display.exposure);
     }
+    if display.view == VIEW_DIFFERENCE {
+        let a = luminance(image[index].rgb * display.scale);
+        let b = luminance(comparison[index].rgb * display.comparison_scale);
+        return heatmap(abs(a - b) * display.exposure);
+    }
     if s.depth <= 0.0 {
         return NO_SURFACE_COLOR;
     }
@@ -91,11 +102,19 @@ fn debug_color(index: u32, pixel: vec2<u32>) -> vec3<f32> {
             return heatmap(r.m / max(display.m_scale, 1.0));
         }
         case VIEW_REJECTION: {
-            let mask = (d.temporal_mask | (d.spatial_mask << 8u)) & display.reason_mask;
-            if mask == 0u {
+            // Temporal: the first enabled reason. Elsewhere, spatial: how many of the
+            // neighbours tried were rejected, for any reason, as a grey level (the union of
+            // K neighbours' reasons paints almost every pixel one colour and says little;
+            // the reasons themselves are in the Stats panel and the inspector).
+            let mask = d.temporal_mask & display.reason_mask & 0xffu;
+            if mask != 0u {
+                return reason_color(firstTrailingBit(mask));
+            }
+            if display.spatial_tries == 0u {
                 return vec3<f32>(0.0);
             }
-            return reason_color(firstTrailingBit(mask));
+            let rejected = display.spatial_tries - min(d.spatial_accepted, display.spatial_tries);
+            return spatial_count_color(f32(rejected) / f32(display.spatial_tries));
         }
         case VIEW_WEIGHT: {
             // log10 W over [-4, 4] → [0, 1]; null samples are black.

@@ -6,6 +6,7 @@
 
 mod bench;
 mod cli;
+mod compare;
 mod viewer;
 
 use clap::{Parser, Subcommand};
@@ -16,9 +17,14 @@ use clap::{Parser, Subcommand};
     version,
     about = "The ReSTIR lab: watch, tune and measure ReSTIR direct lighting"
 )]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
 struct Args {
     #[command(subcommand)]
     command: Option<Command>,
+    /// Without a command: the viewer's own arguments (`restir-viewer FILE.gltf`,
+    /// `restir-viewer --scene builtin:NAME`, as after `view`).
+    #[command(flatten)]
+    view: viewer::ViewArgs,
 }
 
 #[derive(Subcommand)]
@@ -50,7 +56,7 @@ fn main() {
             cli::params::print_scenes();
             Ok(())
         }
-        None => viewer::run(viewer::ViewArgs::default()),
+        None => viewer::run(args.view),
     };
     if let Err(e) = result {
         // One line, naming the file or argument and the problem.

@@ -209,6 +209,10 @@ fn scenes_and_params_list_everything() {
     let scenes = viewer(&["scenes"]);
     assert!(scenes.status.success());
     let text = String::from_utf8_lossy(&scenes.stdout);
+    assert!(
+        text.lines().any(|l| l == "builtin:concourse (default)"),
+        "the showcase is the marked default: {text}"
+    );
     for name in [
         "builtin:cornell",
         "builtin:many-lights",
@@ -287,4 +291,137 @@ fn render_writes_exr_png_debug_views_and_stats() {
         let decoded = image::open(&png).unwrap().to_rgba8();
         assert_eq!(decoded.dimensions(), (16, 12));
     }
+}
+
+/// `render --compare B`: the left half is this configuration's render, the right half
+/// B's, pixel for pixel (each side has its own renderer and history, same seed), and the
+/// stats JSON has a block per side.
+#[test]
+fn the_split_image_halves_match_single_configuration_renders() {
+    let dir = temp_dir("compare");
+    let frames = ["--frames", "4", "--set", "jitter=false"];
+    let single = |mode: &str, name: &str| {
+        let out = dir.join(name);
+        let res = render(
+            "builtin:cornell",
+            &[&frames[..], &["--mode", mode]].concat(),
+            &out,
+        );
+        assert!(
+            res.status.success(),
+            "{}",
+            String::from_utf8_lossy(&res.stderr)
+        );
+        restir_render::LinearImage::load_exr(&out).unwrap()
+    };
+    let restir = single("restir", "restir.exr");
+    let ris = single("ris", "ris.exr");
+    let split_path = dir.join("split.exr");
+    let stats = dir.join("split.json");
+    let extra = [
+        &frames[..],
+        &["--compare", "ris", "--stats", stats.to_str().unwrap()],
+    ]
+    .concat();
+    let res = render("builtin:cornell", &extra, &split_path);
+    assert!(
+        res.status.success(),
+        "{}",
+        String::from_utf8_lossy(&res.stderr)
+    );
+    let split = restir_render::LinearImage::load_exr(&split_path).unwrap();
+    assert_eq!((split.width, split.height), (16, 12));
+    // The two configurations differ, so matching halves prove where each side comes from.
+    assert_ne!(restir.pixels, ris.pixels);
+    for y in 0..12 {
+        for x in 0..16 {
+            let expected = if x < 8 {
+                restir.get(x, y)
+            } else {
+                ris.get(x, y)
+            };
+            assert_eq!(split.get(x, y), expected, "pixel ({x}, {y})");
+        }
+    }
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+    let compare = &json["compare"];
+    assert_eq!(compare["divider_column"], 8);
+    assert_eq!(compare["right_config"], "ris");
+    assert_eq!(compare["left"]["mode"], "Restir");
+    assert_eq!(compare["right"]["mode"], "Ris");
+    assert_eq!(compare["right"]["frames"], 4);
+    // The radius the renderer used at this height (30 px at 1080p → the 2 px floor).
+    assert_eq!(json["effective_spatial_radius_px"], 2.0);
+    // PNG: the display of each side, split the same way.
+    let png = dir.join("split.png");
+    let res = render(
+        "builtin:cornell",
+        &[&frames[..], &["--compare", "nee"]].concat(),
+        &png,
+    );
+    assert!(
+        res.status.success(),
+        "{}",
+        String::from_utf8_lossy(&res.stderr)
+    );
+    // The difference view: B identical to A (same configuration and seed) is |A − B| = 0
+    // everywhere (viridis' first stop), B = nee is not.
+    let difference = |b: &str| {
+        let out = dir.join(format!("difference-{b}.png"));
+        let extra = [&frames[..], &["--compare", b, "--debug-view", "difference"]].concat();
+        let res = render("builtin:cornell", &extra, &out);
+        assert!(
+            res.status.success(),
+            "{}",
+            String::from_utf8_lossy(&res.stderr)
+        );
+        image::open(&out).unwrap().to_rgb8()
+    };
+    let zero = [141u8, 16, 155]; // heatmap(0) = (0.267, 0.005, 0.329) linear, sRGB-encoded
+    let near = |p: &image::Rgb<u8>| p.0.iter().zip(zero).all(|(a, b)| a.abs_diff(b) <= 2);
+    assert!(difference("restir").pixels().all(near), "|A − A| is not 0");
+    assert!(
+        !difference("nee").pixels().all(near),
+        "|A − nee| is 0 everywhere"
+    );
+    let bad = render("builtin:cornell", &["--compare", "magic"], &png);
+    assert!(!bad.status.success());
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("--compare 'magic'"));
+}
+
+/// Issue 14: `light_tiles=auto` (the default) presamples tiles only from the measured
+/// break-even light count on; the stats JSON says which and why.
+#[test]
+fn light_tiles_auto_drops_tiles_for_few_lights_and_keeps_them_for_many() {
+    let dir = temp_dir("tiles");
+    let effects_of = |scene: &str, extra: &[&str]| {
+        let stats = dir.join("stats.json");
+        let out = dir.join("frame.exr");
+        let args = [&["--stats", stats.to_str().unwrap()][..], extra].concat();
+        let res = render(scene, &args, &out);
+        assert!(
+            res.status.success(),
+            "{}",
+            String::from_utf8_lossy(&res.stderr)
+        );
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+        let effects = json["effects"].as_str().unwrap().to_string();
+        let reason = json["effect_reasons"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|r| r[0] == "light-tiles")
+            .map(|r| r[1].as_str().unwrap().to_string())
+            .unwrap();
+        (effects.split(',').any(|e| e == "light-tiles"), reason)
+    };
+    let (cornell, why) = effects_of("builtin:cornell", &[]);
+    assert!(!cornell, "cornell keeps tiles: {why}");
+    assert!(why.contains("2 lights <"), "{why}");
+    let (many, why) = effects_of("builtin:many-lights:65536", &[]);
+    assert!(many, "many-lights:65536 drops tiles: {why}");
+    let (forced, _) = effects_of("builtin:cornell", &["--set", "light_tiles=on"]);
+    assert!(forced, "light_tiles=on forces them");
 }

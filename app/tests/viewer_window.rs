@@ -76,6 +76,8 @@ fn run_viewer(args: &[&str], png: &Path) -> Run {
         // Xvfb reports no DPI worth trusting: pin the scale so the window size is exact.
         .env("WINIT_X11_SCALE_FACTOR", "1")
         .env("RUST_LOG", "warn")
+        // The split screen fetches the Accuracy reference: keep its cache out of the tree.
+        .env("RESTIR_CACHE_DIR", out_path("restir-cache"))
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
         .spawn()
@@ -296,4 +298,75 @@ fn resizing_and_minimising_while_rendering_does_not_crash() {
     }
     // The screenshot comes after the script: the window has its last size.
     assert_window_sized(&run, (720, 450));
+}
+
+/// `restir-viewer builtin:NAME` (no `view`, the scene as the only positional argument).
+#[test]
+fn a_positional_scene_opens_the_viewer() {
+    let png = out_path("positional.png");
+    let png_arg = png.to_str().expect("a UTF-8 path");
+    let run = run_viewer(
+        &[
+            "builtin:cornell",
+            "--screenshot-after",
+            "5",
+            png_arg,
+            "--exit",
+        ],
+        &png,
+    );
+    assert_window_sized(&run, WINDOW);
+    let scene = scene_area(&run.png);
+    assert!(
+        fraction(&scene, |p| p[0] > 100 && p[1] < 60 && p[2] < 60) > 0.03,
+        "no red wall: the Cornell box did not open"
+    );
+    assert_panel_drawn(&run.png);
+}
+
+/// `restir-viewer --scene … --compare ris` (viewer flags without `view`): restir on the
+/// left of the divider, ris on the right, each with its own history. In the source view
+/// the left half shows reused survivors, the right half (no reuse) only initial ones.
+#[test]
+fn the_split_screen_renders_both_configurations_side_by_side() {
+    let png = out_path("split.png");
+    let png_arg = png.to_str().expect("a UTF-8 path");
+    let args = [
+        "--scene",
+        "builtin:cornell",
+        "--compare",
+        "ris",
+        "--debug-view",
+        "source",
+        "--screenshot-after",
+        "20",
+        png_arg,
+        "--exit",
+    ];
+    let run = run_viewer(&args, &png);
+    assert_window_sized(&run, WINDOW);
+    let half = SCENE_RIGHT / 2;
+    // Away from the divider and the labels at its foot.
+    let left = region(&run.png, 8..half - 40, 8..WINDOW.1 - 60);
+    let right = region(&run.png, half + 40..SCENE_RIGHT - 8, 8..WINDOW.1 - 60);
+    let [initial, temporal, spatial] = source_palette();
+    let share = |pixels: &[[u8; 3]], c: [u8; 3]| fraction(pixels, |p| close(p, c, 2));
+    let reused = |pixels: &[[u8; 3]]| share(pixels, temporal) + share(pixels, spatial);
+    assert!(
+        reused(&left) > 0.1,
+        "A (restir) shows no reused survivors: {:.3}",
+        reused(&left)
+    );
+    assert!(
+        share(&right, initial) > 0.4 && reused(&right) < 0.01,
+        "B (ris) should show initial survivors only: initial {:.3}, reused {:.3}",
+        share(&right, initial),
+        reused(&right)
+    );
+    // The divider: a white line at the middle of the scene area.
+    let line = region(&run.png, half - 1..half + 1, 100..WINDOW.1 - 100);
+    assert!(
+        fraction(&line, |p| brightness(p) > 240.0) > 0.9,
+        "no divider at x = {half}"
+    );
 }

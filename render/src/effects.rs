@@ -9,8 +9,14 @@ use std::collections::BTreeSet;
 use std::fmt;
 
 use crate::scene::{AlphaMode, Scene};
-use crate::settings::Settings;
+use crate::settings::{LightTiles, Settings};
 use crate::shader_constants::{LIGHT_TILE_COUNT, LIGHT_TILE_SIZE};
+
+/// The light count from which `light_tiles=auto` presamples light tiles. Below it the
+/// fixed cost of presampling LIGHT_TILE_COUNT × LIGHT_TILE_SIZE lights every frame exceeds
+/// what the smaller working set saves; measured by the tiles on/off sweep over
+/// `builtin:many-lights:N` (docs/bench.md, "Light tiles: where they pay").
+pub const LIGHT_TILES_BREAK_EVEN: usize = 4096;
 
 /// What effect detection needs to know about a scene, counted once at load time.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -312,17 +318,29 @@ impl EffectSet {
                 "no emissive triangles for BSDF rays to hit".into()
             },
         );
+        let lights = f.emissive_triangles + f.punctual_lights;
+        let (tiles, why) = match settings.light_tiles {
+            _ if !has_lights => (false, "no lights to presample".to_string()),
+            LightTiles::On => (true, "light tiles forced on".to_string()),
+            LightTiles::Off => (false, "light tiles off".to_string()),
+            LightTiles::Auto if lights >= LIGHT_TILES_BREAK_EVEN => (
+                true,
+                format!("{lights} lights ≥ {LIGHT_TILES_BREAK_EVEN}, where presampling pays"),
+            ),
+            LightTiles::Auto => (
+                false,
+                format!(
+                    "{lights} lights < {LIGHT_TILES_BREAK_EVEN}: presampling would cost more than it saves"
+                ),
+            ),
+        };
+        let tile_shape =
+            format!("{LIGHT_TILE_COUNT} × {LIGHT_TILE_SIZE} presampled lights per frame");
         decide(
             Effect::LightTiles,
-            settings.light_tiles && has_lights,
-            format!(
-                "light tiles: {LIGHT_TILE_COUNT} × {LIGHT_TILE_SIZE} presampled lights per frame"
-            ),
-            if settings.light_tiles {
-                "no lights to presample".into()
-            } else {
-                "light tiles off".into()
-            },
+            tiles,
+            format!("light tiles ({tile_shape}): {why}"),
+            why,
         );
         set
     }

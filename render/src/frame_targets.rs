@@ -25,6 +25,9 @@ pub struct FrameTargets {
     pub accumulation: wgpu::Buffer,
     /// A reference image for the error view (zeros until one is uploaded).
     pub reference: wgpu::Buffer,
+    /// The other side of a split-screen comparison for the difference view: a 16-byte
+    /// placeholder until one is set (`ensure_comparison`).
+    pub comparison: wgpu::Buffer,
     pub display: wgpu::Texture,
     pub display_view: wgpu::TextureView,
     /// The same texture seen as sRGB, for samplers (the viewer).
@@ -103,6 +106,7 @@ impl FrameTargets {
             radiance: pixel_buffer(gpu, "radiance", pixels, color),
             accumulation: pixel_buffer(gpu, "accumulation", pixels, color),
             reference: pixel_buffer(gpu, "reference", pixels, color),
+            comparison: pixel_buffer(gpu, "comparison", 0, color),
             display,
             display_view,
             display_srgb_view,
@@ -128,6 +132,22 @@ impl FrameTargets {
                 std::mem::size_of::<GpuReservoir>(),
             ));
         }
+    }
+
+    /// Allocates the comparison image at full size; true if it was re-created (bind
+    /// groups that hold the placeholder must be rebuilt).
+    pub fn ensure_comparison(&mut self, gpu: &Gpu) -> bool {
+        let size = self.pixel_count() * std::mem::size_of::<[f32; 4]>() as u64;
+        if self.comparison.size() >= size {
+            return false;
+        }
+        self.comparison = pixel_buffer(
+            gpu,
+            "comparison",
+            self.pixel_count(),
+            std::mem::size_of::<[f32; 4]>(),
+        );
+        true
     }
 
     pub fn has_history(&self) -> bool {

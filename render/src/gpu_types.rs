@@ -260,13 +260,18 @@ pub struct GpuDisplay {
     pub tonemapper: u32,
     /// One of `VIEW_*`.
     pub view: u32,
-    /// Which rejection reasons the rejection view shows: temporal bits 0..8, spatial 8..16.
+    /// Which temporal rejection reasons the rejection view shows (bits 0..8).
     pub reason_mask: u32,
     /// M value drawn at the top of the M heatmap (the M cap).
     pub m_scale: f32,
     /// Reference radiance scale for the error view (1/N of the reference accumulation).
     pub reference_scale: f32,
-    pub _pad: u32,
+    /// Spatial neighbours tried per pixel this frame (K × passes): the top of the rejection
+    /// view's spatial count; 0 hides it.
+    pub spatial_tries: u32,
+    /// Radiance scale of the comparison image (the difference view's B side).
+    pub comparison_scale: f32,
+    pub _pad: [u32; 3],
 }
 
 /// Uniform of one spatial pass: which pass it is (for decorrelated random numbers).

@@ -87,6 +87,18 @@ pub enum BiasCorrection {
 
 pub const BIAS_CORRECTION_NAMES: &[&str] = &["one-over-m", "pairwise"];
 
+/// Whether light candidates come from presampled light tiles (restir-notes.md §6).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LightTiles {
+    /// On only where they pay: scenes with at least `LIGHT_TILES_BREAK_EVEN` lights
+    /// (measured, docs/bench.md "Light tiles: where they pay").
+    Auto,
+    On,
+    Off,
+}
+
+pub const LIGHT_TILES_NAMES: &[&str] = &["auto", "on", "off"];
+
 /// Conversion between a typed field and the table's dynamic value.
 trait Param: Sized {
     fn to_value(&self) -> ParamValue;
@@ -131,22 +143,30 @@ impl Param for f32 {
     }
 }
 
-impl Param for BiasCorrection {
-    fn to_value(&self) -> ParamValue {
-        let index = match self {
-            BiasCorrection::OneOverM => 0,
-            BiasCorrection::Pairwise => 1,
-        };
-        ParamValue::Choice(BIAS_CORRECTION_NAMES[index].to_string())
-    }
-    fn from_value(value: &ParamValue) -> Option<Self> {
-        match value {
-            ParamValue::Choice(s) if s == "one-over-m" => Some(BiasCorrection::OneOverM),
-            ParamValue::Choice(s) if s == "pairwise" => Some(BiasCorrection::Pairwise),
-            _ => None,
+/// A choice parameter: an enum whose variants pair one-to-one with a names table.
+macro_rules! choice_param {
+    ($ty:ident, $names:ident, [$($variant:ident),*]) => {
+        impl Param for $ty {
+            fn to_value(&self) -> ParamValue {
+                let index = [$($ty::$variant),*]
+                    .iter()
+                    .position(|v| v == self)
+                    .expect("every variant is listed");
+                ParamValue::Choice($names[index].to_string())
+            }
+            fn from_value(value: &ParamValue) -> Option<Self> {
+                let ParamValue::Choice(s) = value else {
+                    return None;
+                };
+                let index = $names.iter().position(|n| n == s)?;
+                [$($ty::$variant),*].get(index).copied()
+            }
         }
-    }
+    };
 }
+
+choice_param!(BiasCorrection, BIAS_CORRECTION_NAMES, [OneOverM, Pairwise]);
+choice_param!(LightTiles, LIGHT_TILES_NAMES, [Auto, On, Off]);
 
 macro_rules! parameter_table {
     ($( $stage:ident { $( $field:ident : $ty:ty = $default:expr, $kind:expr, $label:literal, $doc:literal; )* } )*) => {
@@ -194,8 +214,8 @@ parameter_table! {
             "Light samples per pixel drawn from the power-proportional alias table and streamed through the reservoir (notes §1). 1 light and 0 BSDF candidates is plain NEE.";
         bsdf_candidates: u32 = 1, ParamKind::Int { min: 0, max: 16 }, "BSDF candidates",
             "BSDF-sampled rays per pixel; those that hit an emitter join the reservoir, combined with the light candidates by the balance heuristic.";
-        light_tiles: bool = true, ParamKind::Bool, "Light tiles",
-            "Draw light candidates from 128 tiles of 1024 lights presampled by power once per frame (one tile per 16×16 pixel block) instead of from the whole light table: same distribution, a small shared working set, so selection costs the same for a thousand or a million lights (notes §6).";
+        light_tiles: LightTiles = LightTiles::Auto, ParamKind::Choice(LIGHT_TILES_NAMES), "Light tiles",
+            "Draw light candidates from 128 tiles of 1024 lights presampled by power once per frame (one tile per 16×16 pixel block) instead of from the whole light table: same distribution, a small shared working set, so selection costs the same for a thousand or a million lights (notes §6). auto: on for scenes with at least 4096 lights, where the measured sweep says they pay (docs/bench.md); on / off force it.";
         initial_visibility: bool = true, ParamKind::Bool, "Initial visibility",
             "Trace the survivor's shadow ray right after initial sampling and drop it when occluded (visibility reuse, notes §6), so reuse only spreads samples that were visible. One extra shadow ray per pixel.";
     }
@@ -236,16 +256,16 @@ parameter_table! {
             "Merge reservoirs of nearby pixels (notes §3). Off: no spatial pass is dispatched.";
         spatial_neighbours: u32 = 5, ParamKind::Int { min: 0, max: MAX_SPATIAL_NEIGHBOURS as i64 }, "Neighbours",
             "Neighbours tried per pixel and pass, uniformly in a disk.";
-        spatial_radius: f32 = 30.0, ParamKind::Float { min: 1.0, max: 256.0 }, "Radius (px)",
-            "Radius of the neighbour disk in pixels.";
-        spatial_passes: u32 = 1, ParamKind::Int { min: 1, max: 8 }, "Passes",
+        spatial_radius: f32 = 30.0, ParamKind::Float { min: 1.0, max: 1024.0 }, "Radius (px at 1080p)",
+            "Radius of the neighbour disk in pixels of a 1080-pixel-high image; other sizes use radius × height / 1080, at least 2 px (or the radius itself if smaller), so reuse spans the same part of the scene at any resolution or render scale.";
+        spatial_passes: u32 = 1, ParamKind::Int { min: 1, max: MAX_SPATIAL_PASSES as i64 }, "Passes",
             "Spatial passes per frame, each reading the previous pass's output.";
         boiling_filter: f32 = 0.0, ParamKind::Float { min: 0.0, max: 1000.0 }, "Boiling filter",
             "Drop a pixel's sample when its W·p̂ exceeds this many times the neighbourhood mean (notes §6). 0 = off.";
     }
     Resampling {
-        bias_correction: BiasCorrection = BiasCorrection::OneOverM, ParamKind::Choice(BIAS_CORRECTION_NAMES), "Bias correction",
-            "one-over-m: 1/M weights with rejection (biased, fast). pairwise: defensive pairwise MIS with the pixel's own reservoir as canonical (unbiased, one extra target evaluation per neighbour).";
+        bias_correction: BiasCorrection = BiasCorrection::Pairwise, ParamKind::Choice(BIAS_CORRECTION_NAMES), "Bias correction",
+            "pairwise (default): defensive pairwise MIS with the pixel's own reservoir as canonical (unbiased, one extra target evaluation per neighbour, ~3 % of the frame). one-over-m: 1/M weights with rejection (biased: darker where reused samples are occluded or outside a narrow lobe; fast).";
     }
     Shading {
         jitter: bool = true, ParamKind::Bool, "Sub-pixel jitter",
@@ -380,8 +400,9 @@ impl Settings {
         Ok(warnings)
     }
 
-    /// The uniform block the shaders read.
-    pub fn gpu_params(&self) -> GpuParams {
+    /// The uniform block the shaders read, for an image `height` pixels high (pixel-unit
+    /// parameters follow the height, see `pixel_units`).
+    pub fn gpu_params(&self, height: u32) -> GpuParams {
         let checks = [
             (self.check_offscreen, REJECT_OFFSCREEN),
             (self.check_surface, REJECT_SURFACE),
@@ -422,7 +443,7 @@ impl Settings {
             checks,
             flags,
             spatial_neighbours: self.spatial_neighbours.min(MAX_SPATIAL_NEIGHBOURS),
-            spatial_radius: self.spatial_radius,
+            spatial_radius: self.effective_spatial_radius(height),
             reference_spp: self.reference_spp.max(1),
             boiling_filter: self.boiling_filter,
         }
@@ -440,6 +461,9 @@ fn kind_description(kind: ParamKind) -> String {
 
 /// Presets: TOML files with one `name = value` line per parameter.
 pub mod preset;
+
+/// Pixel-unit parameters follow the image height (defined at 1080p).
+pub mod pixel_units;
 
 #[cfg(test)]
 mod tests;

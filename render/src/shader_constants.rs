@@ -99,6 +99,8 @@ pub const LIGHT_TILE_PIXELS: u32 = 16;
 
 /// Upper bound of `spatial_neighbours` (the shader keeps accepted ones in an array).
 pub const MAX_SPATIAL_NEIGHBOURS: u32 = 32;
+/// Spatial passes a frame runs at most (the `spatial_passes` range).
+pub const MAX_SPATIAL_PASSES: u32 = 8;
 
 /// Motion of a point that was behind the previous camera (always off-screen).
 pub const NO_MOTION: f32 = -1e9;
@@ -113,6 +115,7 @@ pub const VIEW_ALBEDO: u32 = 6;
 pub const VIEW_DEPTH: u32 = 7;
 pub const VIEW_MOTION: u32 = 8;
 pub const VIEW_ERROR: u32 = 9;
+pub const VIEW_DIFFERENCE: u32 = 10;
 
 pub const TONEMAP_ACES: u32 = 0;
 pub const TONEMAP_REINHARD: u32 = 1;
@@ -197,6 +200,7 @@ pub fn wgsl_prelude() -> String {
         ("VIEW_DEPTH", VIEW_DEPTH),
         ("VIEW_MOTION", VIEW_MOTION),
         ("VIEW_ERROR", VIEW_ERROR),
+        ("VIEW_DIFFERENCE", VIEW_DIFFERENCE),
         ("TONEMAP_ACES", TONEMAP_ACES),
         ("TONEMAP_REINHARD", TONEMAP_REINHARD),
         ("TONEMAP_CLAMP", TONEMAP_CLAMP),

@@ -46,10 +46,12 @@ pub enum DebugView {
     Depth,
     Motion,
     Error,
+    /// |A − B| against the other side of a split-screen comparison.
+    Difference,
 }
 
 impl DebugView {
-    pub const ALL: [DebugView; 10] = [
+    pub const ALL: [DebugView; 11] = [
         DebugView::Final,
         DebugView::Source,
         DebugView::M,
@@ -60,6 +62,7 @@ impl DebugView {
         DebugView::Depth,
         DebugView::Motion,
         DebugView::Error,
+        DebugView::Difference,
     ];
 
     pub fn name(self) -> &'static str {
@@ -74,6 +77,7 @@ impl DebugView {
             DebugView::Depth => "depth",
             DebugView::Motion => "motion",
             DebugView::Error => "error",
+            DebugView::Difference => "difference",
         }
     }
 
@@ -93,6 +97,7 @@ impl DebugView {
             DebugView::Depth => VIEW_DEPTH,
             DebugView::Motion => VIEW_MOTION,
             DebugView::Error => VIEW_ERROR,
+            DebugView::Difference => VIEW_DIFFERENCE,
         }
     }
 }
@@ -132,8 +137,11 @@ pub struct ViewSettings {
     pub tonemapper: Tonemapper,
     /// Show the running average instead of the last frame.
     pub accumulate: bool,
-    /// Rejection reasons the rejection view shows: temporal bits 0..8, spatial 8..16.
+    /// Temporal rejection reasons the rejection view shows (bits 0..8).
     pub reason_mask: u32,
+    /// The rejection view shows, where the temporal candidate was not rejected, how many
+    /// spatial neighbours were.
+    pub spatial_count: bool,
 }
 
 impl Default for ViewSettings {
@@ -143,7 +151,8 @@ impl Default for ViewSettings {
             exposure_ev: 0.0,
             tonemapper: Tonemapper::Aces,
             accumulate: false,
-            reason_mask: 0xffff,
+            reason_mask: 0xff,
+            spatial_count: true,
         }
     }
 }

@@ -45,7 +45,7 @@ impl CpuVisibility {
 fn moving_camera_keeps_temporal_gains_and_rejects_only_at_disocclusions() {
     let (w, h) = (96, 60);
     let scene = restir_render::load_scene("builtin:many-lights").unwrap();
-    let radius = common::radius_for(w);
+    let radius = common::radius_for(w, h);
     let base = ["jitter=false", radius.as_str(), "spatial=false"];
     let make = |extra: &[&str], mode: Mode| {
         let mut r = Renderer::new(

@@ -244,7 +244,9 @@ fn host_structs_match_wgsl_layouts() {
             view,
             reason_mask,
             m_scale,
-            reference_scale
+            reference_scale,
+            spatial_tries,
+            comparison_scale
         ]
     );
     check_struct!(m, "PassInfo", GpuPassInfo, [pass_index, is_last]);

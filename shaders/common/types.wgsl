@@ -156,10 +156,14 @@ struct Display {
     exposure: f32,       // linear (2^EV)
     tonemapper: u32,     // TONEMAP_*
     view: u32,           // VIEW_*
-    reason_mask: u32,    // rejection reasons shown: temporal bits 0..8, spatial 8..16
+    reason_mask: u32,    // temporal rejection reasons shown (bits 0..8)
     m_scale: f32,        // M drawn at the top of the heatmap
     reference_scale: f32,
-    _pad: u32,
+    spatial_tries: u32,  // neighbours tried per pixel (K × passes); 0 hides the spatial count
+    comparison_scale: f32, // radiance scale of the comparison image (difference view)
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 struct PassInfo {

@@ -36,14 +36,30 @@ const BUILTIN: &[(&str, Mode, &[&str], &str)] = &[
     (
         "restir",
         Mode::Restir,
-        &["temporal=true", "spatial=true"],
-        "RIS + temporal + spatial (1/M)",
+        &[
+            "temporal=true",
+            "spatial=true",
+            "bias_correction=one-over-m",
+        ],
+        "RIS + temporal + spatial, 1/M weights (biased; the default before pairwise)",
     ),
     (
         "restir-pairwise",
         Mode::Restir,
         &["temporal=true", "spatial=true", "bias_correction=pairwise"],
-        "RIS + temporal + spatial, pairwise MIS (unbiased)",
+        "RIS + temporal + spatial, pairwise MIS (unbiased; the default)",
+    ),
+    (
+        "tiles-on",
+        Mode::Restir,
+        &["light_tiles=on"],
+        "restir defaults with light tiles forced on (the tiles sweep)",
+    ),
+    (
+        "tiles-off",
+        Mode::Restir,
+        &["light_tiles=off"],
+        "restir defaults with light tiles off (the tiles sweep)",
     ),
 ];
 
@@ -115,50 +131,10 @@ fn preset_config(path: &str, base: &Settings) -> anyhow::Result<Config> {
     })
 }
 
-/// The spatial radius the bench uses at `height` when nobody chose one: the default
-/// (30 px) is meant for ~1080p, where it spans similar surfaces; it shrinks with the image
-/// height, but never below 10 px, under which the disk holds too few distinct pixels to
-/// decorrelate neighbours (at 160×100 reuse with 30 px *hurt*: it reached across edges).
-pub fn scaled_spatial_radius(height: u32) -> f32 {
-    let default = Settings::default().spatial_radius;
-    (default * height as f32 / 1080.0).clamp(10.0, default)
-}
-
 /// `--set` assignments every bench starts with, before the user's: jitter off, so the
 /// reference shades the same rasterised surfaces and per-frame errors measure lighting alone
 /// (`--set jitter=true` restores it on both sides).
 pub const BASE_ASSIGNMENTS: &[&str] = &["jitter=false"];
-
-/// Scales the spatial radius to the image height unless the preset or `--set` chose one.
-pub fn scale_radius(mut settings: Settings, height: u32) -> (Settings, RadiusChoice) {
-    if settings.spatial_radius == Settings::default().spatial_radius {
-        settings.spatial_radius = scaled_spatial_radius(height);
-        let r = settings.spatial_radius;
-        (settings, RadiusChoice::Scaled(r))
-    } else {
-        let r = settings.spatial_radius;
-        (settings, RadiusChoice::Given(r))
-    }
-}
-
-/// How the spatial radius was chosen (reported with the results).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum RadiusChoice {
-    Scaled(f32),
-    Given(f32),
-}
-
-impl std::fmt::Display for RadiusChoice {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            RadiusChoice::Scaled(r) => write!(
-                f,
-                "{r} px (30 px at 1080p scaled to the image height, at least 10 px)"
-            ),
-            RadiusChoice::Given(r) => write!(f, "{r} px (as set)"),
-        }
-    }
-}
 
 #[cfg(test)]
 mod tests {
@@ -174,24 +150,16 @@ mod tests {
         assert!(!configs[3].settings.temporal && configs[3].settings.spatial);
         assert!(parse_configs("restir,nope", &Settings::default()).is_err());
         assert!(parse_configs("ris,ris", &Settings::default()).is_err());
-    }
-
-    #[test]
-    fn bench_radius_scales_with_height_within_bounds() {
-        assert_eq!(scaled_spatial_radius(1080), 30.0);
-        assert_eq!(scaled_spatial_radius(2160), 30.0);
-        assert_eq!(scaled_spatial_radius(540), 15.0);
-        assert_eq!(scaled_spatial_radius(100), 10.0);
-        let (s, choice) = scale_radius(Settings::default(), 100);
+        // `restir` keeps the 1/M weights its published figures were measured with;
+        // `restir-pairwise` is the default estimator (issue 14).
+        use restir_render::settings::BiasCorrection;
         assert_eq!(
-            (s.spatial_radius, choice),
-            (10.0, RadiusChoice::Scaled(10.0))
+            configs[4].settings.bias_correction,
+            BiasCorrection::OneOverM
         );
-        let given = Settings {
-            spatial_radius: 5.0,
-            ..Settings::default()
-        };
-        let (s, choice) = scale_radius(given, 100);
-        assert_eq!((s.spatial_radius, choice), (5.0, RadiusChoice::Given(5.0)));
+        assert_eq!(
+            configs[5].settings.bias_correction,
+            BiasCorrection::Pairwise
+        );
     }
 }

@@ -87,7 +87,11 @@ pub fn results(info: &BenchInfo, results: &[ConfigResult]) -> String {
         info.reference_spp,
         on_off(info.jitter)
     );
-    let _ = writeln!(md, "- Spatial radius: {}.", info.radius);
+    let (set, used) = info.radius;
+    let _ = writeln!(
+        md,
+        "- Spatial radius: {used} px ({set} px at 1080p, scaled to the image height)."
+    );
     let _ = writeln!(
         md,
         "- Seed {}; every configuration starts from a clean history{}. Time per frame = sum of its pass times, median over frames.\n",

@@ -16,6 +16,7 @@ mod plots;
 mod references;
 mod run_loop;
 mod scoring;
+mod strip;
 mod sweep;
 
 use std::path::PathBuf;
@@ -27,7 +28,7 @@ use restir_render::reference_cache::ReferenceCache;
 use restir_render::{Gpu, Renderer, load_scene};
 
 use crate::cli::setup::{PipelineArgs, parse_size};
-use configs::{BASE_ASSIGNMENTS, DEFAULT_CONFIGS, RadiusChoice, parse_configs, scale_radius};
+use configs::{BASE_ASSIGNMENTS, DEFAULT_CONFIGS, parse_configs};
 use equal_time::{Budget, mse_ratio};
 use references::{CameraPath, ReferencePlan, References, Shot};
 use run_loop::{ConfigResult, ConfigRun, RunPlan, run_interleaved};
@@ -90,7 +91,8 @@ pub struct BenchInfo {
     pub seed: u32,
     pub device: String,
     pub device_is_cpu: bool,
-    pub radius: RadiusChoice,
+    /// The spatial radius as set (px at 1080p) and as used at this height (px).
+    pub radius: (f32, f32),
     pub jitter: bool,
     pub reference_spp: u32,
     pub reference_noise_luma: Option<f64>,
@@ -130,7 +132,8 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     if args.frames == Some(0) {
         bail!("--frames must be at least 1");
     }
-    let (base, radius) = scale_radius(args.pipeline.settings(BASE_ASSIGNMENTS)?, size.1);
+    let base = args.pipeline.settings(BASE_ASSIGNMENTS)?;
+    let radius = (base.spatial_radius, base.effective_spatial_radius(size.1));
     let configs = parse_configs(&args.configs, &base)?;
     let effects = args.pipeline.effects()?;
     std::fs::create_dir_all(&args.out)
@@ -192,11 +195,12 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
             ))
         })
         .collect::<anyhow::Result<Vec<_>>>()?;
-    let mut results: Vec<ConfigResult> = run_interleaved(runs, &plan)?
-        .into_iter()
-        .map(|(r, _)| r)
-        .collect();
+    let (mut results, renderers): (Vec<ConfigResult>, Vec<Renderer>) =
+        run_interleaved(runs, &plan)?.into_iter().unzip();
     compare_with_nee(&mut results);
+    if camera == CameraPath::Static && args.budget_ms.is_none() {
+        write_strip(&args.out, &results, &renderers, &refs)?;
+    }
     let info = BenchInfo {
         scene: args.scene.clone(),
         size,
@@ -215,6 +219,32 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         reference_count: refs.images.len(),
     };
     write_outputs(&args.out, &info, &results)
+}
+
+/// `strip.png`: each configuration's last frame, then the reference.
+fn write_strip(
+    out: &std::path::Path,
+    results: &[ConfigResult],
+    renderers: &[Renderer],
+    refs: &References,
+) -> anyhow::Result<()> {
+    let frames: Vec<_> = renderers.iter().map(Renderer::read_radiance).collect();
+    let mut panels: Vec<strip::Panel> = results
+        .iter()
+        .zip(&frames)
+        .map(|(r, image)| strip::Panel {
+            label: match &r.scores {
+                Some(s) => format!("{} · RMSE {:.3}", r.config.name, s.mean_luma_rmse),
+                None => r.config.name.clone(),
+            },
+            image,
+        })
+        .collect();
+    panels.push(strip::Panel {
+        label: format!("reference · {} spp", refs.spp),
+        image: &refs.images[0],
+    });
+    strip::write(&out.join("strip.png"), &panels)
 }
 
 fn scoring_for(refs: &References, camera: CameraPath) -> Scoring<'_> {

@@ -276,6 +276,7 @@ fn markdown(rows: &[SweepRow], size: (u32, u32), device: &str, note: &str) -> St
             );
         }
     }
+    relative_times(&mut md, rows, &names);
     let _ = writeln!(md, "\n## Median time per pass (ms)[^t]\n");
     let labelled: Vec<(String, &ConfigResult)> = rows
         .iter()
@@ -288,6 +289,61 @@ fn markdown(rows: &[SweepRow], size: (u32, u32), device: &str, note: &str) -> St
     pass_table(&mut md, "lights, configuration", &labelled);
     let _ = writeln!(md, "\n{}", time_footnote(note));
     md
+}
+
+/// Time per frame of every configuration relative to the first, per light count, and the
+/// smallest N from which each is faster and stays faster: the break-even of a pair such as
+/// `tiles-on,tiles-off`.
+fn relative_times(md: &mut String, rows: &[SweepRow], names: &[String]) {
+    if names.len() < 2 {
+        return;
+    }
+    let _ = writeln!(
+        md,
+        "\n## Time per frame relative to `{}` (ratios within this run)\n",
+        names[0]
+    );
+    let ratios: Vec<Vec<Option<f64>>> = rows
+        .iter()
+        .map(|r| {
+            let base = r.results[0].median_frame_ms();
+            r.results[1..]
+                .iter()
+                .map(|c| match (c.median_frame_ms(), base) {
+                    (Some(t), Some(b)) if b > 0.0 => Some(t / b),
+                    _ => None,
+                })
+                .collect()
+        })
+        .collect();
+    let mut header = vec!["lights N".to_string()];
+    header.extend(names[1..].iter().map(|n| format!("`{n}` / `{}`", names[0])));
+    let body: Vec<Vec<String>> = rows
+        .iter()
+        .zip(&ratios)
+        .map(|(r, q)| {
+            let mut row = vec![r.lights.to_string()];
+            row.extend(q.iter().map(|x| ratio(*x)));
+            row
+        })
+        .collect();
+    table(md, &header, &body);
+    for (i, n) in names[1..].iter().enumerate() {
+        let faster = |q: &Vec<Option<f64>>| q[i].is_some_and(|x| x < 1.0);
+        // The first N after which `n` is faster at every larger N too.
+        let from = (0..rows.len()).find(|&k| ratios[k..].iter().all(faster));
+        let line = match from {
+            Some(k) => format!(
+                "- `{n}` is faster than `{}` from N = {} on",
+                names[0], rows[k].lights
+            ),
+            None => format!(
+                "- `{n}` is not faster than `{}` at the largest N measured",
+                names[0]
+            ),
+        };
+        let _ = writeln!(md, "{line}");
+    }
 }
 
 #[cfg(test)]

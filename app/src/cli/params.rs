@@ -1,6 +1,7 @@
 //! `params` and `scenes`: what can be set and what can be loaded.
 
-use restir_render::scene::builtin::builtin_names;
+use restir_render::Settings;
+use restir_render::scene::builtin::{DEFAULT_SCENE, builtin_names};
 use restir_render::settings::{PARAMS, ParamKind};
 
 pub fn print_params() {
@@ -24,11 +25,30 @@ pub fn print_params() {
             p.label,
             p.doc
         );
+        let defaults = Settings::default();
+        if defaults.effective_pixels(p.name, 1080).is_some() {
+            let at: Vec<String> = [96, 180, 360, 720, 1080, 2160]
+                .iter()
+                .filter_map(|&h| {
+                    Some(format!(
+                        "{:.1} px at {h}p",
+                        defaults.effective_pixels(p.name, h)?
+                    ))
+                })
+                .collect();
+            println!("    default, effective: {}", at.join(", "));
+        }
     }
 }
 
+/// One `builtin:NAME` per line; the viewer's default is marked ` (default)`.
 pub fn print_scenes() {
     for name in builtin_names() {
-        println!("{name}");
+        let mark = if name == DEFAULT_SCENE {
+            " (default)"
+        } else {
+            ""
+        };
+        println!("{name}{mark}");
     }
 }

@@ -8,11 +8,12 @@ use anyhow::{Context, bail};
 use clap::Args;
 use restir_render::stats::{FrameReport, StatsSummary};
 use restir_render::view::auto_exposure_ev;
-use restir_render::{DebugView, LinearImage, Mode, Renderer};
+use restir_render::{DebugView, Gpu, LinearImage, Mode, Renderer, Settings, load_scene};
 use serde::Serialize;
 
 use super::camera_path::{cut_viewpoint, orbit};
-use super::setup::{PipelineArgs, build_renderer, parse_size};
+use super::setup::{PipelineArgs, parse_size};
+use crate::compare::{CompareTarget, divider_column, split_columns};
 
 #[derive(Args, Debug)]
 pub struct RenderArgs {
@@ -55,6 +56,10 @@ pub struct RenderArgs {
     /// Exposure in EV for PNG output, or `auto` (log-average luminance to middle grey).
     #[arg(long, default_value = "auto")]
     pub exposure: String,
+    /// Split screen: this configuration left, B right of the middle. B is a mode
+    /// (reference, nee, ris, restir: these settings in that mode) or a preset .toml file.
+    #[arg(long, value_name = "B")]
+    pub compare: Option<String>,
 }
 
 /// The `--stats` JSON document.
@@ -70,9 +75,30 @@ struct StatsFile<'a> {
     effect_reasons: Vec<(String, String)>,
     passes: Vec<&'static str>,
     settings: std::collections::BTreeMap<String, String>,
+    /// `spatial_radius` is set at 1080p; this is the radius used at this height.
+    effective_spatial_radius_px: f32,
     mean_luminance: f64,
     #[serde(flatten)]
     summary: StatsSummary,
+    /// With `--compare`: a block per side (left = this configuration, right = B).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    compare: Option<Box<CompareStats<'a>>>,
+}
+
+#[derive(Serialize)]
+struct CompareStats<'a> {
+    /// First column of the right side.
+    divider_column: u32,
+    left: StatsFile<'a>,
+    right_config: String,
+    right: StatsFile<'a>,
+}
+
+/// One side's renderer and what it produced.
+struct Side {
+    renderer: Renderer,
+    reports: Vec<FrameReport>,
+    image: LinearImage,
 }
 
 pub fn run(args: RenderArgs) -> anyhow::Result<()> {
@@ -108,25 +134,86 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
             .map_err(|e| anyhow::anyhow!("--spp: {e}"))?;
     }
     let effects = args.pipeline.effects()?;
+    let compare = args
+        .compare
+        .as_deref()
+        .map(|spec| CompareTarget::parse(spec, &settings))
+        .transpose()?;
+    if view == DebugView::Difference && compare.is_none() {
+        bail!("--debug-view difference shows |A − B|: it needs --compare B");
+    }
 
-    let mut renderer = build_renderer(&args.scene, size, settings)?;
-    renderer.set_mode(mode);
-    renderer.set_seed(args.pipeline.seed);
-    renderer.force_effects(effects);
-    let reports = render_frames(&mut renderer, &args)?;
-
-    let image = if args.accumulate {
-        renderer.read_accumulated()
-    } else {
-        renderer.read_radiance()
+    let scene = load_scene(&args.scene)?;
+    let gpu = Gpu::new_headless()?;
+    let side = |mode: Mode, settings: Settings| -> anyhow::Result<Side> {
+        let mut renderer = Renderer::new(gpu.clone(), &scene, size.0, size.1, settings)?;
+        renderer.set_mode(mode);
+        renderer.set_seed(args.pipeline.seed);
+        renderer.force_effects(effects.clone());
+        let reports = render_frames(&mut renderer, &args)?;
+        let image = if args.accumulate {
+            renderer.read_accumulated()
+        } else {
+            renderer.read_radiance()
+        };
+        Ok(Side {
+            renderer,
+            reports,
+            image,
+        })
     };
-    let nan_inf = image.non_finite_count() as u64;
+    let mut left = side(mode, settings)?;
+    let mut right = compare
+        .as_ref()
+        .map(|b| side(b.mode, b.settings.clone()))
+        .transpose()?;
+    let divider = divider_column(size.0, 0.5);
+
+    // The image of one side, or the split of both.
+    let image = match &right {
+        None => left.image.clone(),
+        Some(r) => LinearImage {
+            width: size.0,
+            height: size.1,
+            pixels: split_columns(&left.image.pixels, &r.image.pixels, size.0, divider),
+        },
+    };
     match format {
         Format::Exr => image.save_exr(&args.out)?,
-        Format::Png => write_png(&mut renderer, &image, view, &args)?,
+        Format::Png => {
+            // Both sides use the exposure of the split image, so equal radiance looks equal.
+            let exposure_ev = exposure_ev(&image, &args.exposure)?;
+            let rgba = match (&mut right, view) {
+                // |A − B| over the whole image, on A's display pass.
+                (Some(r), DebugView::Difference) => {
+                    left.renderer.set_comparison_image(&r.image)?;
+                    display_rgba8(&mut left.renderer, view, exposure_ev, &args)?
+                }
+                (Some(r), _) => {
+                    let a = display_rgba8(&mut left.renderer, view, exposure_ev, &args)?;
+                    let b = display_rgba8(&mut r.renderer, view, exposure_ev, &args)?;
+                    split_columns(&a, &b, size.0 * 4, divider * 4)
+                }
+                (None, _) => display_rgba8(&mut left.renderer, view, exposure_ev, &args)?,
+            };
+            restir_render::image::save_png_rgba8(&args.out, size.0, size.1, &rgba)?;
+        }
     }
     if let Some(path) = &args.stats {
-        write_stats(path, &renderer, &reports, nan_inf, &image)?;
+        let mut doc = side_stats(&left);
+        // The document's own count is the written image's (the split with --compare).
+        doc.summary.nan_inf_pixels = image.non_finite_count() as u64;
+        if let (Some(r), Some(b)) = (&right, &compare) {
+            doc.compare = Some(Box::new(CompareStats {
+                divider_column: divider,
+                left: side_stats(&left),
+                right_config: b.label.clone(),
+                right: side_stats(r),
+            }));
+        }
+        let text = serde_json::to_string_pretty(&doc)?;
+        std::fs::write(path, text)
+            .with_context(|| format!("{}: cannot write stats", path.display()))?;
     }
     Ok(())
 }
@@ -187,54 +274,47 @@ fn output_format(path: &Path) -> anyhow::Result<Format> {
     }
 }
 
-fn write_png(
+/// `--exposure`: a number of stops, or `auto` from the image.
+fn exposure_ev(image: &LinearImage, text: &str) -> anyhow::Result<f32> {
+    if text == "auto" {
+        return Ok(auto_exposure_ev(image));
+    }
+    text.parse::<f32>()
+        .ok()
+        .filter(|x| x.is_finite())
+        .with_context(|| format!("--exposure '{text}': expected a number of stops or auto"))
+}
+
+/// What the display pass shows for the renderer's last frame (or its average).
+fn display_rgba8(
     renderer: &mut Renderer,
-    image: &LinearImage,
     view: DebugView,
+    exposure_ev: f32,
     args: &RenderArgs,
-) -> anyhow::Result<()> {
-    let exposure_ev = if args.exposure == "auto" {
-        auto_exposure_ev(image)
-    } else {
-        args.exposure
-            .parse::<f32>()
-            .ok()
-            .filter(|x| x.is_finite())
-            .with_context(|| {
-                format!(
-                    "--exposure '{}': expected a number of stops or auto",
-                    args.exposure
-                )
-            })?
-    };
+) -> anyhow::Result<Vec<u8>> {
     let mut settings = *renderer.view();
     settings.view = view;
     settings.exposure_ev = exposure_ev;
     settings.accumulate = args.accumulate;
     renderer.set_view(settings);
     renderer.redisplay()?;
-    let (w, h) = renderer.size();
-    restir_render::image::save_png_rgba8(&args.out, w, h, &renderer.read_display_rgba8())
+    Ok(renderer.read_display_rgba8())
 }
 
-fn write_stats(
-    path: &Path,
-    renderer: &Renderer,
-    reports: &[FrameReport],
-    nan_inf: u64,
-    image: &LinearImage,
-) -> anyhow::Result<()> {
+fn side_stats(side: &Side) -> StatsFile<'_> {
+    let renderer = &side.renderer;
     let effects = renderer
         .last_effects()
         .cloned()
         .unwrap_or_else(restir_render::effects::EffectSet::all);
     let settings = renderer.effective_settings();
-    let doc = StatsFile {
+    let (_, height) = renderer.size();
+    StatsFile {
         scene: renderer.scene_info(),
         adapter: renderer.gpu().adapter_name(),
         adapter_is_cpu: renderer.gpu().is_cpu(),
         mode: renderer.mode(),
-        size: [renderer.size().0, renderer.size().1],
+        size: [renderer.size().0, height],
         effects: effects.to_string(),
         effect_reasons: effects
             .reasons
@@ -254,9 +334,9 @@ fn write_stats(
                 )
             })
             .collect(),
-        mean_luminance: image.mean_luminance(),
-        summary: StatsSummary::from_reports(reports, nan_inf),
-    };
-    let text = serde_json::to_string_pretty(&doc)?;
-    std::fs::write(path, text).with_context(|| format!("{}: cannot write stats", path.display()))
+        effective_spatial_radius_px: settings.effective_spatial_radius(height),
+        mean_luminance: side.image.mean_luminance(),
+        summary: StatsSummary::from_reports(&side.reports, side.image.non_finite_count() as u64),
+        compare: None,
+    }
 }

@@ -4,9 +4,9 @@ use std::path::PathBuf;
 
 use anyhow::{Context, bail};
 use clap::Args;
+use restir_render::Settings;
 use restir_render::effects::EffectSet;
 use restir_render::settings::preset;
-use restir_render::{Gpu, Renderer, Settings, load_scene};
 
 /// The pipeline options `render` and `bench` share (`#[command(flatten)]`).
 #[derive(Args, Debug)]
@@ -95,14 +95,4 @@ pub fn parse_effects(text: &str) -> anyhow::Result<Option<EffectSet>> {
     EffectSet::parse_list(text)
         .map(Some)
         .map_err(|e| anyhow::anyhow!("--effects: {e}"))
-}
-
-pub fn build_renderer(
-    scene: &str,
-    size: (u32, u32),
-    settings: Settings,
-) -> anyhow::Result<Renderer> {
-    let scene = load_scene(scene)?;
-    let gpu = Gpu::new_headless()?;
-    Renderer::new(gpu, &scene, size.0, size.1, settings)
 }

@@ -15,6 +15,8 @@ pub struct EguiLayer {
     image: egui::TextureId,
     /// Size and filter of the texture `image` was bound to.
     bound: ((u32, u32), bool),
+    /// The split screen's B image and what it was bound to, while there is a B.
+    compare: Option<(egui::TextureId, ((u32, u32), bool))>,
 }
 
 fn filter(smooth: bool) -> wgpu::FilterMode {
@@ -58,6 +60,47 @@ impl EguiLayer {
             painter,
             image,
             bound: (renderer.size(), smooth),
+            compare: None,
+        }
+    }
+
+    pub fn compare_image(&self) -> Option<egui::TextureId> {
+        self.compare.map(|(id, _)| id)
+    }
+
+    /// Registers B's display texture (or follows its re-creation); `None` frees it.
+    pub fn bind_compare_image(&mut self, gpu: &Gpu, b: Option<&Renderer>, smooth: bool) {
+        let Some(b) = b else {
+            self.unbind_compare_image();
+            return;
+        };
+        let wanted = (b.size(), smooth);
+        match &mut self.compare {
+            None => {
+                let id = self.painter.register_native_texture(
+                    &gpu.device,
+                    b.display_view(),
+                    filter(smooth),
+                );
+                self.compare = Some((id, wanted));
+            }
+            Some((id, bound)) if *bound != wanted => {
+                self.painter.update_egui_texture_from_wgpu_texture(
+                    &gpu.device,
+                    b.display_view(),
+                    filter(smooth),
+                    *id,
+                );
+                *bound = wanted;
+            }
+            Some(_) => {}
+        }
+    }
+
+    /// Forgets B's texture (B was re-created: the next bind registers the new one).
+    pub fn unbind_compare_image(&mut self) {
+        if let Some((id, _)) = self.compare.take() {
+            self.painter.free_texture(&id);
         }
     }
 

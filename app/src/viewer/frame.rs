@@ -16,6 +16,7 @@ use super::accuracy::AccuracyState;
 use super::accuracy::tracker::{AccuracyTracker, SceneSource};
 use super::apply;
 use super::camera::CameraState;
+use super::compare_side::CompareSide;
 use super::egui_layer::EguiLayer;
 use super::gpu_surface::GpuSurface;
 use super::panels;
@@ -41,6 +42,8 @@ pub struct Viewer {
     /// The scene shown, kept for the accuracy panel's reference jobs.
     scene: Arc<Scene>,
     accuracy: AccuracyTracker,
+    /// Configuration B of the split screen, while the Compare section has it on.
+    compare: Option<CompareSide>,
     loader: SceneLoader,
     screenshots: screenshot::Schedule,
     exit_after_screenshot: bool,
@@ -82,6 +85,10 @@ impl Viewer {
             display,
         );
         state.view.view = launch.debug_view;
+        if let Some(b) = &launch.compare {
+            state.compare.enabled = true;
+            state.compare.spec = b.clone();
+        }
         if let Some(preset) = &launch.preset {
             state.preset_path = preset.display().to_string();
         }
@@ -113,6 +120,7 @@ impl Viewer {
                 ReferenceCache::at_default_dir(),
                 AccuracyTracker::SETTLE,
             ),
+            compare: None,
             loader: SceneLoader::default(),
             screenshots: screenshot::Schedule {
                 after: launch.screenshot_after,
@@ -197,13 +205,16 @@ impl Viewer {
                 .stats
                 .push_frame_ms((now - last).as_secs_f64() * 1e3);
         }
-        let image = self.egui.image();
+        let images = scene_view::Images {
+            a: self.egui.image(),
+            b: self.egui.compare_image(),
+        };
         let state = &mut self.state;
         let mut area = egui::Rect::NOTHING;
         let (mut output, ui_delay) = self.egui.run(&self.window, |ui| {
             panels::shortcuts(ui.ctx(), state);
             panels::side_panel(ui, state);
-            area = scene_view::show(ui, state, Some(image));
+            area = scene_view::show(ui, state, Some(images));
         });
         self.ui_wakeup = now.checked_add(ui_delay);
         self.run_actions();
@@ -219,6 +230,11 @@ impl Viewer {
         };
         self.egui
             .bind_image(&self.gpu, &self.renderer, self.state.display.smooth);
+        self.egui.bind_compare_image(
+            &self.gpu,
+            self.compare.as_ref().map(|c| &c.renderer),
+            self.state.display.smooth,
+        );
         let shot = self.screenshots.due(self.frames_rendered, rendered);
         let capture = shot
             .as_ref()
@@ -276,6 +292,18 @@ impl Viewer {
             }
             state.camera.advance_auto();
             apply::before_frame(&mut self.renderer, state);
+            if CompareSide::sync(
+                &mut self.compare,
+                &self.gpu,
+                &self.scene,
+                &self.renderer,
+                state,
+            ) {
+                self.egui.unbind_compare_image();
+            }
+            if let Some(compare) = &mut self.compare {
+                compare.render(&mut self.renderer)?;
+            }
             self.renderer.render_frame()?;
             self.frames_rendered += 1;
             self.last_render = Some(Instant::now());
@@ -288,6 +316,9 @@ impl Viewer {
             }
         } else {
             apply::redisplay_if_changed(&mut self.renderer, &state.view)?;
+            if let Some(compare) = &mut self.compare {
+                compare.redisplay(&self.renderer)?;
+            }
         }
         self.follow_accuracy(render_now);
         apply::after_frame(&mut self.renderer, &mut self.state);
@@ -302,11 +333,19 @@ impl Viewer {
             spec: &state.scene.spec,
             scene: &self.scene,
         };
-        let wanted = state.accuracy.panel_open || state.view.view == DebugView::Error;
+        let wanted = state.accuracy.panel_open
+            || state.view.view == DebugView::Error
+            || state.compare.enabled;
         self.accuracy
             .update(&mut self.renderer, &source, &mut state.accuracy, wanted);
         if rendered {
             self.accuracy.measure(&self.renderer, &mut state.accuracy);
+            state.compare.errors = self.compare.as_ref().and_then(|b| {
+                Some((
+                    self.accuracy.luma_rmse(&self.renderer)?,
+                    self.accuracy.luma_rmse(&b.renderer)?,
+                ))
+            });
         }
     }
 
@@ -348,6 +387,8 @@ impl Viewer {
         match uploaded {
             Ok(scene) => {
                 self.scene = Arc::new(scene);
+                // B is rebuilt on the new scene at the next frame.
+                self.compare = None;
                 apply::scene_loaded(&self.renderer, &mut self.state, spec);
                 self.window.set_title(&title(&self.state));
                 self.auto_exposure_at = Some(self.frames_rendered + AUTO_EXPOSURE_FRAMES);

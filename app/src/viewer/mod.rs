@@ -12,6 +12,7 @@ mod accuracy;
 mod app;
 mod apply;
 mod camera;
+mod compare_side;
 mod egui_layer;
 mod frame;
 mod gpu_surface;
@@ -20,6 +21,7 @@ mod resize_script;
 mod scene_loader;
 mod scene_view;
 mod screenshot;
+mod split_view;
 mod state;
 
 use std::path::PathBuf;
@@ -30,13 +32,16 @@ use restir_render::{DebugView, Settings, load_scene};
 
 use crate::cli::setup::{parse_size, settings_from};
 
-pub const DEFAULT_SCENE: &str = "builtin:many-lights";
+pub use restir_render::scene::builtin::DEFAULT_SCENE;
 pub const DEFAULT_WINDOW_SIZE: &str = "1280x720";
 
 #[derive(Args, Debug, Default)]
 pub struct ViewArgs {
+    /// The scene to open: a .gltf/.glb file or `builtin:NAME` (same as --scene).
+    #[arg(value_name = "SCENE", conflicts_with = "scene")]
+    pub scene_positional: Option<String>,
     /// A .gltf/.glb file or a built-in scene (`builtin:NAME`, see `scenes`)
-    /// [default: builtin:many-lights].
+    /// [default: builtin:concourse].
     #[arg(long)]
     pub scene: Option<String>,
     /// A preset file (TOML, `name = value` per line) to start from.
@@ -52,6 +57,10 @@ pub struct ViewArgs {
     /// After N rendered frames, write a PNG of the whole window (image and panels) to FILE.
     #[arg(long, num_args = 2, value_names = ["N", "FILE.png"])]
     pub screenshot_after: Vec<String>,
+    /// Start with the split screen on: this configuration left, B right (a mode or a
+    /// preset .toml file; the Compare section changes it).
+    #[arg(long, value_name = "B")]
+    pub compare: Option<String>,
     /// Exit (status 0) once the --screenshot-after PNG is written.
     #[arg(long, requires = "screenshot_after")]
     pub exit: bool,
@@ -69,6 +78,7 @@ pub struct Launch {
     pub window_size: (u32, u32),
     pub debug_view: DebugView,
     pub screenshot_after: Option<(u64, PathBuf)>,
+    pub compare: Option<String>,
     pub exit: bool,
     pub resize_script: bool,
 }
@@ -97,12 +107,16 @@ impl Launch {
             _ => bail!("--screenshot-after takes a frame count and a file: N FILE.png"),
         };
         Ok(Launch {
-            scene_spec: args.scene.unwrap_or_else(|| DEFAULT_SCENE.to_string()),
+            scene_spec: args
+                .scene
+                .or(args.scene_positional)
+                .unwrap_or_else(|| DEFAULT_SCENE.to_string()),
             settings: settings_from(args.preset.as_ref(), &[])?,
             preset: args.preset,
             window_size: parse_size(args.size.as_deref().unwrap_or(DEFAULT_WINDOW_SIZE))?,
             debug_view,
             screenshot_after,
+            compare: args.compare,
             exit: args.exit,
             resize_script: args.test_resize_script,
         })

@@ -9,8 +9,10 @@ use super::state::ViewerState;
 /// Points of wheel scrolling that count as one speed step.
 const POINTS_PER_WHEEL_STEP: f32 = 50.0;
 
+pub use super::split_view::Images;
+
 /// Shows the scene area and handles its input; returns its rectangle in points.
-pub fn show(ui: &mut Ui, state: &mut ViewerState, image: Option<egui::TextureId>) -> Rect {
+pub fn show(ui: &mut Ui, state: &mut ViewerState, images: Option<Images>) -> Rect {
     egui::CentralPanel::no_frame()
         .show(ui, |ui| {
             let rect = ui.available_rect_before_wrap();
@@ -20,15 +22,7 @@ pub fn show(ui: &mut Ui, state: &mut ViewerState, image: Option<egui::TextureId>
             if response.hovered() && !ui.ctx().text_edit_focused() {
                 response.request_focus();
             }
-            match image {
-                Some(id) => {
-                    let uv = Rect::from_min_max(Pos2::ZERO, Pos2::new(1.0, 1.0));
-                    ui.painter().image(id, rect, uv, Color32::WHITE);
-                }
-                None => {
-                    ui.painter().rect_filled(rect, 0.0, Color32::BLACK);
-                }
-            }
+            super::split_view::show(ui, rect, images, state);
             let input = fly_input(ui, &response);
             let dt = ui.input(|i| i.unstable_dt).clamp(0.0, 0.25);
             state.camera.fly(&input, dt);
@@ -102,6 +96,8 @@ fn pick_pixel(ui: &Ui, response: &egui::Response, rect: Rect, state: &mut Viewer
         None
     };
     if let Some(pixel) = pos.and_then(|p| pixel_at(p, rect, state.render_size)) {
+        // A click reveals the inspector; hovering with Alt only updates it.
+        state.inspector.reveal |= !alt_hover && state.inspector.pixel != Some(pixel);
         state.inspector.pixel = Some(pixel);
     }
 }

@@ -60,6 +60,8 @@ pub struct InspectorState {
     pub step: bool,
     /// The latest inspection that came back for `pixel`.
     pub last: Option<PixelInspection>,
+    /// A pixel was just picked: the side panel opens the inspector and scrolls to it once.
+    pub reveal: bool,
 }
 
 /// The sliding window of frame reports the Stats panel summarises.
@@ -123,6 +125,35 @@ pub struct SceneState {
     pub open_path: String,
 }
 
+/// The split-screen comparison (Compare section): configuration B beside the current one.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CompareState {
+    pub enabled: bool,
+    /// B: `reference`, `nee`, `ris`, `restir` or a preset file (see `compare.rs`).
+    pub spec: String,
+    /// Where the divider is, as a fraction of the image width.
+    pub divider: f32,
+    /// B on the left instead of the right (X flips).
+    pub flipped: bool,
+    /// Why B could not be set up (the comparison is off meanwhile).
+    pub error: Option<String>,
+    /// Per-frame luma RMSE of each side against the Accuracy reference, when there is one.
+    pub errors: Option<(f64, f64)>,
+}
+
+impl Default for CompareState {
+    fn default() -> Self {
+        CompareState {
+            enabled: false,
+            spec: "ris".to_string(),
+            divider: 0.5,
+            flipped: false,
+            error: None,
+            errors: None,
+        }
+    }
+}
+
 /// Facts about the device, for the Stats panel.
 #[derive(Clone, Debug, Default)]
 pub struct DeviceInfo {
@@ -143,6 +174,7 @@ pub struct ViewerState {
     pub stats: StatsHistory,
     pub accuracy: AccuracyState,
     pub scene: SceneState,
+    pub compare: CompareState,
     pub device: DeviceInfo,
     /// The preset file the Pipeline panel saves to and loads from.
     pub preset_path: String,
@@ -173,6 +205,7 @@ impl ViewerState {
             // The cheaper reference until the viewer knows its device.
             accuracy: AccuracyState::new(true),
             scene: SceneState::default(),
+            compare: CompareState::default(),
             device: DeviceInfo::default(),
             preset_path: "preset.toml".to_string(),
             preset_message: None,

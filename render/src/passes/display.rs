@@ -7,7 +7,7 @@ pub const SHADER: &str = "display.wgsl";
 pub const OUTPUT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
 /// 0 image, 1 surfaces, 2 debug, 3 reservoirs, 4 reference image, 5 display uniform,
-/// 6 output texture.
+/// 6 output texture, 7 comparison image (the other side of a split screen).
 pub fn entries() -> Vec<wgpu::BindGroupLayoutEntry> {
     vec![
         storage(0, true),
@@ -26,5 +26,6 @@ pub fn entries() -> Vec<wgpu::BindGroupLayoutEntry> {
             },
             count: None,
         },
+        storage(7, true),
     ]
 }

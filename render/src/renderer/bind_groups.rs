@@ -240,6 +240,10 @@ fn create(
                 binding: 6,
                 resource: wgpu::BindingResource::TextureView(&t.display_view),
             });
+            entries.push(wgpu::BindGroupEntry {
+                binding: 7,
+                resource: t.comparison.as_entire_binding(),
+            });
             gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("display"),
                 layout: &layouts.display,

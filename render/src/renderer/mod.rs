@@ -6,6 +6,7 @@
 //! records back to the CPU; `inspect.rs` is the pixel inspector's capture.
 
 mod bind_groups;
+mod comparison;
 mod inspect;
 mod readback;
 mod record;
@@ -101,6 +102,8 @@ pub struct Renderer {
     /// The effect set of the last frame (reused while its inputs stay the same).
     last_effects: Option<std::sync::Arc<record::ActiveEffects>>,
     last_passes: Vec<&'static str>,
+    /// Radiance scale of the comparison image (1/N of an accumulated other side).
+    comparison_scale: f32,
 }
 
 impl Renderer {

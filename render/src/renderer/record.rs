@@ -16,7 +16,9 @@ use crate::passes::{
     initial, presample, reference, shade, spatial, temporal,
 };
 use crate::settings::Settings;
-use crate::shader_constants::{LIGHT_TILE_COUNT, LIGHT_TILE_SIZE, REFERENCE_SAMPLES_PER_DISPATCH};
+use crate::shader_constants::{
+    LIGHT_TILE_COUNT, LIGHT_TILE_SIZE, MAX_SPATIAL_PASSES, REFERENCE_SAMPLES_PER_DISPATCH,
+};
 use crate::view::Mode;
 
 /// The first of `count` reservoir buffers that is neither `a` nor `b`.
@@ -130,7 +132,7 @@ impl Renderer {
         self.gpu.queue.write_buffer(
             &self.params_uniform,
             0,
-            bytemuck::bytes_of(&settings.gpu_params()),
+            bytemuck::bytes_of(&settings.gpu_params(self.targets.height)),
         );
 
         // Which passes run. The reference traces its own camera rays, except with jitter
@@ -264,7 +266,7 @@ impl Renderer {
             if spatial_on {
                 // Each pass reads the previous pass's output (its own bind group); the
                 // pass index picks its PassInfo slot for decorrelated random numbers.
-                for p in 0..settings.spatial_passes.min(8) {
+                for p in 0..settings.spatial_passes.min(MAX_SPATIAL_PASSES) {
                     let out = other(buffers, current, current);
                     let g = group(Key::Spatial {
                         surfaces,

@@ -5,6 +5,7 @@ use glam::Vec2;
 use super::Renderer;
 use crate::gpu_types::{GpuDisplay, GpuFrame};
 use crate::settings::Settings;
+use crate::shader_constants::{MAX_SPATIAL_NEIGHBOURS, MAX_SPATIAL_PASSES};
 use crate::view::Mode;
 
 /// Radical inverse in base b (Halton sequence) for sub-pixel jitter.
@@ -73,7 +74,14 @@ impl Renderer {
             m_scale: settings.m_cap,
             // The uploaded reference is already an average.
             reference_scale: 1.0,
-            _pad: 0,
+            spatial_tries: if self.view.spatial_count && settings.spatial {
+                settings.spatial_neighbours.min(MAX_SPATIAL_NEIGHBOURS)
+                    * settings.spatial_passes.min(MAX_SPATIAL_PASSES)
+            } else {
+                0
+            },
+            comparison_scale: self.comparison_scale,
+            _pad: [0; 3],
         };
         self.gpu
             .queue

@@ -72,8 +72,15 @@ pub fn per_frame_errors(r: &mut Renderer, reference: &LinearImage, frames: u32) 
     )
 }
 
-/// The spatial radius for a test image `width` pixels wide: the default 30 px is meant for
-/// ~1080p; tests use 8 px per 128 (README, "Measured bias and settings at small sizes").
-pub fn radius_for(width: u32) -> String {
-    format!("spatial_radius={}", (width / 16).max(4))
+/// The spatial radius for a test image `width` × `height`: the figures of these tests were
+/// measured with 8 px per 128 of width (at least 4 px), set here as the 1080p value that
+/// gives exactly that effective radius (the radius follows the height, settings/pixel_units.rs).
+pub fn radius_for(width: u32, height: u32) -> String {
+    radius_px((width / 16).max(4) as f32, height)
+}
+
+/// `spatial_radius=` the 1080p value whose effective radius at `height` is `pixels`.
+pub fn radius_px(pixels: f32, height: u32) -> String {
+    let r = restir_render::settings::pixel_units::at_1080p(pixels, height);
+    format!("spatial_radius={r}")
 }

@@ -151,6 +151,13 @@ impl AccuracyTracker {
         };
     }
 
+    /// Per-frame luma RMSE of `renderer`'s last frame against the reference, if there is
+    /// one of its size (the split screen scores both sides with it).
+    pub fn luma_rmse(&self, renderer: &Renderer) -> Option<f64> {
+        let reference = self.reference.as_ref()?;
+        restir_render::metrics::luma_rmse(&renderer.read_radiance(), reference).ok()
+    }
+
     /// After a rendered frame: scores it against the reference when the panel is open
     /// and the throttle allows (or `every_frame`).
     pub fn measure(&mut self, renderer: &Renderer, state: &mut AccuracyState) {

@@ -4,7 +4,7 @@
 
 use egui::{RichText, Ui};
 use restir_render::gpu_types::NO_LIGHT;
-use restir_render::renderer::PixelInspection;
+use restir_render::renderer::{PixelInspection, StageReservoir};
 use restir_render::shader_constants::*;
 
 use crate::viewer::state::InspectorState;
@@ -80,7 +80,9 @@ pub fn inspection(ui: &mut Ui, i: &PixelInspection) {
     ui.label(format!("Flags: {}", flag_names(d.flags)));
 }
 
-/// One row per stage. The table scrolls sideways rather than widening the side panel.
+/// One column per stage, one row per quantity: three stages fit the side panel at its
+/// default width (a row per stage with nine columns did not). More spatial passes scroll
+/// sideways rather than widening the panel.
 fn reservoirs(ui: &mut Ui, i: &PixelInspection) {
     egui::ScrollArea::horizontal()
         .id_salt("reservoirs")
@@ -88,41 +90,52 @@ fn reservoirs(ui: &mut Ui, i: &PixelInspection) {
 }
 
 fn reservoir_grid(ui: &mut Ui, i: &PixelInspection) {
+    type Cell = fn(&StageReservoir) -> String;
+    fn point(s: &StageReservoir, axis: usize) -> String {
+        match (s.reservoir.light, s.sample_point) {
+            (NO_LIGHT, _) => "–".to_string(),
+            (_, Some(p)) => format!("{:.3}", p[axis]),
+            (_, None) => "?".to_string(),
+        }
+    }
+    let rows: [(&str, Cell); 10] = [
+        ("light", |s| match s.reservoir.light {
+            NO_LIGHT => "null".to_string(),
+            light => light.to_string(),
+        }),
+        ("uv", |s| match s.reservoir.light {
+            NO_LIGHT => "–".to_string(),
+            _ => format!("({:.3}, {:.3})", s.reservoir.uv[0], s.reservoir.uv[1]),
+        }),
+        ("point x", |s| point(s, 0)),
+        ("point y", |s| point(s, 1)),
+        ("point z", |s| point(s, 2)),
+        ("p_hat", |s| format!("{:.4e}", s.reservoir.p_hat)),
+        ("W", |s| format!("{:.4e}", s.reservoir.weight)),
+        ("M", |s| format!("{}", s.reservoir.m)),
+        ("w_sum", |s| format!("{:.4e}", s.reservoir.w_sum)),
+        ("source", |s| {
+            SOURCE_NAMES
+                .get(s.reservoir.source as usize)
+                .copied()
+                .unwrap_or("?")
+                .to_string()
+        }),
+    ];
     egui::Grid::new("reservoirs")
-        .num_columns(9)
+        .num_columns(1 + i.stages.len())
         .striped(true)
         .show(ui, |ui| {
-            for h in [
-                "stage",
-                "light",
-                "uv",
-                "sample point",
-                "p_hat",
-                "W",
-                "M",
-                "w_sum",
-                "source",
-            ] {
-                ui.strong(h);
+            ui.strong("stage");
+            for stage in &i.stages {
+                ui.strong(&stage.stage);
             }
             ui.end_row();
-            for stage in &i.stages {
-                let r = &stage.reservoir;
-                ui.label(&stage.stage);
-                if r.light == NO_LIGHT {
-                    ui.label("null");
-                    ui.label("–");
-                    ui.label("–");
-                } else {
-                    ui.label(r.light.to_string());
-                    ui.label(format!("({:.3}, {:.3})", r.uv[0], r.uv[1]));
-                    ui.label(stage.sample_point.map_or("?".to_string(), vec3));
+            for (name, cell) in rows {
+                ui.label(name);
+                for stage in &i.stages {
+                    ui.label(cell(stage));
                 }
-                ui.label(format!("{:.4e}", r.p_hat));
-                ui.label(format!("{:.4e}", r.weight));
-                ui.label(format!("{}", r.m));
-                ui.label(format!("{:.4e}", r.w_sum));
-                ui.label(SOURCE_NAMES.get(r.source as usize).copied().unwrap_or("?"));
                 ui.end_row();
             }
         });

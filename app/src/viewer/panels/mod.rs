@@ -4,6 +4,7 @@
 pub mod accuracy;
 pub mod accuracy_plots;
 pub mod camera;
+pub mod compare;
 pub mod inspector;
 pub mod palette;
 pub mod pipeline;
@@ -49,6 +50,7 @@ fn sections(ui: &mut Ui, state: &mut ViewerState) {
     };
     section("Pipeline", true).show(ui, |ui| pipeline::ui(ui, state));
     section("View", true).show(ui, |ui| view::ui(ui, state));
+    section("Compare", false).show(ui, |ui| compare::ui(ui, state));
     // Measuring reads every frame back: it runs while this section is drawn open.
     state.accuracy.panel_open = section("Accuracy", false)
         .show(ui, |ui| accuracy::ui(ui, state))
@@ -57,7 +59,17 @@ fn sections(ui: &mut Ui, state: &mut ViewerState) {
     section("Stats", true).show(ui, |ui| stats::ui(ui, state));
     section("Camera", false).show(ui, |ui| camera::ui(ui, &mut state.camera));
     section("Scene", false).show(ui, |ui| scene::ui(ui, state));
-    section("Pixel inspector", false).show(ui, |ui| inspector::ui(ui, &mut state.inspector));
+    // Picking a pixel opens the inspector and brings it into view (once: afterwards the
+    // user may collapse it or scroll away).
+    let reveal = std::mem::take(&mut state.inspector.reveal);
+    let inspector = section("Pixel inspector", false)
+        .open(reveal.then_some(true))
+        .show(ui, |ui| inspector::ui(ui, &mut state.inspector));
+    if reveal {
+        inspector
+            .header_response
+            .scroll_to_me(Some(egui::Align::Min));
+    }
 }
 
 /// Keys that work anywhere while no text field has focus: H (hide/show the panel), F12

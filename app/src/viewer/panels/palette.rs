@@ -26,7 +26,7 @@ pub fn source_color(source: u32) -> Color32 {
     })
 }
 
-/// Rejection reason `bit`: temporal 0..8, spatial 8..16 (lighter).
+/// Temporal rejection reason `bit` (0..8).
 pub fn reason_color(bit: u32) -> Color32 {
     const PALETTE: [[f32; 3]; 8] = [
         [1.0, 0.0, 0.0],
@@ -38,12 +38,12 @@ pub fn reason_color(bit: u32) -> Color32 {
         [0.6, 0.3, 0.1],
         [1.0, 1.0, 1.0],
     ];
-    let c = PALETTE[(bit & 7) as usize];
-    linear(if bit >= 8 {
-        mix(c, [1.0; 3], 0.5).map(|x| x * 0.8)
-    } else {
-        c
-    })
+    linear(PALETTE[(bit & 7) as usize])
+}
+
+/// The rejection view's spatial part: the fraction of neighbours rejected, black to grey.
+pub fn spatial_count_color(fraction: f32) -> Color32 {
+    linear([0.45 * fraction.clamp(0.0, 1.0); 3])
 }
 
 /// The 5-stop viridis ramp of the M, W and error views.
@@ -97,6 +97,15 @@ pub fn source_legend(ui: &mut egui::Ui, text: impl Fn(&str) -> String) {
 
 /// A horizontal heatmap ramp with labels at both ends.
 pub fn ramp(ui: &mut egui::Ui, low: &str, high: &str) {
+    ramp_of(ui, low, high, heatmap);
+}
+
+/// The rejection view's spatial grey ramp.
+pub fn spatial_count_ramp(ui: &mut egui::Ui, low: &str, high: &str) {
+    ramp_of(ui, low, high, spatial_count_color);
+}
+
+fn ramp_of(ui: &mut egui::Ui, low: &str, high: &str, color: fn(f32) -> Color32) {
     ui.horizontal(|ui| {
         ui.label(low);
         let (rect, _) = ui.allocate_exact_size(egui::vec2(140.0, 12.0), egui::Sense::hover());
@@ -109,7 +118,7 @@ pub fn ramp(ui: &mut egui::Ui, low: &str, high: &str) {
                 egui::vec2(w + 0.5, rect.height()),
             );
             ui.painter()
-                .rect_filled(cell, 0.0, heatmap((s as f32 + 0.5) / steps as f32));
+                .rect_filled(cell, 0.0, color((s as f32 + 0.5) / steps as f32));
         }
         ui.label(high);
     });

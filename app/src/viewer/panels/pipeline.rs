@@ -13,7 +13,7 @@ use crate::viewer::state::ViewerState;
 pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
     mode_selector(ui, &mut state.mode);
     for stage in stages() {
-        stage_ui(ui, &mut state.settings, stage);
+        stage_ui(ui, &mut state.settings, stage, state.render_size.1);
     }
     ui.horizontal(|ui| {
         if ui
@@ -58,7 +58,7 @@ fn mode_selector(ui: &mut Ui, mode: &mut Mode) {
 /// A stage as a collapsible group. A stage with an on/off switch (`temporal`,
 /// `spatial`) shows it in the group's header, so it stays reachable while the group is
 /// closed, and greys out the rest of the stage while it is off.
-fn stage_ui(ui: &mut Ui, settings: &mut Settings, stage: Stage) {
+fn stage_ui(ui: &mut Ui, settings: &mut Settings, stage: Stage, height: u32) {
     let switch = PARAMS
         .iter()
         .find(|p| p.stage == stage && is_stage_switch(p));
@@ -83,6 +83,7 @@ fn stage_ui(ui: &mut Ui, settings: &mut Settings, stage: Stage) {
                 .filter(|p| p.stage == stage && !is_stage_switch(p))
             {
                 param_widget(ui, settings, def);
+                effective_value(ui, settings, def, height);
             }
         });
     });
@@ -146,6 +147,16 @@ pub fn param_widget(ui: &mut Ui, settings: &mut Settings, def: &ParamDef) {
         && let Err(e) = settings.set(def.name, v)
     {
         log::warn!("{e}");
+    }
+}
+
+/// Under a pixel-unit parameter (defined at 1080p): what it is at the render height.
+fn effective_value(ui: &mut Ui, settings: &Settings, def: &ParamDef, height: u32) {
+    if let Some(px) = settings
+        .effective_pixels(def.name, height)
+        .filter(|_| height > 0)
+    {
+        ui.weak(format!("= {px:.1} px at this {height}-pixel-high image"));
     }
 }
 

@@ -4,10 +4,10 @@
 
 use egui::Ui;
 use restir_render::shader_constants::REJECT_REASON_NAMES;
-use restir_render::{DebugView, Tonemapper};
+use restir_render::{DebugView, Settings, Tonemapper, ViewSettings};
 
 use super::accuracy;
-use super::palette::{ramp, reason_color, source_legend, swatch};
+use super::palette::{ramp, reason_color, source_legend, spatial_count_ramp, swatch};
 use crate::viewer::state::{Action, DisplayOptions, ViewerState};
 
 pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
@@ -70,7 +70,7 @@ fn describe(v: DebugView) -> &'static str {
         DebugView::Source => "Which stage's candidate survived: initial, temporal or spatial",
         DebugView::M => "Confidence M of the final reservoir, 0 to the M cap",
         DebugView::Rejection => {
-            "Why reuse candidates were rejected (first reason among those enabled below)"
+            "Why the temporal candidate was rejected (first reason among those enabled below); elsewhere, how many spatial neighbours were"
         }
         DebugView::Weight => {
             "Contribution weight W on a log scale, 1e-4 to 1e4; null samples black"
@@ -81,6 +81,9 @@ fn describe(v: DebugView) -> &'static str {
         DebugView::Motion => "Screen-space motion to the previous frame (grey: none)",
         DebugView::Error => {
             "|frame - reference| luminance against the reference of the Accuracy panel (obtained in the background while the camera stands still)"
+        }
+        DebugView::Difference => {
+            "|A - B| luminance between the two sides of the split-screen comparison (Compare section)"
         }
     }
 }
@@ -95,56 +98,65 @@ fn legend(ui: &mut Ui, state: &mut ViewerState) {
             // The reference is the Accuracy panel's; until it is there the view shows |frame|.
             accuracy::reference_status(ui, &state.accuracy);
         }
-        DebugView::Rejection => rejection_legend(ui, &mut state.view.reason_mask),
+        DebugView::Rejection => rejection_legend(ui, &mut state.view, &state.settings),
+        DebugView::Difference => {
+            ramp(ui, "0", "1 (at this exposure)");
+            if !state.compare.enabled {
+                ui.weak("Turn on Compare to choose B: until then the difference is to black.");
+            }
+        }
         _ => {}
     }
 }
 
-/// One row per reason, one column per stage: its colour, a toggle (shown in the view or
-/// not) and "only" to show that reason alone.
-fn rejection_legend(ui: &mut Ui, mask: &mut u32) {
+/// Temporal: one row per reason, its colour, a toggle (shown in the view or not) and
+/// "only" to show that reason alone. Spatial: the rejected-neighbour count's grey ramp.
+fn rejection_legend(ui: &mut Ui, view: &mut ViewSettings, settings: &Settings) {
     ui.horizontal(|ui| {
+        ui.strong("temporal");
         if ui.small_button("All").clicked() {
-            *mask = 0xffff;
+            view.reason_mask = 0xff;
         }
         if ui.small_button("None").clicked() {
-            *mask = 0;
+            view.reason_mask = 0;
         }
         ui.weak("black: nothing rejected");
     });
     egui::Grid::new("rejection legend")
-        .num_columns(3)
+        .num_columns(2)
         .show(ui, |ui| {
-            ui.label("");
-            ui.strong("temporal");
-            ui.strong("spatial");
-            ui.end_row();
-            for (i, name) in REJECT_REASON_NAMES.iter().enumerate() {
+            for (bit, name) in REJECT_REASON_NAMES.iter().enumerate() {
                 ui.label(*name);
-                for (stage, base) in [("temporal", 0u32), ("spatial", 8)] {
-                    let bit = base + i as u32;
-                    ui.horizontal(|ui| {
-                        swatch(ui, reason_color(bit));
-                        let mut on = *mask & (1 << bit) != 0;
-                        if ui
-                            .checkbox(&mut on, "")
-                            .on_hover_text(format!("show {stage} {name}"))
-                            .changed()
-                        {
-                            *mask ^= 1 << bit;
-                        }
-                        if ui
-                            .small_button("only")
-                            .on_hover_text(format!("show {stage} {name} alone"))
-                            .clicked()
-                        {
-                            *mask = 1 << bit;
-                        }
-                    });
-                }
+                ui.horizontal(|ui| {
+                    swatch(ui, reason_color(bit as u32));
+                    let mut on = view.reason_mask & (1 << bit) != 0;
+                    if ui
+                        .checkbox(&mut on, "")
+                        .on_hover_text(format!("show temporal {name}"))
+                        .changed()
+                    {
+                        view.reason_mask ^= 1 << bit;
+                    }
+                    if ui
+                        .small_button("only")
+                        .on_hover_text(format!("show temporal {name} alone"))
+                        .clicked()
+                    {
+                        view.reason_mask = 1 << bit;
+                    }
+                });
                 ui.end_row();
             }
         });
+    ui.horizontal(|ui| {
+        ui.strong("spatial");
+        ui.checkbox(&mut view.spatial_count, "rejected neighbours")
+            .on_hover_text(
+                "Where the temporal candidate was not rejected: how many of the spatial neighbours tried were rejected, for any reason (Stats lists the reasons)",
+            );
+    });
+    let tries = settings.spatial_neighbours * settings.spatial_passes;
+    spatial_count_ramp(ui, "0", &format!("all {tries} tried"));
 }
 
 fn display_ui(ui: &mut Ui, display: &mut DisplayOptions, render_size: (u32, u32), is_cpu: bool) {

@@ -2,6 +2,7 @@
 //! PRNG), diffuse materials are exactly Lambertian (`Material::diffuse`), and emitters light
 //! their front (counter-clockwise) side only unless double-sided.
 
+mod concourse;
 mod cornell;
 mod hard;
 mod many_lights;
@@ -14,6 +15,9 @@ use super::load::SceneError;
 use cornell::cornell_box;
 use many_lights::{diffuse_floor, glossy_floor, many_lights_room};
 
+/// The scene the viewer opens without `--scene` (the showcase, `scenes` marks it).
+pub const DEFAULT_SCENE: &str = "builtin:concourse";
+
 /// Lights in `many-lights` without a count.
 pub const DEFAULT_LIGHT_COUNT: usize = 4096;
 /// The largest N `many-lights:N` accepts (2^22 lights, 2^23 triangles).
@@ -24,6 +28,7 @@ type Generator = fn(&str) -> Scene;
 
 /// Every scene by name (without `builtin:`).
 const SCENES: &[(&str, Generator)] = &[
+    ("concourse", concourse::concourse),
     ("cornell", |name| cornell_box(name, 1.0)),
     ("many-lights", |name| {
         many_lights_room(name, DEFAULT_LIGHT_COUNT, glossy_floor())

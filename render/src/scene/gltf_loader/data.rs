@@ -68,7 +68,31 @@ pub(super) fn load_buffers(
         }
         buffers.push(data);
     }
+    for warning in views_past_declared_length(doc) {
+        log::warn!("{file}: {warning}");
+    }
     Ok(buffers)
+}
+
+/// One message per buffer view that ends past its buffer's declared `byteLength`. The
+/// bytes may exist (a longer file than declared), so reads still work, but the file breaks
+/// the spec and other tools will reject or truncate it: say which view and which buffer.
+pub(super) fn views_past_declared_length(doc: &gltf::Document) -> Vec<String> {
+    doc.views()
+        .filter_map(|view| {
+            let end = view.offset().saturating_add(view.length());
+            let buffer = view.buffer();
+            (end > buffer.length()).then(|| {
+                format!(
+                    "bufferView {} ends at byte {end}, past the declared byteLength {} of buffer {} ('{}')",
+                    view.index(),
+                    buffer.length(),
+                    buffer.index(),
+                    buffer_label(&buffer)
+                )
+            })
+        })
+        .collect()
 }
 
 /// The bytes of a buffer view (used for images stored in the binary buffer).
@@ -224,5 +248,34 @@ impl Range {
             ));
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::views_past_declared_length;
+
+    fn doc(view_length: usize) -> gltf::Document {
+        let json = format!(
+            r#"{{"asset": {{"version": "2.0"}},
+                "buffers": [{{"uri": "mesh.bin", "byteLength": 36}}],
+                "bufferViews": [{{"buffer": 0, "byteLength": 36}},
+                                {{"buffer": 0, "byteOffset": 12, "byteLength": {view_length}}}]}}"#
+        );
+        gltf::Gltf::from_slice_without_validation(json.as_bytes())
+            .unwrap()
+            .document
+    }
+
+    #[test]
+    fn a_view_past_its_buffers_byte_length_is_named() {
+        assert!(views_past_declared_length(&doc(24)).is_empty());
+        let warnings = views_past_declared_length(&doc(36));
+        assert_eq!(
+            warnings,
+            [
+                "bufferView 1 ends at byte 48, past the declared byteLength 36 of buffer 0 ('mesh.bin')"
+            ]
+        );
     }
 }

@@ -76,7 +76,8 @@ fn the_inspector_shows_every_field_of_a_pixel() {
         "temporal",
         "spatial 1",
         "(0.125, 0.500)",
-        "(0.500, 1.900, 0.250)",
+        "point x",
+        "1.900",
         "null",
         "1.7500e0",
         "3.5000e0",
@@ -89,6 +90,30 @@ fn the_inspector_shows_every_field_of_a_pixel() {
     }
     // Light ids as their own cells.
     assert!(h.query_by_label("7").is_some() && h.query_by_label("9").is_some());
+}
+
+/// The stage table fits the side panel at its default width: three stages (initial,
+/// temporal, one spatial pass) without sideways scrolling.
+#[test]
+fn the_stage_table_fits_the_default_panel_width() {
+    let mut s = state();
+    s.inspector.pixel = Some((12, 34));
+    s.inspector.last = Some(synthetic_inspection());
+    let h = Harness::builder()
+        .with_size(egui::vec2(PANEL_WIDTH - 16.0, 1400.0))
+        .build_ui_state(
+            |ui, s: &mut ViewerState| inspector::ui(ui, &mut s.inspector),
+            s,
+        );
+    let right = h
+        .query_all_by_label_contains("e0")
+        .chain(h.query_all_by_label("spatial 1"))
+        .map(|n| n.rect().right())
+        .fold(0.0f32, f32::max);
+    assert!(
+        right > 0.0 && right <= PANEL_WIDTH - 16.0,
+        "the table's right edge is at {right} points"
+    );
 }
 
 #[test]

@@ -10,18 +10,20 @@ fn the_rejection_legend_toggles_and_isolates_reasons() {
     h.get_by_role_and_label(Role::CheckBox, "show temporal normal")
         .click();
     h.run();
-    assert_eq!(h.state().view.reason_mask, 0xffff & !(1 << 3));
-    // "only" buttons row by row, temporal then spatial: depth is row 4.
-    h.get_all_by_label("only").nth(2 * 4 + 1).unwrap().click();
+    assert_eq!(h.state().view.reason_mask, 0xff & !(1 << 3));
+    // "only" buttons, one per temporal reason: depth is row 4.
+    h.get_all_by_label("only").nth(4).unwrap().click();
     h.run();
-    assert_eq!(
-        h.state().view.reason_mask,
-        1 << (8 + 4),
-        "spatial depth alone"
-    );
+    assert_eq!(h.state().view.reason_mask, 1 << 4, "temporal depth alone");
     h.get_by_label("All").click();
     h.run();
-    assert_eq!(h.state().view.reason_mask, 0xffff);
+    assert_eq!(h.state().view.reason_mask, 0xff);
+    // The spatial part is a count of rejected neighbours, switched on and off as one.
+    assert!(h.state().view.spatial_count);
+    h.get_by_role_and_label(Role::CheckBox, "rejected neighbours")
+        .click();
+    h.run();
+    assert!(!h.state().view.spatial_count);
 }
 
 #[test]
@@ -115,4 +117,20 @@ fn the_stats_panel_shows_non_finite_values_per_pass() {
     }
     // The temporal row: its count in the window and since the scene loaded.
     assert_eq!(h.get_all_by_label("17").count(), 2);
+}
+
+#[test]
+fn the_compare_section_picks_b_and_shows_both_errors() {
+    let mut h = harness(compare::ui, state());
+    h.get_by_label("Split screen: A | B").click();
+    h.run();
+    assert!(h.state().compare.enabled);
+    assert_eq!(h.state().compare.spec, "ris");
+    assert!(shows(&h, "once the Accuracy reference"));
+    h.state_mut().compare.errors = Some((0.25, 0.5));
+    h.run();
+    assert!(shows(&h, "A 0.2500 · B 0.5000"));
+    h.get_by_label("B on the left (X)").click();
+    h.run();
+    assert!(h.state().compare.flipped);
 }

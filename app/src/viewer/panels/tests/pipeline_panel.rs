@@ -109,3 +109,21 @@ fn the_mode_selector_sets_the_mode() {
     h.run();
     assert_eq!(h.state().mode, restir_render::Mode::Ris);
 }
+
+#[test]
+fn pixel_unit_parameters_show_their_effective_value() {
+    let mut s = state();
+    s.render_size = (225, 180);
+    let h = harness(
+        |ui, s: &mut ViewerState| {
+            ui.ctx().memory_mut(|m| m.set_everything_is_visible(true));
+            pipeline::ui(ui, s);
+        },
+        s,
+    );
+    // 30 px at 1080p is 5 px on a 180-pixel-high image.
+    assert!(
+        shows(&h, "= 5.0 px at this 180-pixel-high image"),
+        "the spatial radius's effective value is not shown"
+    );
+}

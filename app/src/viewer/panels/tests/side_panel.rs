@@ -130,3 +130,26 @@ fn a_file_dropped_on_the_window_loads_as_the_scene() {
         vec![Action::LoadScene("/scenes/sponza.glb".into())]
     );
 }
+
+/// Picking a pixel opens the (collapsed, last) Pixel inspector section and scrolls it
+/// into view; without a pick it stays collapsed.
+#[test]
+fn picking_a_pixel_opens_and_reveals_the_inspector() {
+    let mut s = state();
+    s.inspector.pixel = Some((12, 34));
+    s.inspector.last = Some(synthetic_inspection());
+    let mut h = Harness::builder()
+        .with_size(egui::vec2(1280.0, 720.0))
+        .build_ui_state(side_panel, s);
+    h.run();
+    assert!(
+        !shows(&h, "Pixel 12, 34"),
+        "collapsed until a pixel is picked"
+    );
+    h.state_mut().inspector.reveal = true;
+    h.run();
+    assert!(!h.state().inspector.reveal, "revealed once");
+    let label = h.get_by_label("Pixel 12, 34");
+    let y = label.rect().top();
+    assert!((0.0..720.0).contains(&y), "scrolled into view: at y = {y}");
+}

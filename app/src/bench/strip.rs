@@ -1,0 +1,145 @@
+//! `strip.png` (still camera): the last frame of every configuration beside the reference,
+//! each labelled with its mean per-frame error — the picture README opens with. Every
+//! panel is tonemapped the same way (one exposure, from the reference), so brightness
+//! differences are real and noise is seen as it is.
+
+use std::path::Path;
+
+use plotters::prelude::*;
+use restir_render::LinearImage;
+use restir_render::view::auto_exposure_ev;
+
+use super::plots::canvas::{DrawResult, render_png, text};
+
+/// Height of the label band under each panel, in pixels.
+const LABEL_HEIGHT: u32 = 34;
+/// Panels are enlarged by a whole factor (nearest neighbour) to at least this height, so
+/// a 180-pixel frame shows its noise pixel by pixel instead of being smoothed away.
+const MIN_PANEL_HEIGHT: u32 = 360;
+
+/// One panel: a label and a linear image.
+pub struct Panel<'a> {
+    pub label: String,
+    pub image: &'a LinearImage,
+}
+
+/// Writes the panels side by side, left to right, to `path`.
+pub fn write(path: &Path, panels: &[Panel]) -> anyhow::Result<()> {
+    let Some(first) = panels.first() else {
+        anyhow::bail!("{}: no image for the strip", path.display());
+    };
+    let (w, h) = (first.image.width, first.image.height);
+    anyhow::ensure!(
+        panels
+            .iter()
+            .all(|p| (p.image.width, p.image.height) == (w, h)),
+        "{}: strip panels differ in size",
+        path.display()
+    );
+    let zoom = MIN_PANEL_HEIGHT.div_ceil(h.max(1)).max(1);
+    // The exposure of the last panel (the reference): the same for all.
+    let exposure = 2f32.powf(auto_exposure_ev(panels[panels.len() - 1].image));
+    let (pw, ph) = (w * zoom, h * zoom);
+    let size = (pw * panels.len() as u32, ph + LABEL_HEIGHT);
+    render_png(path, size, |area| {
+        area.fill(&BLACK)?;
+        for (i, panel) in panels.iter().enumerate() {
+            draw_panel(area, panel, exposure, (i as u32 * pw, zoom))?;
+            let label = Text::new(
+                panel.label.clone(),
+                ((i as u32 * pw + 8) as i32, (ph + 6) as i32),
+                text(22).color(&WHITE),
+            );
+            area.draw(&label)?;
+        }
+        Ok(())
+    })
+}
+
+fn draw_panel(
+    area: &super::plots::canvas::Area,
+    panel: &Panel,
+    exposure: f32,
+    (x0, zoom): (u32, u32),
+) -> DrawResult {
+    let img = panel.image;
+    for y in 0..img.height {
+        for x in 0..img.width {
+            let [r, g, b] = display_srgb8(img.rgb(x, y), exposure);
+            let (px, py) = ((x0 + x * zoom) as i32, (y * zoom) as i32);
+            let z = zoom as i32;
+            area.draw(&Rectangle::new(
+                [(px, py), (px + z, py + z)],
+                RGBColor(r, g, b).filled(),
+            ))?;
+        }
+    }
+    Ok(())
+}
+
+/// The display pass's final view for one pixel: exposure, ACES (Narkowicz 2015), sRGB
+/// encoding — the same formulas as shaders/display.wgsl, so the strip looks like the viewer.
+pub fn display_srgb8(rgb: [f32; 3], exposure: f32) -> [u8; 3] {
+    let aces = |x: f32| {
+        let x = (x * exposure).max(0.0);
+        ((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14)).clamp(0.0, 1.0)
+    };
+    let srgb = |c: f32| {
+        if c <= 0.003_130_8 {
+            c * 12.92
+        } else {
+            1.055 * c.powf(1.0 / 2.4) - 0.055
+        }
+    };
+    rgb.map(|c| {
+        let v = if c.is_finite() { aces(c) } else { 0.0 };
+        (srgb(v) * 255.0).round() as u8
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_strip_tonemap_matches_the_display_pass() {
+        // ACES(1) = 2.54 / 3.16 = 0.8038 → sRGB 0.9106 → 232.
+        assert_eq!(display_srgb8([1.0, 0.0, f32::NAN], 1.0), [232, 0, 0]);
+        assert_eq!(display_srgb8([1e9, -1.0, 0.5], 1.0)[..2], [255, 0]);
+    }
+
+    #[test]
+    fn the_strip_has_one_panel_per_image_and_a_label_band() {
+        let a = LinearImage::from_fn(4, 3, |x, _| [x as f32, 0.5, 0.25, 1.0]);
+        let path = std::env::temp_dir().join(format!("restir-strip-{}.png", std::process::id()));
+        let panels = [
+            Panel {
+                label: "a".into(),
+                image: &a,
+            },
+            Panel {
+                label: "b".into(),
+                image: &a,
+            },
+        ];
+        write(&path, &panels).unwrap();
+        let png = image::open(&path).unwrap();
+        let zoom = MIN_PANEL_HEIGHT.div_ceil(3);
+        assert_eq!(
+            (png.width(), png.height()),
+            (2 * 4 * zoom, 3 * zoom + LABEL_HEIGHT)
+        );
+        let bad = LinearImage::new(2, 2);
+        let mixed = [
+            Panel {
+                label: "x".into(),
+                image: &bad,
+            },
+            Panel {
+                label: "a".into(),
+                image: &a,
+            },
+        ];
+        assert!(write(&path, &mixed).is_err());
+    }
+}

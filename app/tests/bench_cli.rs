@@ -140,6 +140,7 @@ fn bench_writes_every_configuration_and_plots_and_reuses_the_reference() {
         "error_per_frame.png",
         "error_vs_time.png",
         "pass_times.png",
+        "strip.png",
     ] {
         assert_png(&out.join(plot));
     }
@@ -234,7 +235,7 @@ fn bench_orbit_uses_a_reference_per_frame_and_the_sweep_times_light_counts() {
         "--frames",
         "2",
         "--configs",
-        "ris",
+        "tiles-off,tiles-on",
         "--sweep-lights",
         "16,256",
         "--out",
@@ -242,11 +243,20 @@ fn bench_orbit_uses_a_reference_per_frame_and_the_sweep_times_light_counts() {
     ]);
     let rows = csv(&sweep.join("sweep.csv"));
     let lights: Vec<&str> = rows.iter().map(|r| r["lights"].as_str()).collect();
-    assert_eq!(lights, ["16", "256"]);
+    // A row per light count and configuration.
+    assert_eq!(lights, ["16", "16", "256", "256"]);
     assert!(
         std::fs::read_to_string(sweep.join("sweep.md"))
             .unwrap()
             .contains("initial (light selection) pass")
+    );
+    // Two configurations: their time ratio per N and which is faster from where (the
+    // tiles break-even; at this size any verdict is possible, but one must be stated).
+    let md = std::fs::read_to_string(sweep.join("sweep.md")).unwrap();
+    assert!(md.contains("relative to `tiles-off`"), "{md}");
+    assert!(
+        md.contains("is faster than") || md.contains("neither `tiles-on` nor `tiles-off`"),
+        "{md}"
     );
     assert_png(&sweep.join("sweep.png"));
 }

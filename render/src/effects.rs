@@ -16,7 +16,7 @@ use crate::shader_constants::{LIGHT_TILE_COUNT, LIGHT_TILE_SIZE};
 /// fixed cost of presampling LIGHT_TILE_COUNT × LIGHT_TILE_SIZE lights every frame exceeds
 /// what the smaller working set saves; measured by the tiles on/off sweep over
 /// `builtin:many-lights:N` (docs/bench.md, "Light tiles: where they pay").
-pub const LIGHT_TILES_BREAK_EVEN: usize = 4096;
+pub const LIGHT_TILES_BREAK_EVEN: usize = 16384;
 
 /// What effect detection needs to know about a scene, counted once at load time.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]

@@ -90,7 +90,7 @@ pub const BIAS_CORRECTION_NAMES: &[&str] = &["one-over-m", "pairwise"];
 /// Whether light candidates come from presampled light tiles (restir-notes.md §6).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LightTiles {
-    /// On only where they pay: scenes with at least `LIGHT_TILES_BREAK_EVEN` lights
+    /// On only where they pay: scenes with at least `effects::LIGHT_TILES_BREAK_EVEN` lights
     /// (measured, docs/bench.md "Light tiles: where they pay").
     Auto,
     On,
@@ -215,7 +215,7 @@ parameter_table! {
         bsdf_candidates: u32 = 1, ParamKind::Int { min: 0, max: 16 }, "BSDF candidates",
             "BSDF-sampled rays per pixel; those that hit an emitter join the reservoir, combined with the light candidates by the balance heuristic.";
         light_tiles: LightTiles = LightTiles::Auto, ParamKind::Choice(LIGHT_TILES_NAMES), "Light tiles",
-            "Draw light candidates from 128 tiles of 1024 lights presampled by power once per frame (one tile per 16×16 pixel block) instead of from the whole light table: same distribution, a small shared working set, so selection costs the same for a thousand or a million lights (notes §6). auto: on for scenes with at least 4096 lights, where the measured sweep says they pay (docs/bench.md); on / off force it.";
+            "Draw light candidates from 128 tiles of 1024 lights presampled by power once per frame (one tile per 16×16 pixel block) instead of from the whole light table: same distribution, a small shared working set, so selection costs the same for a thousand or a million lights (notes §6). auto: on for scenes with at least 16384 lights (emissive triangles + punctual lights), where the measured sweep says they pay (docs/bench.md); on / off force it.";
         initial_visibility: bool = true, ParamKind::Bool, "Initial visibility",
             "Trace the survivor's shadow ray right after initial sampling and drop it when occluded (visibility reuse, notes §6), so reuse only spreads samples that were visible. One extra shadow ray per pixel.";
     }

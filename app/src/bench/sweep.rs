@@ -329,18 +329,21 @@ fn relative_times(md: &mut String, rows: &[SweepRow], names: &[String]) {
         .collect();
     table(md, &header, &body);
     for (i, n) in names[1..].iter().enumerate() {
-        let faster = |q: &Vec<Option<f64>>| q[i].is_some_and(|x| x < 1.0);
-        // The first N after which `n` is faster at every larger N too.
-        let from = (0..rows.len()).find(|&k| ratios[k..].iter().all(faster));
-        let line = match from {
-            Some(k) => format!(
-                "- `{n}` is faster than `{}` from N = {} on",
-                names[0], rows[k].lights
+        // The first N from which one side is faster at every larger N too.
+        let from = |wins: &dyn Fn(f64) -> bool| {
+            (0..rows.len()).find(|&k| ratios[k..].iter().all(|q| q[i].is_some_and(wins)))
+        };
+        let first = &names[0];
+        let line = match (from(&|x| x < 1.0), from(&|x| x > 1.0)) {
+            (Some(k), _) => format!(
+                "- `{n}` is faster than `{first}` from N = {} on",
+                rows[k].lights
             ),
-            None => format!(
-                "- `{n}` is not faster than `{}` at the largest N measured",
-                names[0]
+            (_, Some(k)) => format!(
+                "- `{first}` is faster than `{n}` from N = {} on",
+                rows[k].lights
             ),
+            _ => format!("- neither `{n}` nor `{first}` is faster at the largest N measured"),
         };
         let _ = writeln!(md, "{line}");
     }

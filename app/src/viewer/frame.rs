@@ -44,6 +44,8 @@ pub struct Viewer {
     accuracy: AccuracyTracker,
     /// Configuration B of the split screen, while the Compare section has it on.
     compare: Option<CompareSide>,
+    /// When the two sides were last scored (each score reads both images back).
+    compare_scored: Option<Instant>,
     loader: SceneLoader,
     screenshots: screenshot::Schedule,
     exit_after_screenshot: bool,
@@ -64,6 +66,9 @@ pub struct Viewer {
 /// How long a frozen viewer keeps redrawing after rendering a frame, so the frame's
 /// report and pixel inspection (read back asynchronously) reach the panels.
 const REPORT_GRACE: Duration = Duration::from_millis(500);
+
+/// How often the split screen's per-side errors are measured.
+const COMPARE_SCORE_INTERVAL: Duration = Duration::from_millis(250);
 
 /// Frames rendered before the automatic exposure of a new scene is measured.
 const AUTO_EXPOSURE_FRAMES: u64 = 3;
@@ -121,6 +126,7 @@ impl Viewer {
                 AccuracyTracker::SETTLE,
             ),
             compare: None,
+            compare_scored: None,
             loader: SceneLoader::default(),
             screenshots: screenshot::Schedule {
                 after: launch.screenshot_after,
@@ -340,12 +346,22 @@ impl Viewer {
             .update(&mut self.renderer, &source, &mut state.accuracy, wanted);
         if rendered {
             self.accuracy.measure(&self.renderer, &mut state.accuracy);
-            state.compare.errors = self.compare.as_ref().and_then(|b| {
-                Some((
-                    self.accuracy.luma_rmse(&self.renderer)?,
-                    self.accuracy.luma_rmse(&b.renderer)?,
-                ))
-            });
+            // The labels' errors: two readbacks, so a few times a second, not every frame.
+            let now = Instant::now();
+            let due = self
+                .compare_scored
+                .is_none_or(|t| now - t >= COMPARE_SCORE_INTERVAL);
+            if self.compare.is_none() {
+                state.compare.errors = None;
+            } else if due {
+                self.compare_scored = Some(now);
+                state.compare.errors = self.compare.as_ref().and_then(|b| {
+                    Some((
+                        self.accuracy.luma_rmse(&self.renderer)?,
+                        self.accuracy.luma_rmse(&b.renderer)?,
+                    ))
+                });
+            }
         }
     }
 

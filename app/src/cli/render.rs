@@ -37,6 +37,9 @@ pub struct RenderArgs {
     /// Seed, `--set`, preset and effect set.
     #[command(flatten)]
     pub pipeline: PipelineArgs,
+    /// `--env`, `--env-strength`, `--env-rotation`.
+    #[command(flatten)]
+    pub env: super::environment::EnvArgs,
     /// Output image: .exr (linear radiance) or .png (what the display shows).
     #[arg(long)]
     pub out: PathBuf,
@@ -109,7 +112,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     }
     let effects = args.pipeline.effects()?;
 
-    let mut renderer = build_renderer(&args.scene, size, settings)?;
+    let mut renderer = build_renderer(&args.scene, &args.env, size, settings)?;
     renderer.set_mode(mode);
     renderer.set_seed(args.pipeline.seed);
     renderer.force_effects(effects);

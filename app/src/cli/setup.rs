@@ -99,10 +99,12 @@ pub fn parse_effects(text: &str) -> anyhow::Result<Option<EffectSet>> {
 
 pub fn build_renderer(
     scene: &str,
+    env: &super::environment::EnvArgs,
     size: (u32, u32),
     settings: Settings,
 ) -> anyhow::Result<Renderer> {
-    let scene = load_scene(scene)?;
+    let mut scene = load_scene(scene)?;
+    env.apply(&mut scene)?;
     let gpu = Gpu::new_headless()?;
     Renderer::new(gpu, &scene, size.0, size.1, settings)
 }

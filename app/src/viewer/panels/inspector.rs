@@ -113,6 +113,11 @@ fn reservoir_grid(ui: &mut Ui, i: &PixelInspection) {
                     ui.label("null");
                     ui.label("–");
                     ui.label("–");
+                } else if let Some(dir) = stage.environment_direction {
+                    // No point: a direction toward the sky, uv in the image.
+                    ui.label(format!("{} environment", r.light));
+                    ui.label(format!("({:.3}, {:.3})", r.uv[0], r.uv[1]));
+                    ui.label(format!("toward {}", vec3(dir)));
                 } else {
                     ui.label(r.light.to_string());
                     ui.label(format!("({:.3}, {:.3})", r.uv[0], r.uv[1]));
@@ -149,6 +154,10 @@ fn flag_names(flags: u32) -> String {
         (DEBUG_FLAG_SPATIAL_CAP, "spatial M cap fired"),
         (DEBUG_FLAG_FALLBACK_TRIED, "permutation fallback tried"),
         (DEBUG_FLAG_FALLBACK_USED, "permutation fallback used"),
+        (
+            DEBUG_FLAG_ENVIRONMENT_SAMPLE,
+            "survivor is an environment direction",
+        ),
     ]
     .into_iter()
     .filter(|(bit, _)| flags & bit != 0)

@@ -4,6 +4,7 @@
 pub mod accuracy;
 pub mod accuracy_plots;
 pub mod camera;
+pub mod environment;
 pub mod inspector;
 pub mod palette;
 pub mod pipeline;

@@ -285,9 +285,17 @@ fn environment_code_is_compiled_only_with_an_environment() {
     assert!(!without.contains(Effect::Environment));
     // The plane under its light cannot occlude anything: no shadow rays without a sky.
     assert!(!without.contains(Effect::Shadows));
-    for pass in ["initial.wgsl", "shade.wgsl", "reference.wgsl", "temporal.wgsl"] {
+    for pass in [
+        "initial.wgsl",
+        "shade.wgsl",
+        "reference.wgsl",
+        "temporal.wgsl",
+    ] {
         let src = compose(pass, &without.defines()).unwrap();
-        assert!(!src.contains("env_"), "{pass} has environment code without one");
+        assert!(
+            !src.contains("env_"),
+            "{pass} has environment code without one"
+        );
     }
     scene.environment = Some(Arc::new(load_environment("builtin:sky").unwrap()));
     let with = EffectSet::detect(&SceneFeatures::of(&scene), &settings, false);

@@ -15,7 +15,7 @@ pub struct EnvArgs {
     #[arg(long, value_name = "FILE|builtin:sky")]
     pub env: Option<String>,
     /// Multiplies the environment's radiance (default 1).
-    #[arg(long, value_name = "S")]
+    #[arg(long, value_name = "S", allow_negative_numbers = true)]
     pub env_strength: Option<f32>,
     /// Turns the environment about +Y by this many degrees (default 0).
     #[arg(long, value_name = "DEG", allow_negative_numbers = true)]

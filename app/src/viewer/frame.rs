@@ -19,7 +19,7 @@ use super::camera::CameraState;
 use super::egui_layer::EguiLayer;
 use super::gpu_surface::GpuSurface;
 use super::panels;
-use super::scene_loader::{Loaded, SceneLoader, is_environment_spec};
+use super::scene_loader::{Loaded, SceneLoader, is_environment_spec, with_environment};
 use super::scene_view;
 use super::screenshot::{self, Shot, WindowCapture};
 use super::state::{Action, DeviceInfo, DisplayOptions, ViewerState};
@@ -341,19 +341,10 @@ impl Viewer {
         self.state.scene.loading = self.loader.loading().map(str::to_string);
     }
 
-    /// The same scene under another environment (or none), seen from the same camera; the
-    /// new one keeps the old one's strength and rotation. On failure nothing changes.
+    /// The same scene under another environment (or none), seen from the same camera. On
+    /// failure nothing changes.
     fn replace_environment(&mut self, env: Option<Environment>) -> Result<(), String> {
-        let old = self.scene.environment.as_deref();
-        let env = match env {
-            Some(e) => Some(Arc::new(e.with_strength_and_rotation(
-                old.map_or(1.0, |o| o.strength),
-                old.map_or(0.0, |o| o.rotation_deg),
-            )?)),
-            None => None,
-        };
-        let mut scene = (*self.scene).clone();
-        scene.environment = env;
+        let scene = with_environment(&self.scene, env)?;
         let camera = self.renderer.camera();
         self.renderer
             .set_scene(&scene)

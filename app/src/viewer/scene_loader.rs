@@ -20,6 +20,23 @@ pub fn is_environment_spec(spec: &str) -> bool {
         || spec == restir_render::environment::BUILTIN_SKY
 }
 
+/// `scene` under `env` (or none); a new environment keeps the old one's strength and
+/// rotation (the command line's), so swapping skies compares like with like.
+pub fn with_environment(scene: &Scene, env: Option<Environment>) -> Result<Scene, String> {
+    let old = scene.environment.as_deref();
+    let env = match env {
+        Some(e) => Some(std::sync::Arc::new(e.with_strength_and_rotation(
+            old.map_or(1.0, |o| o.strength),
+            old.map_or(0.0, |o| o.rotation_deg),
+        )?)),
+        None => None,
+    };
+    Ok(Scene {
+        environment: env,
+        ..scene.clone()
+    })
+}
+
 #[derive(Default)]
 pub struct SceneLoader {
     pending: Option<(String, Receiver<Result<Loaded, String>>)>,
@@ -96,6 +113,25 @@ mod tests {
         loader.start("/no/such/scene.gltf".into());
         let (_, result) = wait(&mut loader);
         assert!(result.err().unwrap().contains("scene.gltf"));
+    }
+
+    #[test]
+    fn a_new_environment_keeps_strength_and_rotation() {
+        let mut scene = load_scene("builtin:plane-light").unwrap();
+        let sky = load_environment("builtin:sky").unwrap();
+        scene.environment = Some(std::sync::Arc::new(
+            sky.clone().with_strength_and_rotation(2.5, 30.0).unwrap(),
+        ));
+        let swapped = with_environment(&scene, Some(sky)).unwrap();
+        let env = swapped.environment.as_deref().unwrap();
+        assert_eq!((env.strength, env.rotation_deg), (2.5, 30.0));
+        assert_eq!(swapped.triangles, scene.triangles);
+        assert!(
+            with_environment(&scene, None)
+                .unwrap()
+                .environment
+                .is_none()
+        );
     }
 
     #[test]

@@ -96,7 +96,11 @@ fn debug_color(index: u32, pixel: vec2<u32>) -> vec3<f32> {
         return NO_SURFACE_COLOR;
     }
     switch display.view {
-        case VIEW_SOURCE: { return source_color(d.source); }
+        case VIEW_SOURCE: {
+            // A survivor that is an environment direction: the same hue, half-way to white.
+            let env_sample = (d.flags & DEBUG_FLAG_ENVIRONMENT_SAMPLE) != 0u;
+            return select(source_color(d.source), mix(source_color(d.source), vec3<f32>(1.0), 0.55), env_sample);
+        }
         case VIEW_M: {
             let r = reservoirs[index];
             return heatmap(r.m / max(display.m_scale, 1.0));

@@ -1,5 +1,6 @@
 // Initial candidates (restir-notes.md §1): streaming RIS over `light_candidates` power-
-// sampled light points and `bsdf_candidates` BSDF rays that hit an emitter, combined with
+// sampled light points and `bsdf_candidates` BSDF rays that hit an emitter (or escape to
+// the environment: then the sample is that direction, per steradian), combined with
 // the balance heuristic: w_i = p̂(y_i) / Σ_s N_s p_s(y_i) (area measure), W = w_sum / p̂(y).
 // The result has M = 1: M counts reservoirs' worth of samples, so the M cap counts frames.
 // With `initial_visibility` the survivor's shadow ray is traced here already.
@@ -49,7 +50,7 @@ fn stream_light_candidates(sp: ShadingPoint, r: ptr<function, Reservoir>, rng: p
         let t = target_pdf(c);
         var p_bsdf = 0.0;
 #ifdef BSDF_CANDIDATES
-        if n_b > 0.0 && t > 0.0 && lp.kind == LIGHT_POINT_AREA {
+        if n_b > 0.0 && t > 0.0 && bsdf_can_hit(lp.kind) {
             p_bsdf = brdf_pdf(sp.brdf, sp.normal, sp.wo, c.wi) * c.cos_light / c.dist2;
         }
 #endif
@@ -68,12 +69,12 @@ fn stream_bsdf_candidates(sp: ShadingPoint, r: ptr<function, Reservoir>, rng: pt
         if !(bs.pdf > 0.0) {
             continue;
         }
-        let hit = trace_closest(Ray(offset_ray_origin(sp.position, sp.geo_normal), bs.wi, FLT_MAX), false);
-        if hit.t < 0.0 || triangles[hit.triangle].light == NO_LIGHT {
+        let found = bsdf_ray_light(sp, bs.wi);
+        if found.light == NO_LIGHT {
             continue;
         }
-        let light = triangles[hit.triangle].light;
-        let uv = vec2<f32>(hit.u, hit.v);
+        let light = found.light;
+        let uv = found.uv;
         let lp = light_point(light, uv);
         let c = light_contribution(sp, lp);
         let t = target_pdf(c);

@@ -1,26 +1,19 @@
 // Ground truth: an unbiased progressive estimator, independent of the raster G-buffer.
 // Per sample: a jittered camera ray through the BVH, the emission it sees, one
-// power-sampled light point with a shadow ray and one BSDF ray, combined with the balance
+// power-sampled light point (or environment direction) with a shadow ray and one BSDF ray
+// (which finds an emitter or escapes to the environment), combined with the balance
 // heuristic (both are unbiased on their own; MIS only lowers the variance on glossy
 // surfaces). Many samples per pixel, averaged over frames by the accumulation buffer.
 #include "common/frame_bindings.wgsl"
 #include "common/stats_bindings.wgsl"
 #include "common/shading_point.wgsl"
+#include "common/camera_ray.wgsl"
 
 @group(2) @binding(0) var<storage, read_write> radiance: array<vec4<f32>>;
 @group(2) @binding(1) var<storage, read_write> accumulation: array<vec4<f32>>;
 // pass_index = which chunk of REFERENCE_SAMPLES_PER_DISPATCH samples this dispatch takes.
 @group(2) @binding(2) var<uniform> pass_info: PassInfo;
 @group(2) @binding(3) var<storage, read> surfaces: array<Surface>;
-
-fn camera_ray_direction(pixel: vec2<f32>) -> vec3<f32> {
-    let ndc = vec2<f32>(pixel.x / f32(frame.size.x) * 2.0 - 1.0, 1.0 - pixel.y / f32(frame.size.y) * 2.0);
-    // With the infinite reverse-Z projection, NDC depth 0 is the point at infinity: the
-    // inverse maps it to (direction, 0). Subtracting the camera position from a near-plane
-    // point instead would cancel catastrophically (the near plane is 1e-5 scene units away).
-    let far = frame.inv_view_proj * vec4<f32>(ndc, 0.0, 1.0);
-    return normalize(far.xyz);
-}
 
 fn light_sample_estimate(sp: ShadingPoint, rng: ptr<function, u32>) -> vec3<f32> {
     let y = sample_light(rng);
@@ -31,7 +24,7 @@ fn light_sample_estimate(sp: ShadingPoint, rng: ptr<function, u32>) -> vec3<f32>
     }
     var p_bsdf = 0.0;
 #ifdef SHADOWS
-    if lp.kind == LIGHT_POINT_AREA {
+    if bsdf_can_hit(lp.kind) {
         p_bsdf = brdf_pdf(sp.brdf, sp.normal, sp.wo, c.wi) * c.cos_light / c.dist2;
     }
 #endif
@@ -44,12 +37,12 @@ fn bsdf_sample_estimate(sp: ShadingPoint, rng: ptr<function, u32>) -> vec3<f32> 
     if !(bs.pdf > 0.0) {
         return vec3<f32>(0.0);
     }
-    let hit = trace_closest(Ray(offset_ray_origin(sp.position, sp.geo_normal), bs.wi, FLT_MAX), false);
-    if hit.t < 0.0 || triangles[hit.triangle].light == NO_LIGHT {
+    let found = bsdf_ray_light(sp, bs.wi);
+    if found.light == NO_LIGHT {
         return vec3<f32>(0.0);
     }
-    // The hit is the closest surface, hence visible: no shadow ray needed.
-    let lp = light_point(triangles[hit.triangle].light, vec2<f32>(hit.u, hit.v));
+    // The hit is the closest surface (or nothing: the environment), hence visible.
+    let lp = light_point(found.light, found.uv);
     let c = light_contribution(sp, lp);
     if !(target_pdf(c) > 0.0) {
         return vec3<f32>(0.0);
@@ -79,6 +72,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             let dir = camera_ray_direction(vec2<f32>(id.xy) + rand_vec2(&rng));
             let hit = trace_closest(Ray(frame.camera_position, dir, FLT_MAX), true);
             if hit.t < 0.0 {
+#ifdef ENVIRONMENT
+                sum += env_background(dir);
+#endif
                 continue;
             }
             let hs = hit_surface(hit.triangle, hit.u, hit.v, frame.camera_position);
@@ -92,6 +88,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             // and the rasteriser may disagree on a pixel centre exactly on an edge).
             let s = surfaces[index];
             if !surface_is_valid(s) {
+#ifdef ENVIRONMENT
+                sum += env_background(camera_ray_direction(vec2<f32>(id.xy) + 0.5));
+#endif
                 continue;
             }
             sp = shading_point_from_surface(s, frame.camera_position);
@@ -100,10 +99,15 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         if frame.light_count > 0u {
             sample_value += light_sample_estimate(sp, &rng);
         }
-#ifdef AREA_LIGHTS
 #ifdef SHADOWS
-        // BSDF rays see occlusion by construction: only valid when shadows are on.
+        // BSDF rays see occlusion by construction: only valid when shadows are on (always
+        // with an environment), and only useful when they can find a light.
+#ifdef ENVIRONMENT
         sample_value += bsdf_sample_estimate(sp, &rng);
+#else
+#ifdef AREA_LIGHTS
+        sample_value += bsdf_sample_estimate(sp, &rng);
+#endif
 #endif
 #endif
         if is_finite_vec3(sample_value) {

@@ -1,10 +1,13 @@
 // Final shading: one shadow ray for the survivor, f(x, y) · V · W, plus the emission seen
-// directly. Also accumulates the running sum for progressive averaging and counts the
+// directly (or the environment where the camera sees no surface). Also accumulates the running sum for progressive averaging and counts the
 // selection source of every pixel for the stats.
 #include "common/frame_bindings.wgsl"
 #include "common/stats_bindings.wgsl"
 #include "common/shading_point.wgsl"
 #include "common/reservoir.wgsl"
+#ifdef ENVIRONMENT
+#include "common/camera_ray.wgsl"
+#endif
 
 @group(2) @binding(0) var<storage, read> surfaces: array<Surface>;
 @group(2) @binding(1) var<storage, read> reservoirs: array<Reservoir>;
@@ -40,12 +43,24 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             if d.p_hat > 0.0 && light_visible(sp, lp, c) {
                 color += c.value * r.weight;
             }
+#ifdef ENVIRONMENT
+            if lp.kind == LIGHT_POINT_ENVIRONMENT {
+                d.flags |= DEBUG_FLAG_ENVIRONMENT_SAMPLE;
+            }
+#endif
         }
         let source = select(r.source, SOURCE_NULL, reservoir_is_null(r));
         count_stat(STAT_SOURCE + source);
         d.source = source;
         debug[index] = d;
     }
+#ifdef ENVIRONMENT
+    else {
+        // The camera ray leaves the scene: the sky, through the jittered sample position
+        // the rasteriser used (pixel p sampled p + 0.5 − jitter).
+        color = env_background(camera_ray_direction(vec2<f32>(id.xy) + 0.5 - frame.jitter));
+    }
+#endif
     if !is_finite_vec3(color) {
         count_stat(STAT_NONFINITE + PASS_SHADE);
         color = vec3<f32>(0.0);

@@ -39,6 +39,8 @@ enum Command {
     Params,
     /// List the built-in scenes (one `builtin:...` name per line).
     Scenes,
+    /// Time building an environment's sampling distribution (default: a 4096×2048 sky).
+    BenchEnv(bench::env_cost::EnvCostArgs),
 }
 
 fn main() {
@@ -52,6 +54,7 @@ fn main() {
             cli::params::print_params();
             Ok(())
         }
+        Some(Command::BenchEnv(a)) => bench::env_cost::run(a),
         Some(Command::Scenes) => {
             cli::params::print_scenes();
             Ok(())

@@ -425,3 +425,62 @@ fn light_tiles_auto_drops_tiles_for_few_lights_and_keeps_them_for_many() {
     let (forced, _) = effects_of("builtin:cornell", &["--set", "light_tiles=on"]);
     assert!(forced, "light_tiles=on forces them");
 }
+
+#[test]
+fn env_flags_render_a_sky_and_bad_environments_fail_with_one_line() {
+    let dir = temp_dir("env");
+    let png = dir.join("sky.png");
+    let stats = dir.join("sky.json");
+    let stats_arg = stats.to_str().unwrap().to_string();
+    let ok = render(
+        "builtin:cornell",
+        &[
+            "--env",
+            "builtin:sky",
+            "--env-strength",
+            "2",
+            "--env-rotation",
+            "-90",
+            "--stats",
+            &stats_arg,
+        ],
+        &png,
+    );
+    assert!(
+        ok.status.success(),
+        "{}",
+        String::from_utf8_lossy(&ok.stderr)
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+    let env = &json["scene"]["environment"];
+    assert_eq!(env["name"], "builtin:sky");
+    assert_eq!(env["strength"], 2.0);
+    assert_eq!(env["rotation_deg"], -90.0);
+    assert!(json["effects"].as_str().unwrap().contains("environment"));
+
+    let bad = dir.join("bad.hdr");
+    std::fs::write(
+        &bad,
+        b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 8\n\x02",
+    )
+    .unwrap();
+    let bad_arg = bad.to_str().unwrap().to_string();
+    for (args, needles) in [
+        (
+            vec!["--env", bad_arg.as_str()],
+            vec![bad_arg.as_str(), "cannot decode"],
+        ),
+        (
+            vec!["--env", "/no/such/sky.exr"],
+            vec!["/no/such/sky.exr", "cannot read"],
+        ),
+        (
+            vec!["--env", "builtin:sky", "--env-strength", "-1"],
+            vec!["--env-strength"],
+        ),
+        (vec!["--env-rotation", "10"], vec!["need --env"]),
+    ] {
+        assert_one_line_error(&render("builtin:cornell", &args, &png), &needles);
+    }
+}

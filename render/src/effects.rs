@@ -31,6 +31,8 @@ pub struct SceneFeatures {
     pub alpha_masked_materials: usize,
     /// False only when occlusion is provably impossible (see `can_occlude`).
     pub can_occlude: bool,
+    /// An environment lights the scene and shows where camera rays miss (issue 13).
+    pub environment: bool,
 }
 
 impl SceneFeatures {
@@ -66,6 +68,7 @@ impl SceneFeatures {
             }),
             alpha_masked_materials: count(&|m| matches!(m.alpha_mode, AlphaMode::Mask(_))),
             can_occlude: can_occlude(scene),
+            environment: scene.environment.is_some(),
         }
     }
 }
@@ -112,10 +115,11 @@ pub enum Effect {
     Motion,
     BsdfCandidates,
     LightTiles,
+    Environment,
 }
 
 impl Effect {
-    pub const ALL: [Effect; 12] = [
+    pub const ALL: [Effect; 13] = [
         Effect::AreaLights,
         Effect::EmissiveTextures,
         Effect::PunctualLights,
@@ -128,6 +132,7 @@ impl Effect {
         Effect::Motion,
         Effect::BsdfCandidates,
         Effect::LightTiles,
+        Effect::Environment,
     ];
 
     /// The WGSL define.
@@ -145,6 +150,7 @@ impl Effect {
             Effect::Motion => "MOTION",
             Effect::BsdfCandidates => "BSDF_CANDIDATES",
             Effect::LightTiles => "LIGHT_TILES",
+            Effect::Environment => "ENVIRONMENT",
         }
     }
 
@@ -163,6 +169,7 @@ impl Effect {
             Effect::Motion => "motion",
             Effect::BsdfCandidates => "bsdf-candidates",
             Effect::LightTiles => "light-tiles",
+            Effect::Environment => "environment",
         }
     }
 
@@ -291,11 +298,17 @@ impl EffectSet {
             format!("{} materials use alphaMode MASK", f.alpha_masked_materials),
             "no alpha-masked material".into(),
         );
-        let has_lights = f.emissive_triangles > 0 || f.punctual_lights > 0;
+        let has_lights = f.emissive_triangles > 0 || f.punctual_lights > 0 || f.environment;
+        // The convexity proof covers segments between surface points; a ray toward the
+        // environment leaves the scene and may well cross it, so an environment needs rays.
         decide(
             Effect::Shadows,
-            has_lights && f.can_occlude,
-            "occlusion cannot be ruled out, so every light sample gets a shadow ray".into(),
+            has_lights && (f.can_occlude || f.environment),
+            if f.environment && !f.can_occlude {
+                "rays toward the environment can be blocked by the scene itself".into()
+            } else {
+                "occlusion cannot be ruled out, so every light sample gets a shadow ray".into()
+            },
             if has_lights {
                 "the scene is one convex region seen from inside: nothing can occlude".into()
             } else {
@@ -310,12 +323,12 @@ impl EffectSet {
         );
         decide(
             Effect::BsdfCandidates,
-            settings.bsdf_candidates > 0 && f.emissive_triangles > 0,
+            settings.bsdf_candidates > 0 && (f.emissive_triangles > 0 || f.environment),
             format!("{} BSDF candidates per pixel", settings.bsdf_candidates),
             if settings.bsdf_candidates == 0 {
                 "BSDF candidates set to 0".into()
             } else {
-                "no emissive triangles for BSDF rays to hit".into()
+                "no emissive triangles or environment for BSDF rays to hit".into()
             },
         );
         let lights = f.emissive_triangles + f.punctual_lights;
@@ -341,6 +354,12 @@ impl EffectSet {
             tiles,
             format!("light tiles ({tile_shape}): {why}"),
             why,
+        );
+        decide(
+            Effect::Environment,
+            f.environment,
+            "an environment lights the scene and fills the background".into(),
+            "no environment (--env)".into(),
         );
         set
     }

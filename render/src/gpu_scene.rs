@@ -6,6 +6,7 @@ use std::time::Instant;
 use glam::Vec3;
 use wgpu::util::DeviceExt;
 
+use crate::environment::upload::EnvironmentResources;
 use crate::gpu::Gpu;
 use crate::gpu_types::*;
 use crate::scene::bvh::Bvh;
@@ -28,6 +29,21 @@ pub struct SceneInfo {
     pub bvh_build_ms: f64,
     pub bounds_min: [f32; 3],
     pub bounds_max: [f32; 3],
+    /// The environment: name, size, strength, rotation, share of the light power and
+    /// the time its distribution took to build; `None` without one.
+    pub environment: Option<EnvironmentInfo>,
+}
+
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct EnvironmentInfo {
+    pub name: String,
+    pub width: u32,
+    pub height: u32,
+    pub strength: f32,
+    pub rotation_deg: f32,
+    /// Probability that a light sample is an environment direction (its power share).
+    pub light_share: f32,
+    pub distribution_build_ms: f64,
 }
 
 pub struct GpuScene {
@@ -40,9 +56,14 @@ pub struct GpuScene {
     pub scale: f32,
     pub info: SceneInfo,
     pub bvh: Bvh,
-    /// Per light-table entry: its triangle (or the punctual position three times), so the
-    /// CPU can turn a reservoir's (light, uv) into a point for the inspector.
-    light_geometry: Vec<[Vec3; 3]>,
+    /// Per light-table entry: its triangle (or the punctual position three times; `None`
+    /// for the environment), so the CPU can turn a reservoir's (light, uv) into a point
+    /// for the inspector.
+    light_geometry: Vec<Option<[Vec3; 3]>>,
+    /// The environment's light-table index, `NO_LIGHT` when there is none.
+    pub environment_light: u32,
+    /// (cos, sin) of the environment's rotation, to turn a sample's uv into a direction.
+    environment_rotation: [f32; 2],
 }
 
 /// Octahedral encoding into two snorm16, bit-identical to `oct_encode` in math.wgsl.
@@ -176,14 +197,22 @@ impl GpuScene {
             .iter()
             .map(|l| {
                 let index = (l.kind_prim & LIGHT_PRIM_MASK) as usize;
-                if l.kind_prim >> LIGHT_KIND_SHIFT == LIGHT_KIND_TRIANGLE {
-                    let t = &triangles[index];
-                    [t.p0, t.p1, t.p2].map(Vec3::from)
-                } else {
-                    [Vec3::from(lights.punctual[index].position); 3]
+                match l.kind_prim >> LIGHT_KIND_SHIFT {
+                    LIGHT_KIND_TRIANGLE => {
+                        let t = &triangles[index];
+                        Some([t.p0, t.p1, t.p2].map(Vec3::from))
+                    }
+                    LIGHT_KIND_PUNCTUAL => Some([Vec3::from(lights.punctual[index].position); 3]),
+                    // An environment sample is a direction: it has no point.
+                    _ => None,
                 }
             })
             .collect();
+        let environment = EnvironmentResources::upload(
+            gpu,
+            scene.environment.as_deref(),
+            lights.environment_light,
+        );
         let buffers = [
             storage_buffer(gpu, "triangles", &triangles),
             storage_buffer(gpu, "triangle shading", &shading),
@@ -195,7 +224,26 @@ impl GpuScene {
             storage_buffer(gpu, "bvh nodes", &bvh.nodes),
         ];
         let refs: Vec<&wgpu::Buffer> = buffers.iter().collect();
-        let bind_group = crate::passes::buffer_bind_group(gpu, "scene", layout, &refs);
+        let mut entries = crate::passes::buffer_entries(&refs);
+        entries.extend([
+            wgpu::BindGroupEntry {
+                binding: 8,
+                resource: environment.table.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 9,
+                resource: wgpu::BindingResource::TextureView(&environment.radiance),
+            },
+            wgpu::BindGroupEntry {
+                binding: 10,
+                resource: environment.uniform.as_entire_binding(),
+            },
+        ]);
+        let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("scene"),
+            layout,
+            entries: &entries,
+        });
         gpu.check()?;
 
         let bounds = scene.bounds();
@@ -213,6 +261,18 @@ impl GpuScene {
             bvh_build_ms,
             bounds_min: bounds.min.into(),
             bounds_max: bounds.max.into(),
+            environment: scene.environment.as_deref().map(|e| EnvironmentInfo {
+                name: e.name.clone(),
+                width: e.width,
+                height: e.height,
+                strength: e.strength,
+                rotation_deg: e.rotation_deg,
+                light_share: lights
+                    .lights
+                    .get(lights.environment_light as usize)
+                    .map_or(0.0, |l| l.select_pdf),
+                distribution_build_ms: e.build_ms,
+            }),
         };
         Ok(GpuScene {
             bind_group,
@@ -224,12 +284,24 @@ impl GpuScene {
             info,
             bvh,
             light_geometry,
+            environment_light: lights.environment_light,
+            environment_rotation: scene
+                .environment
+                .as_ref()
+                .map_or([1.0, 0.0], |e| e.rotation_cos_sin()),
         })
+    }
+
+    /// The direction of environment sample (light, uv), as `env_uv_to_direction` in
+    /// environment.wgsl; `None` when `light` is not the environment.
+    pub fn environment_direction(&self, light: u32, uv: [f32; 2]) -> Option<[f32; 3]> {
+        (light == self.environment_light && light != NO_LIGHT)
+            .then(|| crate::environment::uv_to_direction(uv, self.environment_rotation).into())
     }
 
     /// The world position of light sample (light, uv), as `light_point` in lights.wgsl.
     pub fn sample_point(&self, light: u32, uv: [f32; 2]) -> Option<[f32; 3]> {
-        let [p0, p1, p2] = *self.light_geometry.get(light as usize)?;
+        let [p0, p1, p2] = (*self.light_geometry.get(light as usize)?)?;
         Some((p0 * (1.0 - uv[0] - uv[1]) + p1 * uv[0] + p2 * uv[1]).into())
     }
 }

@@ -68,6 +68,8 @@ pub struct GpuTexture {
 
 pub const LIGHT_KIND_TRIANGLE: u32 = 0;
 pub const LIGHT_KIND_PUNCTUAL: u32 = 1;
+/// The environment's one entry (issue 13); its sample's `uv` is an image coordinate.
+pub const LIGHT_KIND_ENVIRONMENT: u32 = 2;
 /// The light kind lives in the top two bits of `GpuLight::kind_prim`.
 pub const LIGHT_KIND_SHIFT: u32 = 30;
 pub const LIGHT_PRIM_MASK: u32 = (1 << LIGHT_KIND_SHIFT) - 1;
@@ -280,5 +282,30 @@ pub struct GpuDisplay {
 pub struct GpuPassInfo {
     pub pass_index: u32,
     pub is_last: u32,
+    pub _pad: [u32; 2],
+}
+
+/// One entry of the environment's sampling table (environment/distribution.rs): W·H
+/// conditional entries (alias within the row) then H marginal entries (alias over rows).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuEnvTexel {
+    pub alias_threshold: f32,
+    pub alias_index: u32,
+    /// Conditional entries: the density of the texel's directions per steradian;
+    /// marginal entries: the row's probability.
+    pub pdf: f32,
+}
+
+/// The environment's uniform (scene group, binding 10).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuEnvironment {
+    pub size: [u32; 2],
+    /// The environment's index in the light table, `NO_LIGHT` when it does not emit.
+    pub light: u32,
+    pub strength: f32,
+    /// (cos, sin) of the rotation about +Y.
+    pub rotation: [f32; 2],
     pub _pad: [u32; 2],
 }

@@ -3,6 +3,7 @@
 //! reference, debug buffers and metrics. Usable headless; the viewer drives it too.
 
 pub mod effects;
+pub mod environment;
 pub mod frame_targets;
 pub mod gpu;
 pub mod gpu_scene;
@@ -20,6 +21,7 @@ pub mod shader_source;
 pub mod stats;
 pub mod view;
 
+pub use environment::{Environment, load_environment};
 pub use gpu::{Gpu, GpuError};
 pub use image::LinearImage;
 pub use renderer::Renderer;

@@ -21,7 +21,7 @@
 //! (in general RMSE(f) ≈ RMSE(a, f)·√(k/(n−k))). Reports state it next to the spp.
 
 mod job;
-mod key;
+pub mod key;
 mod render;
 
 pub use job::{JobState, ReferenceJob};
@@ -61,6 +61,9 @@ pub struct ReferenceRequest {
     /// The pipeline variant (WGSL defines) the reference is compiled with.
     pub effects: EffectSet,
     pub seed: u32,
+    /// `Environment::fingerprint` of the scene's environment (file, content, strength,
+    /// rotation); `None` without one.
+    pub environment: Option<String>,
 }
 
 impl ReferenceRequest {
@@ -84,6 +87,7 @@ impl ReferenceRequest {
             jitter,
             effects: EffectSet::detect(&SceneFeatures::of(scene), &settings, false),
             seed: REFERENCE_SEED,
+            environment: scene.environment.as_ref().map(|e| e.fingerprint()),
         }
     }
 

@@ -40,6 +40,8 @@ pub const DEBUG_FLAG_SPATIAL_CAP: u32 = 1 << 1;
 pub const DEBUG_FLAG_FALLBACK_TRIED: u32 = 1 << 2;
 pub const DEBUG_FLAG_FALLBACK_USED: u32 = 1 << 3;
 pub const DEBUG_FLAG_TEMPORAL_MERGED: u32 = 1 << 4;
+/// The survivor at shading is an environment direction (the source view lightens it).
+pub const DEBUG_FLAG_ENVIRONMENT_SAMPLE: u32 = 1 << 5;
 
 pub const PARAM_FLAG_PERMUTATION: u32 = 1 << 0;
 pub const PARAM_FLAG_PAIRWISE: u32 = 1 << 1;
@@ -130,6 +132,7 @@ pub fn wgsl_prelude() -> String {
         ("MATERIAL_ALPHA_MASK", gpu_types::MATERIAL_ALPHA_MASK),
         ("LIGHT_KIND_TRIANGLE", gpu_types::LIGHT_KIND_TRIANGLE),
         ("LIGHT_KIND_PUNCTUAL", gpu_types::LIGHT_KIND_PUNCTUAL),
+        ("LIGHT_KIND_ENVIRONMENT", gpu_types::LIGHT_KIND_ENVIRONMENT),
         ("LIGHT_KIND_SHIFT", gpu_types::LIGHT_KIND_SHIFT),
         ("LIGHT_PRIM_MASK", gpu_types::LIGHT_PRIM_MASK),
         ("PUNCTUAL_POINT", gpu_types::PUNCTUAL_POINT),
@@ -152,6 +155,10 @@ pub fn wgsl_prelude() -> String {
         ("DEBUG_FLAG_FALLBACK_TRIED", DEBUG_FLAG_FALLBACK_TRIED),
         ("DEBUG_FLAG_FALLBACK_USED", DEBUG_FLAG_FALLBACK_USED),
         ("DEBUG_FLAG_TEMPORAL_MERGED", DEBUG_FLAG_TEMPORAL_MERGED),
+        (
+            "DEBUG_FLAG_ENVIRONMENT_SAMPLE",
+            DEBUG_FLAG_ENVIRONMENT_SAMPLE,
+        ),
         ("PARAM_FLAG_PERMUTATION", PARAM_FLAG_PERMUTATION),
         ("PARAM_FLAG_PAIRWISE", PARAM_FLAG_PAIRWISE),
         ("PARAM_FLAG_JITTER", PARAM_FLAG_JITTER),

@@ -250,4 +250,16 @@ fn host_structs_match_wgsl_layouts() {
         ]
     );
     check_struct!(m, "PassInfo", GpuPassInfo, [pass_index, is_last]);
+    check_struct!(
+        m,
+        "EnvTexel",
+        GpuEnvTexel,
+        [alias_threshold, alias_index, pdf]
+    );
+    check_struct!(
+        m,
+        "Environment",
+        GpuEnvironment,
+        [size, light, strength, rotation]
+    );
 }

@@ -4,17 +4,21 @@
 #include "common/scene_bindings.wgsl"
 #include "common/material.wgsl"
 #include "common/rng.wgsl"
+#ifdef ENVIRONMENT
+#include "common/environment.wgsl"
+#endif
 
 const LIGHT_POINT_AREA: u32 = 0u;
 const LIGHT_POINT_POSITION: u32 = 1u;   // point and spot lights
 const LIGHT_POINT_DIRECTION: u32 = 2u;  // directional lights
+const LIGHT_POINT_ENVIRONMENT: u32 = 3u;  // `position` holds the direction toward the sky
 
 struct LightPoint {
     kind: u32,
-    position: vec3<f32>,  // the point on the light; for directional lights unused
+    position: vec3<f32>,  // the point on the light; unused (directional) or the direction (environment)
     normal: vec3<f32>,    // emitting-side normal of a triangle light
     radiance: vec3<f32>,  // Le (area), intensity (point, spot) or illuminance (directional)
-    source_pdf: f32,      // area measure for triangles, discrete for punctual lights
+    source_pdf: f32,      // area measure for triangles, discrete for punctual lights, solid angle for the environment
     double_sided: bool,
     punctual: u32,        // index into punctual_lights
 }
@@ -64,6 +68,17 @@ fn light_point(light_id: u32, uv: vec2<f32>) -> LightPoint {
         return lp;
     }
 #endif
+#ifdef ENVIRONMENT
+    if light_kind_of(light) == LIGHT_KIND_ENVIRONMENT {
+        lp.kind = LIGHT_POINT_ENVIRONMENT;
+        lp.position = env_uv_to_direction(uv);
+        lp.normal = vec3<f32>(0.0);
+        lp.radiance = env_radiance_at(uv);
+        // P(pick the environment) × the direction's density: per steradian, no Jacobian.
+        lp.source_pdf = light.select_pdf * env_pdf(uv);
+        return lp;
+    }
+#endif
 #ifdef PUNCTUAL_LIGHTS
     let p = punctual_lights[light_prim_of(light)];
     lp.punctual = light_prim_of(light);
@@ -82,10 +97,19 @@ struct LightSampleId {
 
 fn sample_light(rng: ptr<function, u32>) -> LightSampleId {
     let light = sample_light_index(rand_vec2(rng));
-    let uv = uniform_triangle_uv(rand_vec2(rng));
+    let u = rand_vec2(rng);
+    var uv = uniform_triangle_uv(u);
+#ifdef ENVIRONMENT
+    if light == env.light {
+        // Four more numbers: the row and column picks each take a slot and a coin.
+        let u_row = rand_vec2(rng);
+        uv = env_sample_uv(u_row, rand_vec2(rng), u);
+    }
+#endif
     return LightSampleId(light, uv);
 }
 
+// An environment sample keeps its direction in `position` and kind 3 in the two kind bits.
 fn pack_tile_sample(y: LightSampleId, lp: LightPoint) -> TileSample {
     let flags = lp.kind | (select(0u, 1u, lp.double_sided) << 2u) | (lp.punctual << 8u);
     return TileSample(lp.position, lp.source_pdf, lp.radiance, y.light, y.uv, oct_encode(lp.normal), flags);

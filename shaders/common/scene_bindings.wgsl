@@ -9,3 +9,9 @@
 @group(1) @binding(5) var<storage, read> lights: array<Light>;
 @group(1) @binding(6) var<storage, read> punctual_lights: array<PunctualLight>;
 @group(1) @binding(7) var<storage, read> bvh_nodes: array<BvhNode>;
+#ifdef ENVIRONMENT
+// The environment (render/src/environment/upload.rs): sampling table, radiance, uniform.
+@group(1) @binding(8) var<storage, read> env_table: array<EnvTexel>;
+@group(1) @binding(9) var env_radiance: texture_2d<f32>;
+@group(1) @binding(10) var<uniform> env: Environment;
+#endif

@@ -66,6 +66,13 @@ fn light_contribution(sp: ShadingPoint, lp: LightPoint) -> LightContribution {
         }
         falloff = cos_light / dist2;
     }
+#ifdef ENVIRONMENT
+    else if lp.kind == LIGHT_POINT_ENVIRONMENT {
+        // A direction: falloff, dist2 and cos_light stay 1, so a BSDF pdf converted "to
+        // area measure" (× cos_light / dist2) stays per steradian like the source pdf.
+        wi = lp.position;
+    }
+#endif
 #ifdef PUNCTUAL_LIGHTS
     else if lp.kind == LIGHT_POINT_POSITION {
         let d = lp.position - sp.position;
@@ -108,7 +115,11 @@ fn target_at(sp: ShadingPoint, light: u32, uv: vec2<f32>) -> f32 {
 fn light_visible(sp: ShadingPoint, lp: LightPoint, c: LightContribution) -> bool {
 #ifdef SHADOWS
     var ray: Ray;
-    if lp.kind == LIGHT_POINT_DIRECTION {
+    var distant = lp.kind == LIGHT_POINT_DIRECTION;
+#ifdef ENVIRONMENT
+    distant = distant || lp.kind == LIGHT_POINT_ENVIRONMENT;
+#endif
+    if distant {
         let o = offset_ray_origin(sp.position, sp.geo_normal);
         ray = Ray(o, c.wi * (frame.scene_scale * 2.0), 1.0);
     } else {
@@ -119,4 +130,29 @@ fn light_visible(sp: ShadingPoint, lp: LightPoint, c: LightContribution) -> bool
 #else
     return true;
 #endif
+}
+
+// Whether a BSDF ray can find this kind of light (and so the BSDF pdf enters its MIS
+// weight): area lights, and the environment when there is one; never punctual lights.
+fn bsdf_can_hit(kind: u32) -> bool {
+#ifdef ENVIRONMENT
+    if kind == LIGHT_POINT_ENVIRONMENT {
+        return true;
+    }
+#endif
+    return kind == LIGHT_POINT_AREA;
+}
+
+// The light a BSDF ray from sp along wi finds: the emitter it hits first, or the
+// environment when it leaves the scene; NO_LIGHT for anything else.
+fn bsdf_ray_light(sp: ShadingPoint, wi: vec3<f32>) -> LightSampleId {
+    let hit = trace_closest(Ray(offset_ray_origin(sp.position, sp.geo_normal), wi, FLT_MAX), false);
+    if hit.t < 0.0 {
+#ifdef ENVIRONMENT
+        return LightSampleId(env.light, env_direction_to_uv(wi));
+#else
+        return LightSampleId(NO_LIGHT, vec2<f32>(0.0));
+#endif
+    }
+    return LightSampleId(triangles[hit.triangle].light, vec2<f32>(hit.u, hit.v));
 }

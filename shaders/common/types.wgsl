@@ -172,3 +172,19 @@ struct PassInfo {
     _pad0: u32,
     _pad1: u32,
 }
+
+// The environment's sampling table (render/src/environment/distribution.rs).
+struct EnvTexel {
+    alias_threshold: f32,
+    alias_index: u32,
+    pdf: f32,             // per steradian (conditional entries) or P(row) (marginal ones)
+}
+
+struct Environment {
+    size: vec2<u32>,
+    light: u32,           // light table index, NO_LIGHT when it does not emit
+    strength: f32,
+    rotation: vec2<f32>,  // (cos, sin) about +Y
+    _pad0: u32,
+    _pad1: u32,
+}

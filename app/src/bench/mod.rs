@@ -10,6 +10,7 @@
 
 mod configs;
 mod csv;
+pub mod env_cost;
 mod equal_time;
 mod markdown;
 mod plots;
@@ -27,6 +28,7 @@ use clap::Args;
 use restir_render::reference_cache::ReferenceCache;
 use restir_render::{Gpu, Renderer, load_scene};
 
+use crate::cli::environment::EnvArgs;
 use crate::cli::setup::{PipelineArgs, parse_size};
 use configs::{BASE_ASSIGNMENTS, DEFAULT_CONFIGS, parse_configs};
 use equal_time::{Budget, mse_ratio};
@@ -68,6 +70,9 @@ pub struct BenchArgs {
     /// `jitter=false` first (see docs/bench.md); `--set jitter=true` turns it back on.
     #[command(flatten)]
     pub pipeline: PipelineArgs,
+    /// `--env`, `--env-strength`, `--env-rotation` (the reference is keyed by them too).
+    #[command(flatten)]
+    pub env: EnvArgs,
     /// Reference cache directory (default: $RESTIR_CACHE_DIR, else target/restir-cache).
     #[arg(long)]
     pub cache_dir: Option<PathBuf>,
@@ -143,7 +148,8 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     }
 
     let started = Instant::now();
-    let scene = load_scene(&args.scene)?;
+    let mut scene = load_scene(&args.scene)?;
+    args.env.apply(&mut scene)?;
     let gpu = Gpu::new_headless()?;
     // One renderer per configuration, so their frames can interleave (see run_loop.rs).
     let renderers = configs

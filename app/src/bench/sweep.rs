@@ -63,6 +63,7 @@ pub fn run(
         );
     }
     let counts = parse_counts(list)?;
+    let environment = args.env.load()?;
     let gpu = Gpu::new_headless()?;
     let device = gpu.adapter_name();
     let is_cpu = gpu.is_cpu();
@@ -74,7 +75,8 @@ pub fn run(
     for &lights in &counts {
         let spec = format!("builtin:many-lights:{lights}");
         let t = Instant::now();
-        let scene = load_scene(&spec)?;
+        let mut scene = load_scene(&spec)?;
+        scene.environment = environment.clone();
         let generate_ms = t.elapsed().as_secs_f64() * 1e3;
         let t = Instant::now();
         let renderer = Renderer::new(

@@ -38,6 +38,9 @@ pub struct RenderArgs {
     /// Seed, `--set`, preset and effect set.
     #[command(flatten)]
     pub pipeline: PipelineArgs,
+    /// `--env`, `--env-strength`, `--env-rotation`.
+    #[command(flatten)]
+    pub env: super::environment::EnvArgs,
     /// Output image: .exr (linear radiance) or .png (what the display shows).
     #[arg(long)]
     pub out: PathBuf,
@@ -143,7 +146,8 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         bail!("--debug-view difference shows |A − B|: it needs --compare B");
     }
 
-    let scene = load_scene(&args.scene)?;
+    let mut scene = load_scene(&args.scene)?;
+    args.env.apply(&mut scene)?;
     let gpu = Gpu::new_headless()?;
     let side = |mode: Mode, settings: Settings| -> anyhow::Result<Side> {
         let mut renderer = Renderer::new(gpu.clone(), &scene, size.0, size.1, settings)?;

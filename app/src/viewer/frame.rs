@@ -7,7 +7,7 @@ use std::time::{Duration, Instant};
 
 use restir_render::reference_cache::ReferenceCache;
 use restir_render::view::auto_exposure_ev;
-use restir_render::{DebugView, Gpu, Renderer, Scene};
+use restir_render::{DebugView, Environment, Gpu, Renderer, Scene};
 use winit::dpi::PhysicalSize;
 use winit::window::Window;
 
@@ -20,7 +20,7 @@ use super::compare_side::CompareSide;
 use super::egui_layer::EguiLayer;
 use super::gpu_surface::GpuSurface;
 use super::panels;
-use super::scene_loader::SceneLoader;
+use super::scene_loader::{Loaded, SceneLoader, is_environment_spec, with_environment};
 use super::scene_view;
 use super::screenshot::{self, Shot, WindowCapture};
 use super::state::{Action, DeviceInfo, DisplayOptions, ViewerState};
@@ -372,6 +372,15 @@ impl Viewer {
                     self.state.scene.error = None;
                     self.loader.start(spec);
                 }
+                Action::LoadEnvironment(Some(spec)) => {
+                    self.state.scene.env_error = None;
+                    self.loader.start_environment(spec);
+                }
+                Action::LoadEnvironment(None) => {
+                    if let Err(e) = self.replace_environment(None) {
+                        self.state.scene.env_error = Some(e);
+                    }
+                }
                 Action::Screenshot => self.screenshots.requested = true,
                 Action::AutoExposure => {
                     let linear = if self.state.view.accumulate {
@@ -387,14 +396,48 @@ impl Viewer {
         self.state.scene.loading = self.loader.loading().map(str::to_string);
     }
 
-    /// A finished background load replaces the scene; a failed one keeps the old scene
-    /// and shows why.
+    /// The same scene under another environment (or none), seen from the same camera. On
+    /// failure nothing changes.
+    fn replace_environment(&mut self, env: Option<Environment>) -> Result<(), String> {
+        let scene = with_environment(&self.scene, env)?;
+        let camera = self.renderer.camera();
+        self.renderer
+            .set_scene(&scene)
+            .map_err(|e| format!("{e:#}"))?;
+        self.renderer.set_camera(camera);
+        self.scene = Arc::new(scene);
+        self.state.scene.info = Some(self.renderer.scene_info().clone());
+        self.state.scene.env_error = None;
+        self.state.stats.clear();
+        Ok(())
+    }
+
+    /// A finished background load replaces the scene (keeping the environment) or the
+    /// environment (keeping scene and camera); a failed one keeps what there was and
+    /// shows why.
     fn poll_loader(&mut self) {
         let Some((spec, result)) = self.loader.poll() else {
             return;
         };
         self.state.scene.loading = None;
-        let uploaded = result.and_then(|scene| {
+        let result = match result {
+            Ok(Loaded::Environment(env)) => {
+                if let Err(e) = self.replace_environment(Some(env)) {
+                    log::warn!("cannot use {spec}: {e}");
+                    self.state.scene.env_error = Some(e);
+                }
+                return;
+            }
+            Err(e) if is_environment_spec(&spec) => {
+                log::warn!("cannot load {spec}: {e}");
+                self.state.scene.env_error = Some(e);
+                return;
+            }
+            Ok(Loaded::Scene(scene)) => Ok(scene),
+            Err(e) => Err(e),
+        };
+        let uploaded = result.and_then(|mut scene| {
+            scene.environment = self.scene.environment.clone();
             self.renderer
                 .set_scene(&scene)
                 .map_err(|e| format!("{e:#}"))?;

@@ -67,6 +67,9 @@ pub struct ViewArgs {
     /// Test hook: resize, minimise and restore the window while rendering.
     #[arg(long, hide = true)]
     pub test_resize_script: bool,
+    /// `--env`, `--env-strength`, `--env-rotation`.
+    #[command(flatten)]
+    pub env: crate::cli::environment::EnvArgs,
 }
 
 /// The validated command line: everything the window needs before it opens.
@@ -81,6 +84,8 @@ pub struct Launch {
     pub compare: Option<String>,
     pub exit: bool,
     pub resize_script: bool,
+    /// The environment of `--env`, loaded (a bad file is a command-line error).
+    pub environment: Option<std::sync::Arc<restir_render::Environment>>,
 }
 
 impl Launch {
@@ -119,6 +124,7 @@ impl Launch {
             compare: args.compare,
             exit: args.exit,
             resize_script: args.test_resize_script,
+            environment: args.env.load()?,
         })
     }
 }
@@ -127,7 +133,8 @@ impl Launch {
 pub fn run(args: ViewArgs) -> anyhow::Result<()> {
     let launch = Launch::from_args(args)?;
     // Load before opening a window: a bad --scene is a command-line error.
-    let scene = load_scene(&launch.scene_spec)?;
+    let mut scene = load_scene(&launch.scene_spec)?;
+    scene.environment = launch.environment.clone();
     let event_loop = winit::event_loop::EventLoop::new()
         .context("cannot open a window: no display (set DISPLAY or WAYLAND_DISPLAY, or use `render` headless)")?;
     let mut app = app::App::new(launch, scene);

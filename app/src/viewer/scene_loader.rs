@@ -1,22 +1,70 @@
-//! Loads scenes on a background thread (glTF import and BVH build can take seconds), so
-//! the window keeps drawing the old scene meanwhile.
+//! Loads scenes and environments on a background thread (glTF import, BVH build and an
+//! HDRI's decode and distribution can take seconds), so the window keeps drawing the old
+//! ones meanwhile.
 
 use std::sync::mpsc::{Receiver, TryRecvError, channel};
 
-use restir_render::{Scene, load_scene};
+use restir_render::{Environment, Scene, load_environment, load_scene};
+
+/// What a background load produced.
+pub enum Loaded {
+    Scene(Scene),
+    Environment(Environment),
+}
+
+/// Whether a load request names an environment (by extension, or `builtin:sky`).
+pub fn is_environment_spec(spec: &str) -> bool {
+    let lower = spec.to_ascii_lowercase();
+    lower.ends_with(".hdr")
+        || lower.ends_with(".exr")
+        || spec == restir_render::environment::BUILTIN_SKY
+}
+
+/// `scene` under `env` (or none); a new environment keeps the old one's strength and
+/// rotation (the command line's), so swapping skies compares like with like.
+pub fn with_environment(scene: &Scene, env: Option<Environment>) -> Result<Scene, String> {
+    let old = scene.environment.as_deref();
+    let env = match env {
+        Some(e) => Some(std::sync::Arc::new(e.with_strength_and_rotation(
+            old.map_or(1.0, |o| o.strength),
+            old.map_or(0.0, |o| o.rotation_deg),
+        )?)),
+        None => None,
+    };
+    Ok(Scene {
+        environment: env,
+        ..scene.clone()
+    })
+}
 
 #[derive(Default)]
 pub struct SceneLoader {
-    pending: Option<(String, Receiver<Result<Scene, String>>)>,
+    pending: Option<(String, Receiver<Result<Loaded, String>>)>,
 }
 
 impl SceneLoader {
-    /// Starts loading `spec`; a load already running is abandoned (its result dropped).
+    /// Starts loading the scene `spec`; a load already running is abandoned (its result
+    /// dropped).
     pub fn start(&mut self, spec: String) {
+        self.start_with(spec, |s| {
+            load_scene(s).map(Loaded::Scene).map_err(|e| e.to_string())
+        });
+    }
+
+    /// Starts loading the environment `spec` (.hdr, .exr or `builtin:sky`).
+    pub fn start_environment(&mut self, spec: String) {
+        self.start_with(spec, |s| {
+            load_environment(s)
+                .map(Loaded::Environment)
+                .map_err(|e| e.to_string())
+        });
+    }
+
+    fn start_with(&mut self, spec: String, load: fn(&str) -> Result<Loaded, String>) {
         let (tx, rx) = channel();
         let job = spec.clone();
         std::thread::spawn(move || {
-            let _ = tx.send(load_scene(&job).map_err(|e| e.to_string()));
+            let _ = tx.send(load(&job));
         });
         self.pending = Some((spec, rx));
     }
@@ -26,7 +74,7 @@ impl SceneLoader {
     }
 
     /// The finished load, if it has finished.
-    pub fn poll(&mut self) -> Option<(String, Result<Scene, String>)> {
+    pub fn poll(&mut self) -> Option<(String, Result<Loaded, String>)> {
         let (spec, rx) = self.pending.as_ref()?;
         let result = match rx.try_recv() {
             Ok(result) => result,
@@ -43,7 +91,7 @@ impl SceneLoader {
 mod tests {
     use super::*;
 
-    fn wait(loader: &mut SceneLoader) -> (String, Result<Scene, String>) {
+    fn wait(loader: &mut SceneLoader) -> (String, Result<Loaded, String>) {
         for _ in 0..2000 {
             if let Some(done) = loader.poll() {
                 return done;
@@ -64,6 +112,36 @@ mod tests {
         assert_eq!(loader.loading(), None);
         loader.start("/no/such/scene.gltf".into());
         let (_, result) = wait(&mut loader);
-        assert!(result.unwrap_err().contains("scene.gltf"));
+        assert!(result.err().unwrap().contains("scene.gltf"));
+    }
+
+    #[test]
+    fn a_new_environment_keeps_strength_and_rotation() {
+        let mut scene = load_scene("builtin:plane-light").unwrap();
+        let sky = load_environment("builtin:sky").unwrap();
+        scene.environment = Some(std::sync::Arc::new(
+            sky.clone().with_strength_and_rotation(2.5, 30.0).unwrap(),
+        ));
+        let swapped = with_environment(&scene, Some(sky)).unwrap();
+        let env = swapped.environment.as_deref().unwrap();
+        assert_eq!((env.strength, env.rotation_deg), (2.5, 30.0));
+        assert_eq!(swapped.triangles, scene.triangles);
+        assert!(
+            with_environment(&scene, None)
+                .unwrap()
+                .environment
+                .is_none()
+        );
+    }
+
+    #[test]
+    fn loads_environments_and_names_a_bad_file() {
+        let mut loader = SceneLoader::default();
+        loader.start_environment("builtin:sky".into());
+        let (_, result) = wait(&mut loader);
+        assert!(matches!(result, Ok(Loaded::Environment(e)) if e.width == 512));
+        loader.start_environment("/no/such/sky.hdr".into());
+        let (_, result) = wait(&mut loader);
+        assert!(result.err().unwrap().starts_with("/no/such/sky.hdr: "));
     }
 }

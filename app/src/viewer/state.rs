@@ -18,6 +18,9 @@ use super::camera::CameraState;
 pub enum Action {
     /// Replace the scene (`builtin:NAME` or a glTF path); on failure the old one stays.
     LoadScene(String),
+    /// Load an environment (.hdr, .exr or `builtin:sky`) in the background; `None` removes
+    /// it. A failed load keeps the environment there was.
+    LoadEnvironment(Option<String>),
     /// Write a screenshot (PNG of the window and of the image, EXR of the radiance).
     Screenshot,
     /// Set the exposure from the current frame's log-average luminance.
@@ -123,6 +126,10 @@ pub struct SceneState {
     pub error: Option<String>,
     /// The path field of the Open row.
     pub open_path: String,
+    /// The last environment load error (the previous environment is kept).
+    pub env_error: Option<String>,
+    /// The path field of the environment's Open row.
+    pub env_open_path: String,
 }
 
 /// The split-screen comparison (Compare section): configuration B beside the current one.

@@ -68,6 +68,18 @@ pub fn pass_info_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
+/// Whole-buffer entries in binding order 0, 1, 2, ...
+pub fn buffer_entries<'a>(buffers: &[&'a wgpu::Buffer]) -> Vec<wgpu::BindGroupEntry<'a>> {
+    buffers
+        .iter()
+        .enumerate()
+        .map(|(i, b)| wgpu::BindGroupEntry {
+            binding: i as u32,
+            resource: b.as_entire_binding(),
+        })
+        .collect()
+}
+
 /// A bind group whose entries are whole buffers, in binding order 0, 1, 2, ...
 pub fn buffer_bind_group(
     gpu: &Gpu,
@@ -75,14 +87,7 @@ pub fn buffer_bind_group(
     layout: &wgpu::BindGroupLayout,
     buffers: &[&wgpu::Buffer],
 ) -> wgpu::BindGroup {
-    let entries: Vec<_> = buffers
-        .iter()
-        .enumerate()
-        .map(|(i, b)| wgpu::BindGroupEntry {
-            binding: i as u32,
-            resource: b.as_entire_binding(),
-        })
-        .collect();
+    let entries = buffer_entries(buffers);
     gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some(label),
         layout,
@@ -118,12 +123,13 @@ impl PassLayouts {
     pub fn new(gpu: &Gpu) -> PassLayouts {
         let all =
             wgpu::ShaderStages::COMPUTE | wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT;
-        let scene_entries: Vec<_> = (0..8)
+        let mut scene_entries: Vec<_> = (0..8)
             .map(|i| wgpu::BindGroupLayoutEntry {
                 visibility: all,
                 ..storage(i, true)
             })
             .collect();
+        scene_entries.extend(crate::environment::upload::layout_entries(all));
         PassLayouts {
             frame: layout(
                 gpu,

@@ -101,6 +101,11 @@ pub fn key_of(request: &ReferenceRequest) -> anyhow::Result<ReferenceKey> {
         request.seed,
         shaders.finish(),
     );
+    // Only with an environment, so keys (and caches) of scenes without one are unchanged.
+    let description = match &request.environment {
+        Some(env) => format!("{description}environment={env}\n"),
+        None => description,
+    };
     Ok(ReferenceKey {
         hash: Fnv64::of(description.as_bytes()),
         description,

@@ -6,7 +6,7 @@ use std::collections::HashMap;
 use crate::frame_targets::FrameTargets;
 use crate::gpu::Gpu;
 use crate::gpu_types::GpuPassInfo;
-use crate::passes::{PassLayouts, buffer_bind_group};
+use crate::passes::{PassLayouts, buffer_bind_group, buffer_entries};
 
 /// A pass and the indices of the surface / reservoir buffers it reads and writes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -228,14 +228,7 @@ fn create(
                 &t.reference,
                 u.display,
             ];
-            let mut entries: Vec<_> = buffers
-                .iter()
-                .enumerate()
-                .map(|(i, b)| wgpu::BindGroupEntry {
-                    binding: i as u32,
-                    resource: b.as_entire_binding(),
-                })
-                .collect();
+            let mut entries = buffer_entries(&buffers);
             entries.push(wgpu::BindGroupEntry {
                 binding: 6,
                 resource: wgpu::BindingResource::TextureView(&t.display_view),

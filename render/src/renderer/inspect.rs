@@ -20,8 +20,11 @@ pub struct StageReservoir {
     /// "initial", "temporal", "spatial 1", ...
     pub stage: String,
     pub reservoir: GpuReservoir,
-    /// World position of the reservoir's light sample (None for the null sample).
+    /// World position of the reservoir's light sample (None for the null sample and for
+    /// environment samples, which have no position).
     pub sample_point: Option<[f32; 3]>,
+    /// The world direction toward the sky when the sample is an environment direction.
+    pub environment_direction: Option<[f32; 3]>,
 }
 
 /// Everything the inspector shows about one pixel in one frame.
@@ -178,12 +181,14 @@ impl InspectCapture {
 }
 
 impl PendingInspection {
-    /// Decodes the bytes read back; `sample_point` maps (light, uv) to a world position.
+    /// Decodes the bytes read back; `sample_point` maps (light, uv) to a world position,
+    /// `environment_direction` to a direction when the light is the environment.
     pub fn finish(
         self,
         frame: u64,
         bytes: &[u8],
         sample_point: impl Fn(u32, [f32; 2]) -> Option<[f32; 3]>,
+        environment_direction: impl Fn(u32, [f32; 2]) -> Option<[f32; 3]>,
     ) -> Option<PixelInspection> {
         if (bytes.len() as u64) < INSPECT_BYTES {
             return None;
@@ -207,6 +212,7 @@ impl PendingInspection {
                     stage,
                     reservoir,
                     sample_point,
+                    environment_direction: environment_direction(reservoir.light, reservoir.uv),
                 }
             })
             .collect();

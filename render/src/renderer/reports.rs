@@ -21,9 +21,12 @@ impl Renderer {
         for (frame, bytes) in self.inspect_ring.collect() {
             if let Some(pending) = self.pending_inspections.remove(&frame) {
                 let scene = &self.scene;
-                if let Some(i) =
-                    pending.finish(frame, &bytes, |light, uv| scene.sample_point(light, uv))
-                {
+                if let Some(i) = pending.finish(
+                    frame,
+                    &bytes,
+                    |light, uv| scene.sample_point(light, uv),
+                    |light, uv| scene.environment_direction(light, uv),
+                ) {
                     self.arrived_inspections.insert(frame, i);
                 }
             }

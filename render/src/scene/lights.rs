@@ -1,5 +1,5 @@
 //! The power-proportional light table (notes §1): one entry per emissive triangle and per
-//! punctual light, picked with probability power / total through an alias table (Vose's
+//! punctual light (and one for the environment), picked with probability power / total through an alias table (Vose's
 //! method) so the shader samples a light in O(1) with two random numbers.
 //!
 //! Entries with zero, negative or non-finite (in f32) power or area never enter the table: a light that can
@@ -8,10 +8,12 @@
 
 use glam::{DVec3, Vec3};
 
+use super::alias::alias_slots;
 use super::{Material, PunctualKind, PunctualLight, Scene, Texture};
 use crate::gpu_types::{
-    GpuLight, GpuPunctualLight, LIGHT_KIND_PUNCTUAL, LIGHT_KIND_SHIFT, LIGHT_KIND_TRIANGLE,
-    LIGHT_PRIM_MASK, NO_LIGHT, PUNCTUAL_DIRECTIONAL, PUNCTUAL_POINT, PUNCTUAL_SPOT,
+    GpuLight, GpuPunctualLight, LIGHT_KIND_ENVIRONMENT, LIGHT_KIND_PUNCTUAL, LIGHT_KIND_SHIFT,
+    LIGHT_KIND_TRIANGLE, LIGHT_PRIM_MASK, NO_LIGHT, PUNCTUAL_DIRECTIONAL, PUNCTUAL_POINT,
+    PUNCTUAL_SPOT,
 };
 use crate::image::luminance;
 
@@ -26,6 +28,8 @@ pub struct LightTable {
     pub total_power: f64,
     /// Smallest and largest entry power, `None` for an empty table (for the UI and logs).
     pub power_range: Option<(f32, f32)>,
+    /// The environment's entry, `NO_LIGHT` without an environment or when it is black.
+    pub environment_light: u32,
 }
 
 impl LightTable {
@@ -72,6 +76,18 @@ impl LightTable {
                 entries.push((LIGHT_KIND_PUNCTUAL << LIGHT_KIND_SHIFT | i as u32, power));
             }
         }
+        // The environment's share (README "Environment"): its power is π R² ∫ L dω, what
+        // crosses a disc the size of the scene from every direction (PBRT-v4's
+        // ImageInfiniteLight::Phi), the same measure as a directional light's.
+        let mut environment_light = NO_LIGHT;
+        if let Some(env) = &scene.environment {
+            let power =
+                std::f64::consts::PI * scene_radius * scene_radius * env.luminance_integral();
+            if is_usable(power) {
+                environment_light = entries.len() as u32;
+                entries.push((LIGHT_KIND_ENVIRONMENT << LIGHT_KIND_SHIFT, power));
+            }
+        }
         let power_range = entries
             .iter()
             .fold(None, |range: Option<(f32, f32)>, &(_, p)| {
@@ -85,6 +101,7 @@ impl LightTable {
             punctual: scene.punctual_lights.iter().map(gpu_punctual).collect(),
             total_power,
             power_range,
+            environment_light,
         }
     }
 
@@ -192,37 +209,21 @@ fn gpu_punctual(light: &PunctualLight) -> GpuPunctualLight {
     }
 }
 
-/// Vose's alias method over `(kind_prim, power)` entries, computed in f64 so that a 1e-20
-/// light next to a 1e8 one keeps its probability. Returns the entries and the total power.
+/// The light entries of `(kind_prim, power)` pairs with their alias slots (see
+/// `alias.rs`). Returns the entries and the total power.
 fn alias_table(entries: &[(u32, f64)]) -> (Vec<GpuLight>, f64) {
-    let n = entries.len();
-    let total: f64 = entries.iter().map(|e| e.1).sum();
-    let mut lights: Vec<GpuLight> = entries
+    let powers: Vec<f64> = entries.iter().map(|e| e.1).collect();
+    let (slots, total) = alias_slots(&powers);
+    let lights = entries
         .iter()
-        .enumerate()
-        .map(|(i, &(kind_prim, power))| GpuLight {
+        .zip(slots)
+        .map(|(&(kind_prim, power), slot)| GpuLight {
             kind_prim,
             select_pdf: (power / total) as f32,
-            alias_threshold: 1.0,
-            alias_index: i as u32,
+            alias_threshold: slot.threshold,
+            alias_index: slot.alias,
         })
         .collect();
-    // Slot i keeps its own entry with probability scaled[i] and gives the rest to its alias.
-    let mut scaled: Vec<f64> = entries.iter().map(|e| e.1 / total * n as f64).collect();
-    let (mut small, mut large): (Vec<usize>, Vec<usize>) = (0..n).partition(|&i| scaled[i] < 1.0);
-    while let (Some(&s), Some(&l)) = (small.last(), large.last()) {
-        small.pop();
-        large.pop();
-        lights[s].alias_threshold = scaled[s] as f32;
-        lights[s].alias_index = l as u32;
-        scaled[l] -= 1.0 - scaled[s];
-        if scaled[l] < 1.0 {
-            small.push(l)
-        } else {
-            large.push(l)
-        }
-    }
-    // Whatever is left is 1 up to rounding and keeps its own slot (the defaults).
     (lights, total)
 }
 

@@ -91,21 +91,26 @@ fn reservoirs(ui: &mut Ui, i: &PixelInspection) {
 
 fn reservoir_grid(ui: &mut Ui, i: &PixelInspection) {
     type Cell = fn(&StageReservoir) -> String;
+    /// The sample point, or for an environment sample (no point) its direction.
     fn point(s: &StageReservoir, axis: usize) -> String {
-        match (s.reservoir.light, s.sample_point) {
-            (NO_LIGHT, _) => "–".to_string(),
-            (_, Some(p)) => format!("{:.3}", p[axis]),
-            (_, None) => "?".to_string(),
+        match (s.reservoir.light, s.environment_direction, s.sample_point) {
+            (NO_LIGHT, ..) => "–".to_string(),
+            (_, Some(d), _) => format!("dir {:.3}", d[axis]),
+            (_, None, Some(p)) => format!("{:.3}", p[axis]),
+            (_, None, None) => "?".to_string(),
         }
     }
     let rows: [(&str, Cell); 10] = [
-        ("light", |s| match s.reservoir.light {
-            NO_LIGHT => "null".to_string(),
-            light => light.to_string(),
+        ("light", |s| {
+            match (s.reservoir.light, s.environment_direction) {
+                (NO_LIGHT, _) => "null".to_string(),
+                (light, Some(_)) => format!("{light} environment"),
+                (light, None) => light.to_string(),
+            }
         }),
         ("uv", |s| match s.reservoir.light {
             NO_LIGHT => "–".to_string(),
-            _ => format!("({:.3}, {:.3})", s.reservoir.uv[0], s.reservoir.uv[1]),
+            _ => format!("{:.3}, {:.3}", s.reservoir.uv[0], s.reservoir.uv[1]),
         }),
         ("point x", |s| point(s, 0)),
         ("point y", |s| point(s, 1)),
@@ -122,6 +127,9 @@ fn reservoir_grid(ui: &mut Ui, i: &PixelInspection) {
                 .to_string()
         }),
     ];
+    // Cells keep their text on one line: the grid widens a column to fit it (and the
+    // scroll area takes the overflow) instead of wrapping into the next column.
+    ui.style_mut().wrap_mode = Some(egui::TextWrapMode::Extend);
     egui::Grid::new("reservoirs")
         .num_columns(1 + i.stages.len())
         .striped(true)
@@ -162,6 +170,10 @@ fn flag_names(flags: u32) -> String {
         (DEBUG_FLAG_SPATIAL_CAP, "spatial M cap fired"),
         (DEBUG_FLAG_FALLBACK_TRIED, "permutation fallback tried"),
         (DEBUG_FLAG_FALLBACK_USED, "permutation fallback used"),
+        (
+            DEBUG_FLAG_ENVIRONMENT_SAMPLE,
+            "survivor is an environment direction",
+        ),
     ]
     .into_iter()
     .filter(|(bit, _)| flags & bit != 0)

@@ -5,6 +5,7 @@ pub mod accuracy;
 pub mod accuracy_plots;
 pub mod camera;
 pub mod compare;
+pub mod environment;
 pub mod inspector;
 pub mod palette;
 pub mod pipeline;

@@ -1,5 +1,6 @@
 //! The Scene panel: what is loaded (counts, light power range, the compiled effect set
-//! and why), the built-in scene picker and opening a glTF file by path or drag-and-drop.
+//! and why), the built-in scene picker and opening a glTF file by path or drag-and-drop;
+//! the environment part is `environment.rs`.
 
 use egui::Ui;
 use restir_render::scene::builtin::builtin_names;
@@ -14,33 +15,30 @@ pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
         if scene.spec != info.name {
             ui.weak(&scene.spec);
         }
-        egui::Grid::new("scene facts")
-            .num_columns(2)
-            .show(ui, |ui| {
-                let mut row = |k: &str, v: String| {
-                    ui.label(k);
-                    ui.label(v);
-                    ui.end_row();
-                };
-                row("Triangles", info.triangles.to_string());
-                row("Emissive triangles", info.emissive_triangles.to_string());
-                row("Punctual lights", info.punctual_lights.to_string());
-                row("Light table entries", info.light_table_entries.to_string());
-                row(
+        facts(
+            ui,
+            "scene facts",
+            &[
+                ("Triangles", info.triangles.to_string()),
+                ("Emissive triangles", info.emissive_triangles.to_string()),
+                ("Punctual lights", info.punctual_lights.to_string()),
+                ("Light table entries", info.light_table_entries.to_string()),
+                (
                     "Light power",
                     info.power_range
                         .map_or("no lights".to_string(), |(lo, hi)| {
                             format!("{lo:.3e} … {hi:.3e} (total {:.3e})", info.total_power)
                         }),
-                );
-                row(
+                ),
+                (
                     "BVH",
                     format!(
                         "{} nodes, depth {}, {:.0} ms",
                         info.bvh_nodes, info.bvh_depth, info.bvh_build_ms
                     ),
-                );
-            });
+                ),
+            ],
+        );
     }
     let mut pick = None;
     egui::ComboBox::from_label("Built-in scene")
@@ -52,22 +50,43 @@ pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
                 }
             }
         });
-    ui.horizontal(|ui| {
-        ui.add(
-            egui::TextEdit::singleline(&mut state.scene.open_path)
-                .desired_width(180.0)
-                .hint_text("path/to/scene.gltf"),
-        );
-        if ui.button("Open").clicked() && !state.scene.open_path.trim().is_empty() {
-            pick = Some(state.scene.open_path.trim().to_string());
-        }
-    });
+    if let Some(path) = open_row(ui, &mut state.scene.open_path, "path/to/scene.gltf", "Open") {
+        pick = Some(path);
+    }
     ui.weak("…or drop a .gltf/.glb file on the window");
     if let Some(spec) = pick {
         state.request(Action::LoadScene(spec));
     }
     status(ui, state);
+    super::environment::ui(ui, state);
     effects(ui, state);
+}
+
+/// A two-column grid of facts.
+pub(super) fn facts(ui: &mut Ui, id: &str, rows: &[(&str, String)]) {
+    egui::Grid::new(id).num_columns(2).show(ui, |ui| {
+        for (k, v) in rows {
+            ui.label(*k);
+            ui.label(v);
+            ui.end_row();
+        }
+    });
+}
+
+/// A path field and a button; the trimmed path when the button is clicked with one.
+pub(super) fn open_row(ui: &mut Ui, path: &mut String, hint: &str, button: &str) -> Option<String> {
+    let mut picked = None;
+    ui.horizontal(|ui| {
+        ui.add(
+            egui::TextEdit::singleline(path)
+                .desired_width(180.0)
+                .hint_text(hint),
+        );
+        if ui.button(button).clicked() && !path.trim().is_empty() {
+            picked = Some(path.trim().to_string());
+        }
+    });
+    picked
 }
 
 fn builtin_label(spec: &str) -> &str {
@@ -119,7 +138,8 @@ fn effects(ui: &mut Ui, state: &ViewerState) {
         });
 }
 
-/// Files dropped on the window replace the scene (the last one wins).
+/// Files dropped on the window replace the scene, or the environment for .hdr/.exr (the
+/// last one wins).
 pub fn take_dropped_files(ctx: &egui::Context, state: &mut ViewerState) {
     let dropped = ctx.input(|i| {
         i.raw
@@ -129,6 +149,11 @@ pub fn take_dropped_files(ctx: &egui::Context, state: &mut ViewerState) {
             .next_back()
     });
     if let Some(path) = dropped {
-        state.request(Action::LoadScene(path.display().to_string()));
+        let spec = path.display().to_string();
+        if crate::viewer::scene_loader::is_environment_spec(&spec) {
+            state.request(Action::LoadEnvironment(Some(spec)));
+        } else {
+            state.request(Action::LoadScene(spec));
+        }
     }
 }

@@ -22,6 +22,7 @@ fn table_from_powers(powers: &[f64]) -> LightTable {
         punctual: Vec::new(),
         total_power,
         power_range: None,
+        environment_light: NO_LIGHT,
     }
 }
 

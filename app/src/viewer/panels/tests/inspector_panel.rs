@@ -19,6 +19,7 @@ pub(super) fn synthetic_inspection() -> PixelInspection {
         stage: name.to_string(),
         reservoir: r,
         sample_point: point,
+        environment_direction: None,
     };
     PixelInspection {
         frame: 42,
@@ -54,6 +55,12 @@ pub(super) fn synthetic_inspection() -> PixelInspection {
                 reservoir(9, 6.0, SOURCE_SPATIAL),
                 Some([0.1, 1.9, 0.3]),
             ),
+            StageReservoir {
+                stage: "spatial 2".to_string(),
+                reservoir: reservoir(11, 6.0, SOURCE_SPATIAL),
+                sample_point: None,
+                environment_direction: Some([0.0, 1.0, 0.0]),
+            },
         ],
     }
 }
@@ -75,9 +82,11 @@ fn the_inspector_shows_every_field_of_a_pixel() {
         "initial",
         "temporal",
         "spatial 1",
-        "(0.125, 0.500)",
+        "0.125, 0.500",
         "point x",
         "1.900",
+        "11 environment",
+        "dir 1.000",
         "null",
         "1.7500e0",
         "3.5000e0",

@@ -59,6 +59,28 @@ fn the_scene_panel_shows_load_errors_and_queues_loads() {
     );
 }
 
+#[test]
+fn the_scene_panel_shows_the_environment_and_queues_environment_loads() {
+    let mut s = state();
+    s.scene.env_error = Some("sky.hdr: cannot decode as Hdr: truncated".into());
+    s.scene.env_open_path = "skies/noon.exr".into();
+    let mut h = harness(scene::ui, s);
+    assert!(shows(&h, "Environment: none"));
+    assert!(shows(&h, "sky.hdr: cannot decode as Hdr: truncated"));
+    assert!(shows(&h, "previous environment is still used"));
+    h.get_by_label("Open environment").click();
+    h.run();
+    h.get_by_label("Built-in sky").click();
+    h.run();
+    assert_eq!(
+        h.state().actions,
+        vec![
+            Action::LoadEnvironment(Some("skies/noon.exr".into())),
+            Action::LoadEnvironment(Some("builtin:sky".into())),
+        ]
+    );
+}
+
 /// Ten frames of plausible counters and pass times.
 pub(super) fn with_reports(mut s: ViewerState) -> ViewerState {
     let mut c = vec![0u32; STAT_COUNT as usize];

@@ -29,6 +29,15 @@ fn the_side_panel_keeps_its_width_whatever_it_shows() {
         bvh_build_ms: 812.0,
         bounds_min: [-1.0; 3],
         bounds_max: [1.0; 3],
+        environment: Some(restir_render::gpu_scene::EnvironmentInfo {
+            name: "/very/long/path/to/some/studio_small_09_4k.exr".into(),
+            width: 4096,
+            height: 2048,
+            strength: 1.5,
+            rotation_deg: -90.0,
+            light_share: 0.62,
+            distribution_build_ms: 190.0,
+        }),
     });
     s.scene.effects = Some(restir_render::effects::EffectSet::all());
     s.scene.passes = vec![
@@ -152,4 +161,18 @@ fn picking_a_pixel_opens_and_reveals_the_inspector() {
     let label = h.get_by_label("Pixel 12, 34");
     let y = label.rect().top();
     assert!((0.0..720.0).contains(&y), "scrolled into view: at y = {y}");
+}
+
+#[test]
+fn an_hdr_or_exr_dropped_on_the_window_loads_as_the_environment() {
+    for path in ["/skies/noon.hdr", "/skies/STUDIO.EXR"] {
+        let mut h = harness(side_panel, state());
+        let file: egui::DroppedFileHandle = std::sync::Arc::new(Dropped(path.into()));
+        h.input_mut().dropped_files.push(file);
+        h.run();
+        assert_eq!(
+            h.state().actions,
+            vec![Action::LoadEnvironment(Some(path.into()))]
+        );
+    }
 }

@@ -64,6 +64,11 @@ pub struct GpuScene {
     pub environment_light: u32,
     /// (cos, sin) of the environment's rotation, to turn a sample's uv into a direction.
     environment_rotation: [f32; 2],
+    /// The light table's `(kind_prim, power)` entries and buffer, and the environment
+    /// share it was last built with (`set_environment_share`).
+    light_entries: Vec<(u32, f64)>,
+    lights_buffer: wgpu::Buffer,
+    environment_share: f32,
 }
 
 /// Octahedral encoding into two snorm16, bit-identical to `oct_encode` in math.wgsl.
@@ -223,6 +228,7 @@ impl GpuScene {
             storage_buffer(gpu, "punctual lights", &lights.punctual),
             storage_buffer(gpu, "bvh nodes", &bvh.nodes),
         ];
+        let lights_buffer = buffers[5].clone();
         let refs: Vec<&wgpu::Buffer> = buffers.iter().collect();
         let mut entries = crate::passes::buffer_entries(&refs);
         entries.extend([
@@ -289,7 +295,30 @@ impl GpuScene {
                 .environment
                 .as_ref()
                 .map_or([1.0, 0.0], |e| e.rotation_cos_sin()),
+            light_entries: lights.entries,
+            lights_buffer,
+            environment_share: 0.0,
         })
+    }
+
+    /// Rebuilds the light table with the environment picked with probability `share` (0:
+    /// by power; the `environment_share` setting) when it differs from the last one. Same
+    /// size, so the buffer is rewritten in place and every bind group stays valid.
+    pub fn set_environment_share(&mut self, gpu: &Gpu, share: f32) {
+        if share == self.environment_share || self.environment_light == NO_LIGHT {
+            return;
+        }
+        self.environment_share = share;
+        let table = crate::scene::lights::with_environment_share(
+            &self.light_entries,
+            self.environment_light,
+            share,
+        );
+        gpu.queue
+            .write_buffer(&self.lights_buffer, 0, bytemuck::cast_slice(&table));
+        if let Some(info) = self.info.environment.as_mut() {
+            info.light_share = table[self.environment_light as usize].select_pdf;
+        }
     }
 
     /// The direction of environment sample (light, uv), as `env_uv_to_direction` in

@@ -216,6 +216,8 @@ parameter_table! {
             "BSDF-sampled rays per pixel; those that hit an emitter join the reservoir, combined with the light candidates by the balance heuristic.";
         light_tiles: LightTiles = LightTiles::Auto, ParamKind::Choice(LIGHT_TILES_NAMES), "Light tiles",
             "Draw light candidates from 128 tiles of 1024 lights presampled by power once per frame (one tile per 16×16 pixel block) instead of from the whole light table: same distribution, a small shared working set, so selection costs the same for a thousand or a million lights (notes §6). auto: on for scenes with at least 16384 lights (emissive triangles + punctual lights), where the measured sweep says they pay (docs/bench.md); on / off force it.";
+        environment_share: f32 = 0.0, ParamKind::Float { min: 0.0, max: 0.99 }, "Environment share",
+            "Probability that a light sample is an environment direction. 0: by estimated power (π R² ∫L dω against the lights' power; README \"Environment\"). Any value is unbiased; it only moves noise between sky and lights (an enclosed room under a bright sky wants less). Without an environment it does nothing.";
         initial_visibility: bool = true, ParamKind::Bool, "Initial visibility",
             "Trace the survivor's shadow ray right after initial sampling and drop it when occluded (visibility reuse, notes §6), so reuse only spreads samples that were visible. One extra shadow ray per pixel.";
     }

@@ -63,6 +63,21 @@ pub fn after_frame(renderer: &mut Renderer, state: &mut ViewerState) {
     if state.scene.passes != renderer.last_passes() {
         state.scene.passes = renderer.last_passes().to_vec();
     }
+    // The environment's light share follows the `environment_share` setting.
+    let share = renderer
+        .scene_info()
+        .environment
+        .as_ref()
+        .map(|e| e.light_share);
+    if let Some(env) = state
+        .scene
+        .info
+        .as_mut()
+        .and_then(|i| i.environment.as_mut())
+        && Some(env.light_share) != share
+    {
+        env.light_share = share.unwrap_or(0.0);
+    }
 }
 
 /// A new scene is in the renderer: its camera, facts and fresh statistics.

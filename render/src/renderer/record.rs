@@ -126,6 +126,8 @@ impl Renderer {
         }
         self.cut_requested = false;
 
+        self.scene
+            .set_environment_share(&self.gpu, settings.environment_share);
         let active = self.active_effects(&settings, moved);
         let (effects, defines, key) = (&active.set, &active.defines, active.key.as_str());
         let (view_proj, jitter) = self.write_frame_uniform(&settings);

@@ -30,6 +30,9 @@ pub struct LightTable {
     pub power_range: Option<(f32, f32)>,
     /// The environment's entry, `NO_LIGHT` without an environment or when it is black.
     pub environment_light: u32,
+    /// `(kind_prim, power)` of every entry, to rebuild the table with another
+    /// environment share (`with_environment_share`).
+    pub entries: Vec<(u32, f64)>,
 }
 
 impl LightTable {
@@ -102,6 +105,7 @@ impl LightTable {
             total_power,
             power_range,
             environment_light,
+            entries,
         }
     }
 
@@ -207,6 +211,32 @@ fn gpu_punctual(light: &PunctualLight) -> GpuPunctualLight {
         cos_inner,
         _pad: [0.0; 3],
     }
+}
+
+/// The table of `entries` with the environment (entry `environment_light`) picked with
+/// probability `share` and the other entries sharing 1 − share in proportion to their
+/// power. `share` 0, no environment or nothing else to share with: the power-proportional
+/// table. Rebuilding costs one alias pass, so the setting can change between frames.
+pub fn with_environment_share(
+    entries: &[(u32, f64)],
+    environment_light: u32,
+    share: f32,
+) -> Vec<GpuLight> {
+    let env = environment_light as usize;
+    let others: f64 = entries
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| *i != env)
+        .map(|(_, e)| e.1)
+        .sum();
+    if env >= entries.len() || !(share > 0.0 && share < 1.0) || others <= 0.0 {
+        return alias_table(entries).0;
+    }
+    let share = share as f64;
+    let mut weighted = entries.to_vec();
+    // env / (env + others) = share.
+    weighted[env].1 = others * share / (1.0 - share);
+    alias_table(&weighted).0
 }
 
 /// The light entries of `(kind_prim, power)` pairs with their alias slots (see

@@ -23,6 +23,7 @@ fn table_from_powers(powers: &[f64]) -> LightTable {
         total_power,
         power_range: None,
         environment_light: NO_LIGHT,
+        entries,
     }
 }
 
@@ -271,4 +272,28 @@ fn empty_table_is_valid() {
     assert_eq!((table.total_power, table.power_range), (0.0, None));
     assert_eq!(table.triangle_light, [NO_LIGHT]);
     assert_eq!(table.sample(0.3, 0.7), (NO_LIGHT, 0.0));
+}
+
+#[test]
+fn environment_share_sets_its_probability_and_keeps_the_others_proportions() {
+    let entries: Vec<(u32, f64)> = [3.0, 1.0, 96.0]
+        .iter()
+        .enumerate()
+        .map(|(i, &p)| (i as u32, p))
+        .collect();
+    // Entry 2 is the environment: 96 % by power, 30 % by choice.
+    let by_power = with_environment_share(&entries, 2, 0.0);
+    assert!((by_power[2].select_pdf - 0.96).abs() < 1e-6);
+    let shared = with_environment_share(&entries, 2, 0.3);
+    let p = implied_probabilities(&shared);
+    for (got, want) in p.iter().zip([0.7 * 0.75, 0.7 * 0.25, 0.3]) {
+        assert!((got - want).abs() < 1e-6, "{got} vs {want}");
+    }
+    for (l, want) in shared.iter().zip(&p) {
+        assert!((l.select_pdf as f64 - want).abs() < 1e-6);
+    }
+    // No environment entry, or nothing to share with: the power table.
+    assert_eq!(with_environment_share(&entries, NO_LIGHT, 0.3), by_power);
+    let alone = [(0u32, 5.0)];
+    assert_eq!(with_environment_share(&alone, 0, 0.3)[0].select_pdf, 1.0);
 }

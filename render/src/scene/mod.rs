@@ -1,6 +1,7 @@
 //! Scenes on the CPU: what a glTF file or a built-in generator produces, before anything
 //! is uploaded. Everything is in world space and linear units; see README "Conventions".
 
+pub mod animation;
 pub mod builtin;
 pub mod bvh;
 pub mod camera;
@@ -25,6 +26,8 @@ pub struct Scene {
     pub punctual_lights: Vec<PunctualLight>,
     /// The file's first perspective camera, if it has one.
     pub camera: Option<Camera>,
+    /// What moves and changes with scene time; `None` for a static scene.
+    pub animation: Option<animation::SceneAnimation>,
 }
 
 /// A world-space vertex. `normal` is zero when the source had none: shaders then use the

@@ -25,6 +25,8 @@ pub struct SceneFeatures {
     pub alpha_masked_materials: usize,
     /// False only when occlusion is provably impossible (see `can_occlude`).
     pub can_occlude: bool,
+    /// The scene has an animation (moving geometry or changing lights).
+    pub animated: bool,
 }
 
 impl SceneFeatures {
@@ -47,7 +49,7 @@ impl SceneFeatures {
             |f: &dyn Fn(&crate::scene::Material) -> bool| mats.iter().filter(|m| f(m)).count();
         let specular = |m: &crate::scene::Material| m.metallic > 0.0 || m.specular > 0.0;
         SceneFeatures {
-            emissive_triangles: scene.emissive_triangle_count(),
+            emissive_triangles: potential_emitters(scene),
             emissive_textured_materials: count(&|m| {
                 m.is_emissive() && m.emissive_texture.is_some()
             }),
@@ -60,8 +62,28 @@ impl SceneFeatures {
             }),
             alpha_masked_materials: count(&|m| matches!(m.alpha_mode, AlphaMode::Mask(_))),
             can_occlude: can_occlude(scene),
+            animated: scene.animation.is_some(),
         }
     }
+}
+
+/// Emissive triangles, counting those of animated materials dark at load time: a light
+/// that switches on later needs the area-light code compiled in from the start.
+fn potential_emitters(scene: &Scene) -> usize {
+    let Some(anim) = &scene.animation else {
+        return scene.emissive_triangle_count();
+    };
+    let mut emits: Vec<bool> = scene.materials.iter().map(|m| m.is_emissive()).collect();
+    for b in &anim.materials {
+        if let Some(e) = emits.get_mut(b.material) {
+            *e = true;
+        }
+    }
+    scene
+        .triangles
+        .iter()
+        .filter(|t| emits.get(t.material as usize).copied().unwrap_or(false))
+        .count()
 }
 
 /// Above this many triangles the convexity proof is not attempted (it is O(T·V)).
@@ -106,10 +128,11 @@ pub enum Effect {
     Motion,
     BsdfCandidates,
     LightTiles,
+    Animation,
 }
 
 impl Effect {
-    pub const ALL: [Effect; 12] = [
+    pub const ALL: [Effect; 13] = [
         Effect::AreaLights,
         Effect::EmissiveTextures,
         Effect::PunctualLights,
@@ -122,6 +145,7 @@ impl Effect {
         Effect::Motion,
         Effect::BsdfCandidates,
         Effect::LightTiles,
+        Effect::Animation,
     ];
 
     /// The WGSL define.
@@ -139,6 +163,7 @@ impl Effect {
             Effect::Motion => "MOTION",
             Effect::BsdfCandidates => "BSDF_CANDIDATES",
             Effect::LightTiles => "LIGHT_TILES",
+            Effect::Animation => "ANIMATION",
         }
     }
 
@@ -157,6 +182,7 @@ impl Effect {
             Effect::Motion => "motion",
             Effect::BsdfCandidates => "bsdf-candidates",
             Effect::LightTiles => "light-tiles",
+            Effect::Animation => "animation",
         }
     }
 
@@ -298,9 +324,19 @@ impl EffectSet {
         );
         decide(
             Effect::Motion,
-            camera_moves,
-            "the camera moved: motion vectors reproject history".into(),
+            camera_moves || f.animated,
+            if camera_moves {
+                "the camera moved: motion vectors reproject history".into()
+            } else {
+                "objects move: motion vectors follow them".into()
+            },
             "static camera and scene: a point stays in its pixel".into(),
+        );
+        decide(
+            Effect::Animation,
+            f.animated,
+            "the scene is animated: object motion, light identity checks".into(),
+            "static scene".into(),
         );
         decide(
             Effect::BsdfCandidates,

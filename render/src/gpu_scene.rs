@@ -1,5 +1,10 @@
 //! Uploading a CPU `Scene`: BVH build, triangle reordering, light table, materials and
 //! textures, into the eight storage buffers of bind group 1 (scene_bindings.wgsl).
+//! `update.rs` rewrites them in place when an animated scene changes.
+
+mod update;
+
+pub use update::SceneUpdateTimes;
 
 use std::time::Instant;
 
@@ -43,6 +48,37 @@ pub struct GpuScene {
     /// Per light-table entry: its triangle (or the punctual position three times), so the
     /// CPU can turn a reservoir's (light, uv) into a point for the inspector.
     light_geometry: Vec<[Vec3; 3]>,
+    buffers: SceneBuffers,
+    /// Last frame's triangles (object motion vectors). For a static scene this is the
+    /// triangle buffer itself: previous = current, at no cost.
+    pub prev_triangles: wgpu::Buffer,
+    /// Materials whose triangles keep a light-table slot at zero power (see
+    /// `LightTable::build_with_slots`); empty for a static scene.
+    kept_materials: Vec<bool>,
+    keep_punctual: bool,
+    /// False when no light has power (every light of a dynamic scene off): the shaders
+    /// then sample no light (`frame.light_count` is 0) although the table has entries.
+    sampleable: bool,
+    /// The scene has an animation: the fields below are in use.
+    pub dynamic: bool,
+    /// Per triangle in BVH order, its light entry (fixed for the scene's lifetime).
+    triangle_light: Vec<u32>,
+    /// An update happened since the last `begin_frame`.
+    updated_since_frame: bool,
+    /// `prev_triangles` holds other positions than the current triangles.
+    prev_differs: bool,
+    /// Per light entry, its select_pdf as uploaded (tests and the inspector).
+    light_pdfs: Vec<f32>,
+}
+
+/// The storage buffers an update rewrites (bind group 1 holds them all).
+struct SceneBuffers {
+    triangles: wgpu::Buffer,
+    shading: wgpu::Buffer,
+    materials: wgpu::Buffer,
+    lights: wgpu::Buffer,
+    punctual: wgpu::Buffer,
+    bvh_nodes: wgpu::Buffer,
 }
 
 /// Octahedral encoding into two snorm16, bit-identical to `oct_encode` in math.wgsl.
@@ -76,7 +112,9 @@ fn storage_buffer<T: bytemuck::Pod + Default>(gpu: &Gpu, label: &str, data: &[T]
         .create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(label),
             contents: bytemuck::cast_slice(contents),
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            usage: wgpu::BufferUsages::STORAGE
+                | wgpu::BufferUsages::COPY_DST
+                | wgpu::BufferUsages::COPY_SRC,
         })
 }
 
@@ -100,35 +138,19 @@ impl GpuScene {
             });
         }
         let bvh_build_ms = start.elapsed().as_secs_f64() * 1e3;
-        let lights = LightTable::build(scene, &bvh.triangle_order);
-
-        let mut triangles = Vec::with_capacity(positions.len());
-        let mut shading = Vec::with_capacity(positions.len());
-        for (bvh_index, &source) in bvh.triangle_order.iter().enumerate() {
-            let tri = &scene.triangles[source as usize];
-            let [p0, p1, p2] = positions[source as usize];
-            let verts = tri.indices.map(|i| scene.vertices[i as usize]);
-            let has_normals = verts.iter().all(|v| v.normal.length_squared() > 0.0);
-            triangles.push(GpuTriangle {
-                p0: p0.into(),
-                material: tri.material,
-                p1: p1.into(),
-                light: lights.triangle_light[bvh_index],
-                p2: p2.into(),
-                source_index: source,
-            });
-            shading.push(GpuTriangleShading {
-                normals: verts.map(|v| {
-                    if has_normals {
-                        oct_encode(v.normal.normalize())
-                    } else {
-                        0
-                    }
-                }),
-                has_normals: has_normals as u32,
-                uvs: verts.map(|v| v.uv.into()),
-            });
-        }
+        let (kept_materials, keep_punctual) = light_slots(scene);
+        let lights = LightTable::build_with_slots(
+            scene,
+            &bvh.triangle_order,
+            &kept_materials,
+            keep_punctual,
+        );
+        let (triangles, shading) = triangle_records(
+            scene,
+            &bvh.triangle_order,
+            &positions,
+            &lights.triangle_light,
+        );
 
         let mut texels: Vec<u32> = Vec::new();
         let mut textures = Vec::with_capacity(scene.textures.len());
@@ -141,61 +163,32 @@ impl GpuScene {
             });
             texels.extend(t.texels.iter().map(|c| u32::from_le_bytes(*c)));
         }
-        let tex_index = |r: Option<crate::scene::TextureRef>| r.map_or(NO_TEXTURE, |r| r.texture);
-        let materials: Vec<GpuMaterial> = scene
-            .materials
-            .iter()
-            .map(|m| {
-                let mut flags = 0;
-                if m.double_sided {
-                    flags |= MATERIAL_DOUBLE_SIDED;
-                }
-                let mut alpha_cutoff = 0.0;
-                if let AlphaMode::Mask(cutoff) = m.alpha_mode {
-                    flags |= MATERIAL_ALPHA_MASK;
-                    alpha_cutoff = cutoff;
-                }
-                GpuMaterial {
-                    base_color: m.base_color.into(),
-                    emission: m.emission.into(),
-                    metallic: m.metallic,
-                    roughness: m.roughness,
-                    specular: m.specular,
-                    alpha_cutoff,
-                    flags,
-                    base_color_texture: tex_index(m.base_color_texture),
-                    metallic_roughness_texture: tex_index(m.metallic_roughness_texture),
-                    emissive_texture: tex_index(m.emissive_texture),
-                    _pad: 0,
-                }
-            })
-            .collect();
-
-        let light_geometry = lights
-            .lights
-            .iter()
-            .map(|l| {
-                let index = (l.kind_prim & LIGHT_PRIM_MASK) as usize;
-                if l.kind_prim >> LIGHT_KIND_SHIFT == LIGHT_KIND_TRIANGLE {
-                    let t = &triangles[index];
-                    [t.p0, t.p1, t.p2].map(Vec3::from)
-                } else {
-                    [Vec3::from(lights.punctual[index].position); 3]
-                }
-            })
-            .collect();
-        let buffers = [
-            storage_buffer(gpu, "triangles", &triangles),
-            storage_buffer(gpu, "triangle shading", &shading),
-            storage_buffer(gpu, "materials", &materials),
-            storage_buffer(gpu, "textures", &textures),
-            storage_buffer(gpu, "texels", &texels),
-            storage_buffer(gpu, "lights", &lights.lights),
-            storage_buffer(gpu, "punctual lights", &lights.punctual),
-            storage_buffer(gpu, "bvh nodes", &bvh.nodes),
+        let materials = gpu_materials(scene);
+        let light_geometry = light_geometry(&lights, &triangles);
+        let buffers = SceneBuffers {
+            triangles: storage_buffer(gpu, "triangles", &triangles),
+            shading: storage_buffer(gpu, "triangle shading", &shading),
+            materials: storage_buffer(gpu, "materials", &materials),
+            lights: storage_buffer(gpu, "lights", &lights.lights),
+            punctual: storage_buffer(gpu, "punctual lights", &lights.punctual),
+            bvh_nodes: storage_buffer(gpu, "bvh nodes", &bvh.nodes),
+        };
+        let refs = [
+            &buffers.triangles,
+            &buffers.shading,
+            &buffers.materials,
+            &storage_buffer(gpu, "textures", &textures),
+            &storage_buffer(gpu, "texels", &texels),
+            &buffers.lights,
+            &buffers.punctual,
+            &buffers.bvh_nodes,
         ];
-        let refs: Vec<&wgpu::Buffer> = buffers.iter().collect();
         let bind_group = crate::passes::buffer_bind_group(gpu, "scene", layout, &refs);
+        let prev_triangles = if scene.animation.is_some() {
+            storage_buffer(gpu, "previous triangles", &triangles)
+        } else {
+            buffers.triangles.clone()
+        };
         gpu.check()?;
 
         let bounds = scene.bounds();
@@ -224,7 +217,31 @@ impl GpuScene {
             info,
             bvh,
             light_geometry,
+            buffers,
+            prev_triangles,
+            kept_materials,
+            keep_punctual,
+            sampleable: lights.sampleable(),
+            dynamic: scene.animation.is_some(),
+            triangle_light: if scene.animation.is_some() {
+                lights.triangle_light
+            } else {
+                Vec::new()
+            },
+            updated_since_frame: false,
+            prev_differs: false,
+            light_pdfs: lights.lights.iter().map(|l| l.select_pdf).collect(),
         })
+    }
+
+    /// The light count the shaders sample from (0 while no light has power).
+    pub fn sampled_light_count(&self) -> u32 {
+        if self.sampleable { self.light_count } else { 0 }
+    }
+
+    /// The current selection probability of light entry `light` (0 while it is off).
+    pub fn light_select_pdf(&self, light: u32) -> Option<f32> {
+        self.light_pdfs.get(light as usize).copied()
     }
 
     /// The world position of light sample (light, uv), as `light_point` in lights.wgsl.
@@ -232,4 +249,105 @@ impl GpuScene {
         let [p0, p1, p2] = *self.light_geometry.get(light as usize)?;
         Some((p0 * (1.0 - uv[0] - uv[1]) + p1 * uv[0] + p2 * uv[1]).into())
     }
+}
+
+/// Which light-table slots a scene keeps at zero power: for a dynamic scene every material
+/// that emits now or is animated, and every punctual light; nothing for a static scene.
+fn light_slots(scene: &Scene) -> (Vec<bool>, bool) {
+    let Some(anim) = &scene.animation else {
+        return (Vec::new(), false);
+    };
+    let mut kept: Vec<bool> = scene.materials.iter().map(|m| m.is_emissive()).collect();
+    for binding in &anim.materials {
+        if let Some(k) = kept.get_mut(binding.material) {
+            *k = true;
+        }
+    }
+    (kept, true)
+}
+
+/// Triangles and their shading data in BVH order.
+fn triangle_records(
+    scene: &Scene,
+    order: &[u32],
+    positions: &[[Vec3; 3]],
+    triangle_light: &[u32],
+) -> (Vec<GpuTriangle>, Vec<GpuTriangleShading>) {
+    let mut triangles = Vec::with_capacity(order.len());
+    let mut shading = Vec::with_capacity(order.len());
+    for (bvh_index, &source) in order.iter().enumerate() {
+        let tri = &scene.triangles[source as usize];
+        let [p0, p1, p2] = positions[source as usize];
+        let verts = tri.indices.map(|i| scene.vertices[i as usize]);
+        let has_normals = verts.iter().all(|v| v.normal.length_squared() > 0.0);
+        triangles.push(GpuTriangle {
+            p0: p0.into(),
+            material: tri.material,
+            p1: p1.into(),
+            light: triangle_light[bvh_index],
+            p2: p2.into(),
+            source_index: source,
+        });
+        shading.push(GpuTriangleShading {
+            normals: verts.map(|v| {
+                if has_normals {
+                    oct_encode(v.normal.normalize())
+                } else {
+                    0
+                }
+            }),
+            has_normals: has_normals as u32,
+            uvs: verts.map(|v| v.uv.into()),
+        });
+    }
+    (triangles, shading)
+}
+
+fn gpu_materials(scene: &Scene) -> Vec<GpuMaterial> {
+    let tex_index = |r: Option<crate::scene::TextureRef>| r.map_or(NO_TEXTURE, |r| r.texture);
+    scene
+        .materials
+        .iter()
+        .map(|m| {
+            let mut flags = 0;
+            if m.double_sided {
+                flags |= MATERIAL_DOUBLE_SIDED;
+            }
+            let mut alpha_cutoff = 0.0;
+            if let AlphaMode::Mask(cutoff) = m.alpha_mode {
+                flags |= MATERIAL_ALPHA_MASK;
+                alpha_cutoff = cutoff;
+            }
+            GpuMaterial {
+                base_color: m.base_color.into(),
+                emission: m.emission.into(),
+                metallic: m.metallic,
+                roughness: m.roughness,
+                specular: m.specular,
+                alpha_cutoff,
+                flags,
+                base_color_texture: tex_index(m.base_color_texture),
+                metallic_roughness_texture: tex_index(m.metallic_roughness_texture),
+                emissive_texture: tex_index(m.emissive_texture),
+                _pad: 0,
+            }
+        })
+        .collect()
+}
+
+/// Per light entry: its triangle's corners, or a punctual light's position three times.
+fn light_geometry(lights: &LightTable, triangles: &[GpuTriangle]) -> Vec<[Vec3; 3]> {
+    lights
+        .lights
+        .iter()
+        .map(|l| {
+            let index = (l.kind_prim & LIGHT_PRIM_MASK) as usize;
+            if l.kind_prim >> LIGHT_KIND_SHIFT == LIGHT_KIND_TRIANGLE {
+                let t = &triangles[index];
+                [t.p0, t.p1, t.p2].map(Vec3::from)
+            } else {
+                [Vec3::from(lights.punctual[index].position); 3]
+            }
+        })
+        .collect()
 }

@@ -18,6 +18,7 @@ pub mod settings;
 pub mod shader_constants;
 pub mod shader_source;
 pub mod stats;
+pub mod timeline;
 pub mod view;
 
 pub use gpu::{Gpu, GpuError};

@@ -11,8 +11,11 @@ use restir_render::view::auto_exposure_ev;
 use restir_render::{DebugView, LinearImage, Mode, Renderer};
 use serde::Serialize;
 
+use restir_render::gpu_scene::SceneUpdateTimes;
+use restir_render::timeline::{AnimatedScene, Timeline};
+
 use super::camera_path::{cut_viewpoint, orbit};
-use super::setup::{PipelineArgs, build_renderer, parse_size};
+use super::setup::{PipelineArgs, TimeArgs, build_renderer_for, parse_size};
 
 #[derive(Args, Debug)]
 pub struct RenderArgs {
@@ -55,6 +58,25 @@ pub struct RenderArgs {
     /// Exposure in EV for PNG output, or `auto` (log-average luminance to middle grey).
     #[arg(long, default_value = "auto")]
     pub exposure: String,
+    /// Scene time (`--time`, `--fps`).
+    #[command(flatten)]
+    pub time: TimeArgs,
+}
+
+/// Scene time and the per-frame update cost of an animated scene (`--stats`).
+#[derive(Serialize)]
+struct SceneTimeStats {
+    /// Scene time of the first and the last frame, seconds.
+    first_time: f32,
+    last_time: f32,
+    fps: f32,
+    /// Median CPU cost per frame of the scene update (posing, BVH refit, light table,
+    /// upload), over frames that changed something.
+    median_pose_ms: f64,
+    median_bvh_ms: f64,
+    median_lights_ms: f64,
+    median_upload_ms: f64,
+    updated_frames: usize,
 }
 
 /// The `--stats` JSON document.
@@ -71,6 +93,8 @@ struct StatsFile<'a> {
     passes: Vec<&'static str>,
     settings: std::collections::BTreeMap<String, String>,
     mean_luminance: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    scene_time: Option<SceneTimeStats>,
     #[serde(flatten)]
     summary: StatsSummary,
 }
@@ -109,11 +133,17 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     }
     let effects = args.pipeline.effects()?;
 
-    let mut renderer = build_renderer(&args.scene, size, settings)?;
+    let timeline = args.time.timeline()?;
+    let mut scene = AnimatedScene::new(restir_render::load_scene(&args.scene)?);
+    scene.pose_only(timeline.time_of(0));
+    let mut renderer = build_renderer_for(scene.scene(), size, settings)?;
     renderer.set_mode(mode);
     renderer.set_seed(args.pipeline.seed);
     renderer.force_effects(effects);
-    let reports = render_frames(&mut renderer, &args)?;
+    let (reports, updates) = render_frames(&mut renderer, &mut scene, timeline, &args)?;
+    let scene_time = scene
+        .is_animated()
+        .then(|| scene_time_stats(timeline, &args, &updates));
 
     let image = if args.accumulate {
         renderer.read_accumulated()
@@ -126,19 +156,41 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         Format::Png => write_png(&mut renderer, &image, view, &args)?,
     }
     if let Some(path) = &args.stats {
-        write_stats(path, &renderer, &reports, nan_inf, &image)?;
+        write_stats(path, &renderer, &reports, nan_inf, &image, scene_time)?;
     }
     Ok(())
 }
 
-fn render_frames(renderer: &mut Renderer, args: &RenderArgs) -> anyhow::Result<Vec<FrameReport>> {
-    let start_camera = renderer.camera();
+/// One frame's scene update: posing time (ms) and the renderer's update cost.
+type FrameUpdate = (f64, SceneUpdateTimes);
+
+fn render_frames(
+    renderer: &mut Renderer,
+    scene: &mut AnimatedScene,
+    timeline: Timeline,
+    args: &RenderArgs,
+) -> anyhow::Result<(Vec<FrameReport>, Vec<FrameUpdate>)> {
+    let mut start_camera = renderer.camera();
     let center = renderer.scene_bounds().center();
     let mut camera = start_camera;
     let mut reports = Vec::with_capacity(args.frames as usize);
+    let mut updates = Vec::new();
     let started = Instant::now();
     let mut last_progress = Instant::now();
     for frame in 0..args.frames {
+        if frame > 0 {
+            let posing = Instant::now();
+            let (change, times) = scene.set_time(renderer, timeline.time_of(frame));
+            if change.camera {
+                // A camera on an animated node: follow it (orbit and cuts start from it).
+                start_camera = scene.scene().default_camera();
+                camera = start_camera;
+            }
+            if change.any() {
+                let total = posing.elapsed().as_secs_f64() * 1e3;
+                updates.push(((total - times.total_ms()).max(0.0), times));
+            }
+        }
         if args.orbit != 0.0 {
             camera = orbit(start_camera, center, args.orbit * frame as f32);
         }
@@ -165,7 +217,33 @@ fn render_frames(renderer: &mut Renderer, args: &RenderArgs) -> anyhow::Result<V
     if args.frames > 1 && started.elapsed().as_secs_f32() > 1.0 {
         eprintln!();
     }
-    Ok(reports)
+    Ok((reports, updates))
+}
+
+fn median(mut values: Vec<f64>) -> f64 {
+    if values.is_empty() {
+        return 0.0;
+    }
+    values.sort_by(f64::total_cmp);
+    values[values.len() / 2]
+}
+
+fn scene_time_stats(
+    timeline: Timeline,
+    args: &RenderArgs,
+    updates: &[FrameUpdate],
+) -> SceneTimeStats {
+    let of = |f: fn(&FrameUpdate) -> f64| median(updates.iter().map(f).collect());
+    SceneTimeStats {
+        first_time: timeline.time_of(0),
+        last_time: timeline.time_of(args.frames - 1),
+        fps: timeline.fps,
+        median_pose_ms: of(|u| u.0),
+        median_bvh_ms: of(|u| u.1.bvh_ms),
+        median_lights_ms: of(|u| u.1.lights_ms),
+        median_upload_ms: of(|u| u.1.upload_ms),
+        updated_frames: updates.len(),
+    }
 }
 
 #[derive(PartialEq)]
@@ -223,6 +301,7 @@ fn write_stats(
     reports: &[FrameReport],
     nan_inf: u64,
     image: &LinearImage,
+    scene_time: Option<SceneTimeStats>,
 ) -> anyhow::Result<()> {
     let effects = renderer
         .last_effects()
@@ -255,6 +334,7 @@ fn write_stats(
             })
             .collect(),
         mean_luminance: image.mean_luminance(),
+        scene_time,
         summary: StatsSummary::from_reports(reports, nan_inf),
     };
     let text = serde_json::to_string_pretty(&doc)?;

@@ -6,7 +6,7 @@ use anyhow::{Context, bail};
 use clap::Args;
 use restir_render::effects::EffectSet;
 use restir_render::settings::preset;
-use restir_render::{Gpu, Renderer, Settings, load_scene};
+use restir_render::{Gpu, Renderer, Settings};
 
 /// The pipeline options `render` and `bench` share (`#[command(flatten)]`).
 #[derive(Args, Debug)]
@@ -97,12 +97,30 @@ pub fn parse_effects(text: &str) -> anyhow::Result<Option<EffectSet>> {
         .map_err(|e| anyhow::anyhow!("--effects: {e}"))
 }
 
-pub fn build_renderer(
-    scene: &str,
+/// A headless renderer for a scene already loaded (and posed).
+pub fn build_renderer_for(
+    scene: &restir_render::Scene,
     size: (u32, u32),
     settings: Settings,
 ) -> anyhow::Result<Renderer> {
-    let scene = load_scene(scene)?;
     let gpu = Gpu::new_headless()?;
-    Renderer::new(gpu, &scene, size.0, size.1, settings)
+    Renderer::new(gpu, scene, size.0, size.1, settings)
+}
+
+/// `--time T --fps F` of `render` and `bench`: frame i shows scene time T + i/F.
+#[derive(clap::Args, Debug, Clone, Copy)]
+pub struct TimeArgs {
+    /// Scene time of the first frame, in seconds (animated scenes).
+    #[arg(long, default_value_t = 0.0)]
+    pub time: f32,
+    /// Scene time advances 1/F seconds per frame; 0 freezes time (a reference of one
+    /// moment is accumulated that way).
+    #[arg(long, default_value_t = 30.0)]
+    pub fps: f32,
+}
+
+impl TimeArgs {
+    pub fn timeline(&self) -> anyhow::Result<restir_render::timeline::Timeline> {
+        restir_render::timeline::Timeline::new(self.time, self.fps).map_err(anyhow::Error::msg)
+    }
 }

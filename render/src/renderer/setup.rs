@@ -166,6 +166,7 @@ impl Renderer {
             last_final: None,
             last_effects: None,
             last_passes: Vec::new(),
+            last_update: Default::default(),
             gpu,
         })
     }

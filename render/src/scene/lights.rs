@@ -31,6 +31,21 @@ pub struct LightTable {
 impl LightTable {
     /// `triangle_order[i]` is the scene triangle at BVH position `i` (see `Bvh`).
     pub fn build(scene: &Scene, triangle_order: &[u32]) -> LightTable {
+        Self::build_with_slots(scene, triangle_order, &[], false)
+    }
+
+    /// As `build`, but every triangle of a material with `kept_materials[m]` (and, with
+    /// `keep_punctual`, every punctual light) keeps its entry even at zero power, with
+    /// select_pdf 0 and no alias slot pointing at it. Dynamic scenes keep every light that
+    /// can ever emit, so an entry's index is the light's identity for the whole animation:
+    /// a stored (light, uv) sample still names the same light after others switched off.
+    pub fn build_with_slots(
+        scene: &Scene,
+        triangle_order: &[u32],
+        kept_materials: &[bool],
+        keep_punctual: bool,
+    ) -> LightTable {
+        let kept = |m: usize| kept_materials.get(m).copied().unwrap_or(false);
         let radiance: Vec<Option<Vec3>> = scene
             .materials
             .iter()
@@ -40,8 +55,10 @@ impl LightTable {
         let mut triangle_light = vec![NO_LIGHT; triangle_order.len()];
         for (bvh_index, &source) in triangle_order.iter().enumerate() {
             let material = scene.triangles[source as usize].material as usize;
-            let Some(le) = radiance[material] else {
-                continue;
+            let le = match radiance[material] {
+                Some(le) => le,
+                None if kept(material) => Vec3::ZERO,
+                None => continue,
             };
             let sides = if scene.materials[material].double_sided {
                 2.0
@@ -51,7 +68,8 @@ impl LightTable {
             let area = triangle_area(scene.triangle_positions(source as usize));
             let power = area * luminance(le.to_array()) as f64 * std::f64::consts::PI * sides;
             // The shader divides by the f32 area, so that must be usable too.
-            if is_usable(area) && is_usable(power) {
+            let usable = is_usable(area) && is_usable(power);
+            if usable || kept(material) {
                 assert!(
                     bvh_index as u32 <= LIGHT_PRIM_MASK,
                     "too many triangles for a light index"
@@ -59,7 +77,7 @@ impl LightTable {
                 triangle_light[bvh_index] = entries.len() as u32;
                 entries.push((
                     LIGHT_KIND_TRIANGLE << LIGHT_KIND_SHIFT | bvh_index as u32,
-                    power,
+                    if usable { power } else { 0.0 },
                 ));
             }
         }
@@ -68,16 +86,18 @@ impl LightTable {
         let scene_radius = 0.5 * scene.bounds().extent().length() as f64;
         for (i, light) in scene.punctual_lights.iter().enumerate() {
             let power = punctual_power(light, scene_radius);
-            if is_usable(power) {
+            if is_usable(power) || keep_punctual {
+                let power = if is_usable(power) { power } else { 0.0 };
                 entries.push((LIGHT_KIND_PUNCTUAL << LIGHT_KIND_SHIFT | i as u32, power));
             }
         }
-        let power_range = entries
-            .iter()
-            .fold(None, |range: Option<(f32, f32)>, &(_, p)| {
+        let power_range = entries.iter().filter(|e| e.1 > 0.0).fold(
+            None,
+            |range: Option<(f32, f32)>, &(_, p)| {
                 let p = p as f32;
                 Some(range.map_or((p, p), |(lo, hi)| (lo.min(p), hi.max(p))))
-            });
+            },
+        );
         let (lights, total_power) = alias_table(&entries);
         LightTable {
             lights,
@@ -86,6 +106,12 @@ impl LightTable {
             total_power,
             power_range,
         }
+    }
+
+    /// Entries that can be picked (zero-power kept slots cannot): the shader samples the
+    /// table only when this is positive.
+    pub fn sampleable(&self) -> bool {
+        self.total_power > 0.0
     }
 
     /// Picks an entry exactly as the shader does: `(index, select_pdf)` from two uniform
@@ -197,6 +223,21 @@ fn gpu_punctual(light: &PunctualLight) -> GpuPunctualLight {
 fn alias_table(entries: &[(u32, f64)]) -> (Vec<GpuLight>, f64) {
     let n = entries.len();
     let total: f64 = entries.iter().map(|e| e.1).sum();
+    if total <= 0.0 {
+        // Only kept zero-power slots: nothing can be picked (the renderer then samples no
+        // light at all), and no 0/0 reaches a select_pdf.
+        let lights = entries
+            .iter()
+            .enumerate()
+            .map(|(i, &(kind_prim, _))| GpuLight {
+                kind_prim,
+                select_pdf: 0.0,
+                alias_threshold: 0.0,
+                alias_index: i as u32,
+            })
+            .collect();
+        return (lights, 0.0);
+    }
     let mut lights: Vec<GpuLight> = entries
         .iter()
         .enumerate()
@@ -222,7 +263,17 @@ fn alias_table(entries: &[(u32, f64)]) -> (Vec<GpuLight>, f64) {
             large.push(l)
         }
     }
-    // Whatever is left is 1 up to rounding and keeps its own slot (the defaults).
+    // Whatever is left is 1 up to rounding and keeps its own slot (the defaults) — except
+    // a zero-power slot, which must never be picked: it hands its slot to a light that has
+    // power (only reachable by rounding, but a zero pdf picked is a division by zero).
+    if let Some(donor) = entries.iter().position(|e| e.1 > 0.0) {
+        for s in small {
+            if entries[s].1 <= 0.0 {
+                lights[s].alias_threshold = 0.0;
+                lights[s].alias_index = donor as u32;
+            }
+        }
+    }
     (lights, total)
 }
 

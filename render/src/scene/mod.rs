@@ -242,6 +242,16 @@ impl Scene {
             .unwrap_or_else(|| Camera::framing(self.bounds()))
     }
 
+    /// Poses the scene at `time` with its own animation (nothing for a static scene).
+    pub fn pose(&mut self, time: f32, choice: animation::ClipChoice) -> animation::SceneChange {
+        let Some(anim) = self.animation.take() else {
+            return animation::SceneChange::default();
+        };
+        let change = anim.pose(self, time, choice);
+        self.animation = Some(anim);
+        change
+    }
+
     /// Number of triangles whose material emits.
     pub fn emissive_triangle_count(&self) -> usize {
         self.triangles

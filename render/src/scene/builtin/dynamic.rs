@@ -128,7 +128,7 @@ pub(super) fn moving_light(name: &str) -> Scene {
     b.rect(Vec3::ZERO, Vec3::X * 0.25, Vec3::Z * 0.25, bright);
     motion.attach(&b, node, first);
     let half = MOVING_LIGHT_PERIOD / 2.0;
-    let (left, right) = (Vec3::new(-4.0, 1.5, 0.5), Vec3::new(4.0, 1.5, 0.5));
+    let (left, right) = (Vec3::new(-4.0, 1.5, 1.5), Vec3::new(4.0, 1.5, 1.5));
     motion.channel(
         Target::Translation(node),
         linear_vec3(&[0.0, half, MOVING_LIGHT_PERIOD], &[left, right, left]),

@@ -56,9 +56,10 @@ fn source_color(source: u32) -> vec3<f32> {
     }
 }
 
-// One colour per rejection reason (bit index): temporal 0..7, spatial 8..15 (lighter).
+// One colour per rejection reason (bit index): temporal from 0, spatial from
+// REJECT_SPATIAL_SHIFT (lighter).
 fn reason_color(bit: u32) -> vec3<f32> {
-    var palette = array<vec3<f32>, 8>(
+    var palette = array<vec3<f32>, REJECT_REASON_COUNT>(
         vec3<f32>(1.0, 0.0, 0.0),   // off-screen: red
         vec3<f32>(1.0, 0.5, 0.0),   // previous surface invalid: orange
         vec3<f32>(1.0, 0.0, 1.0),   // material: magenta
@@ -67,9 +68,10 @@ fn reason_color(bit: u32) -> vec3<f32> {
         vec3<f32>(1.0, 1.0, 0.0),   // reservoir null: yellow
         vec3<f32>(0.6, 0.3, 0.1),   // target ≤ 0: brown
         vec3<f32>(1.0, 1.0, 1.0),   // target ratio: white
+        vec3<f32>(0.1, 0.9, 0.2),   // light gone (off or removed): green
     );
-    let c = palette[bit & 7u];
-    return select(c, mix(c, vec3<f32>(1.0), 0.5) * 0.8, bit >= 8u);
+    let c = palette[min(bit % REJECT_SPATIAL_SHIFT, REJECT_REASON_COUNT - 1u)];
+    return select(c, mix(c, vec3<f32>(1.0), 0.5) * 0.8, bit >= REJECT_SPATIAL_SHIFT);
 }
 
 fn debug_color(index: u32, pixel: vec2<u32>) -> vec3<f32> {
@@ -91,7 +93,7 @@ fn debug_color(index: u32, pixel: vec2<u32>) -> vec3<f32> {
             return heatmap(r.m / max(display.m_scale, 1.0));
         }
         case VIEW_REJECTION: {
-            let mask = (d.temporal_mask | (d.spatial_mask << 8u)) & display.reason_mask;
+            let mask = (d.temporal_mask | (d.spatial_mask << REJECT_SPATIAL_SHIFT)) & display.reason_mask;
             if mask == 0u {
                 return vec3<f32>(0.0);
             }

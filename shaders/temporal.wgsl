@@ -58,6 +58,15 @@ fn validate_previous(pixel: vec2<i32>, s: Surface, sp: ShadingPoint) -> Temporal
     if prev_null && check_enabled(REJECT_RESERVOIR) {
         c.mask |= REJECT_RESERVOIR;
     }
+#ifdef ANIMATION
+    // Light identity is the table slot (fixed for the animation); a slot with select_pdf 0
+    // is a light that is off now. Its sample cannot be reused, whatever the checks say:
+    // not a switchable heuristic, so not behind check_enabled.
+    if !prev_null && (prev.light >= arrayLength(&lights) || lights[prev.light].select_pdf <= 0.0) {
+        c.mask |= REJECT_LIGHT_GONE;
+        return c;
+    }
+#endif
     c.target_here = target_at(sp, prev.light, prev.uv);
     if c.target_here <= 0.0 && check_enabled(REJECT_TARGET) {
         c.mask |= REJECT_TARGET;

@@ -14,7 +14,15 @@ pub const REJECT_DEPTH: u32 = 1 << 4;
 pub const REJECT_RESERVOIR: u32 = 1 << 5;
 pub const REJECT_TARGET: u32 = 1 << 6;
 pub const REJECT_TARGET_RATIO: u32 = 1 << 7;
-pub const REJECT_REASON_COUNT: usize = 8;
+/// The stored sample's light is off or gone (dynamic scenes): never reusable, so this one
+/// is not a switchable check.
+pub const REJECT_LIGHT_GONE: u32 = 1 << 8;
+pub const REJECT_REASON_COUNT: usize = 9;
+/// The rejection view and its reason mask put spatial bits this far above temporal ones.
+pub const REJECT_SPATIAL_SHIFT: u32 = 16;
+/// Every reason of both stages (the rejection view's default mask).
+pub const REJECT_ALL_REASONS: u32 =
+    ((1 << REJECT_REASON_COUNT) - 1) | (((1 << REJECT_REASON_COUNT) - 1) << REJECT_SPATIAL_SHIFT);
 
 /// Human names of the rejection bits, in bit order (stats JSON keys and UI legend).
 pub const REJECT_REASON_NAMES: [&str; REJECT_REASON_COUNT] = [
@@ -26,6 +34,7 @@ pub const REJECT_REASON_NAMES: [&str; REJECT_REASON_COUNT] = [
     "reservoir_null",
     "target_zero",
     "target_ratio",
+    "light_gone",
 ];
 
 /// Which stage's candidate survived in a pixel.
@@ -62,9 +71,10 @@ pub const GUARDED_PASS_NAMES: [&str; 6] = [
     "reference",
 ];
 
-/// Indices into the per-frame atomic counter buffer.
+/// Indices into the per-frame atomic counter buffer (REJECT_REASON_COUNT each for the
+/// temporal and spatial rejections).
 pub const STAT_TEMPORAL_REJECT: u32 = 0;
-pub const STAT_SPATIAL_REJECT: u32 = 8;
+pub const STAT_SPATIAL_REJECT: u32 = 40;
 pub const STAT_SOURCE: u32 = 16;
 pub const STAT_TEMPORAL_CAP: u32 = 20;
 pub const STAT_SPATIAL_CAP: u32 = 21;
@@ -74,7 +84,7 @@ pub const STAT_NONFINITE: u32 = 24;
 pub const STAT_SURFACE_PIXELS: u32 = 32;
 pub const STAT_TEMPORAL_ACCEPTED: u32 = 33;
 pub const STAT_BOILING_DROPPED: u32 = 34;
-pub const STAT_COUNT: u32 = 40;
+pub const STAT_COUNT: u32 = STAT_SPATIAL_REJECT + REJECT_REASON_COUNT as u32;
 
 /// Random-number streams, one per purpose (`rng_seed` in rng.wgsl).
 pub const STREAM_INITIAL: u32 = 0;
@@ -140,6 +150,9 @@ pub fn wgsl_prelude() -> String {
         ("REJECT_RESERVOIR", REJECT_RESERVOIR),
         ("REJECT_TARGET", REJECT_TARGET),
         ("REJECT_TARGET_RATIO", REJECT_TARGET_RATIO),
+        ("REJECT_LIGHT_GONE", REJECT_LIGHT_GONE),
+        ("REJECT_SPATIAL_SHIFT", REJECT_SPATIAL_SHIFT),
+        ("REJECT_REASON_COUNT", REJECT_REASON_COUNT as u32),
         ("SOURCE_NULL", SOURCE_NULL),
         ("SOURCE_INITIAL", SOURCE_INITIAL),
         ("SOURCE_TEMPORAL", SOURCE_TEMPORAL),

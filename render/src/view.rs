@@ -143,7 +143,7 @@ impl Default for ViewSettings {
             exposure_ev: 0.0,
             tonemapper: Tonemapper::Aces,
             accumulate: false,
-            reason_mask: 0xffff,
+            reason_mask: crate::shader_constants::REJECT_ALL_REASONS,
         }
     }
 }

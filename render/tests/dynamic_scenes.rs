@@ -161,15 +161,32 @@ struct BlinkOutcome {
     settled: f64,
     reference: f64,
     changed_pixels: usize,
+    /// Temporal `light_gone` rejections in the first frame after the switch.
+    light_gone: usize,
+}
+
+fn blink_settings() -> Settings {
+    common::settings(&["jitter=false", BLINK_M_CAP, "spatial_radius=4"])
+}
+
+/// References of `blinking-lights` with every light on (0.9 s) and half off (1.5 s),
+/// rendered once for the test and its twin.
+fn blink_references() -> &'static (LinearImage, LinearImage) {
+    static REFS: std::sync::OnceLock<(LinearImage, LinearImage)> = std::sync::OnceLock::new();
+    REFS.get_or_init(|| {
+        let mut scene = animated("builtin:dynamic:blinking-lights", 0.9);
+        let mut r = renderer_for(&scene, BLINK_SIZE.0, BLINK_SIZE.1, blink_settings());
+        let before = reference_at(&mut scene, &mut r, 0.9);
+        let after = reference_at(&mut scene, &mut r, 1.5);
+        (before, after)
+    })
 }
 
 fn blink(plant: Plant) -> BlinkOutcome {
     let fps = 30.0;
     let mut scene = animated("builtin:dynamic:blinking-lights", 0.5);
-    let settings = common::settings(&["jitter=false", BLINK_M_CAP, "spatial_radius=4"]);
-    let mut r = renderer_for(&scene, BLINK_SIZE.0, BLINK_SIZE.1, settings);
-    let before = reference_at(&mut scene, &mut r, 0.9);
-    let after = reference_at(&mut scene, &mut r, 1.5);
+    let mut r = renderer_for(&scene, BLINK_SIZE.0, BLINK_SIZE.1, blink_settings());
+    let (before, after) = blink_references();
     // The changed region: pixels whose reference changed by more than 10 %.
     let luma = |p: [f32; 4]| 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
     let changed: Vec<usize> = (0..before.pixels.len())
@@ -178,9 +195,7 @@ fn blink(plant: Plant) -> BlinkOutcome {
             (a - b).abs() > 0.1 * a.max(b) && a.max(b) > 0.0
         })
         .collect();
-    // Back to the start with a full update (the references left the GPU at 1.5 s), then
     // 15 frames of history with every light on (0.5 s → 0.97 s), then across the switch.
-    scene.set_time(&mut r, 0.5);
     r.set_mode(Mode::Restir);
     r.request_cut();
     let mut t = 0.5f32;
@@ -191,6 +206,7 @@ fn blink(plant: Plant) -> BlinkOutcome {
     }
     let mut stale = Vec::new();
     let mut settled = 0.0;
+    let mut light_gone = 0;
     let first_after = 1.0 + 1.0 / fps;
     for k in 0..SETTLE_FRAMES + 8 {
         let time = first_after + k as f32 / fps;
@@ -204,6 +220,13 @@ fn blink(plant: Plant) -> BlinkOutcome {
             .filter(|res| r.light_select_pdf(res.light) == Some(0.0))
             .count();
         stale.push(off);
+        if k == 0 {
+            light_gone = r
+                .read_debug()
+                .iter()
+                .filter(|d| d.temporal_mask & REJECT_LIGHT_GONE != 0)
+                .count();
+        }
         if k >= SETTLE_FRAMES {
             settled += mean_luma(&r.read_radiance(), &changed) / 8.0;
         }
@@ -211,8 +234,9 @@ fn blink(plant: Plant) -> BlinkOutcome {
     BlinkOutcome {
         stale,
         settled,
-        reference: mean_luma(&after, &changed),
+        reference: mean_luma(after, &changed),
         changed_pixels: changed.len(),
+        light_gone,
     }
 }
 
@@ -220,13 +244,15 @@ fn blink(plant: Plant) -> BlinkOutcome {
 fn switched_off_lights_leave_no_samples_and_the_image_settles() {
     let o = blink(Plant::None);
     eprintln!(
-        "stale per frame {:?}; changed region {} px, settled {:.4} vs reference {:.4}",
-        o.stale, o.changed_pixels, o.settled, o.reference
+        "stale per frame {:?}; changed region {} px, settled {:.4} vs reference {:.4}; light_gone {}",
+        o.stale, o.changed_pixels, o.settled, o.reference, o.light_gone
     );
     assert!(o.changed_pixels > 50, "{} changed pixels", o.changed_pixels);
     // A sample of a light that is off is rejected the first frame it is read (its target
     // is re-evaluated with current emission, 0): no pixel keeps one, from frame 0 on.
     assert!(o.stale.iter().all(|&n| n == 0), "{:?}", o.stale);
+    // Those samples are rejected as `light_gone` (its own bit), in the first frame.
+    assert!(o.light_gone > 20, "{} light_gone rejections", o.light_gone);
     // Measured 0.94: the 1/M estimator's own darkening (README: 0.957 on many-lights) plus
     // the noise of 8 frames over ~1000 pixels; 10 % holds both and still catches a lag
     // (the changed region differs by more than 10 % per pixel by construction).
@@ -240,6 +266,8 @@ fn planted_skipped_light_update_is_detected() {
     let ratio = o.settled / o.reference;
     eprintln!("planted: settled/reference {ratio:.3}");
     assert!((ratio - 1.0).abs() > 0.1, "detector silent: {ratio:.3}");
+    // light_gone follows the renderer's lights: with the update skipped nothing is gone.
+    assert_eq!(o.light_gone, 0);
 }
 
 const SWEEP_SIZE: (u32, u32) = (48, 32);
@@ -277,14 +305,15 @@ fn sweep(mode: Mode, seed: u32, plant: Plant) -> (LinearImage, f64) {
 /// (restir mean / reference mean, relative RMSE of the restir average, merged fraction),
 /// the restir numbers averaged over two seeds.
 fn sweep_bias(plant: Plant) -> (f64, f64, f64) {
-    let (reference, _) = sweep(Mode::Reference, 0, Plant::None);
+    static REFERENCE: std::sync::OnceLock<LinearImage> = std::sync::OnceLock::new();
+    let reference = REFERENCE.get_or_init(|| sweep(Mode::Reference, 0, Plant::None).0);
     let all: Vec<usize> = (0..reference.pixels.len()).collect();
     let ref_mean = mean_luma(&reference, &all);
     let (mut ratio, mut rel_rmse, mut merged) = (0.0, 0.0, 0.0);
     for seed in [1, 2] {
         let (img, m) = sweep(Mode::Restir, seed, plant);
         ratio += mean_luma(&img, &all) / ref_mean / 2.0;
-        rel_rmse += restir_render::metrics::luma_rmse(&img, &reference).unwrap() / ref_mean / 2.0;
+        rel_rmse += restir_render::metrics::luma_rmse(&img, reference).unwrap() / ref_mean / 2.0;
         merged += m / 2.0;
     }
     (ratio, rel_rmse, merged)

@@ -156,7 +156,7 @@ struct Display {
     exposure: f32,       // linear (2^EV)
     tonemapper: u32,     // TONEMAP_*
     view: u32,           // VIEW_*
-    reason_mask: u32,    // rejection reasons shown: temporal bits 0..8, spatial 8..16
+    reason_mask: u32,    // rejection reasons shown: temporal bits from 0, spatial from REJECT_SPATIAL_SHIFT
     m_scale: f32,        // M drawn at the top of the heatmap
     reference_scale: f32,
     _pad: u32,

@@ -28,7 +28,8 @@ pub fn source_color(source: u32) -> Color32 {
 
 /// Rejection reason `bit`: temporal 0..8, spatial 8..16 (lighter).
 pub fn reason_color(bit: u32) -> Color32 {
-    const PALETTE: [[f32; 3]; 8] = [
+    use restir_render::shader_constants::REJECT_SPATIAL_SHIFT;
+    const PALETTE: [[f32; 3]; 9] = [
         [1.0, 0.0, 0.0],
         [1.0, 0.5, 0.0],
         [1.0, 0.0, 1.0],
@@ -37,9 +38,10 @@ pub fn reason_color(bit: u32) -> Color32 {
         [1.0, 1.0, 0.0],
         [0.6, 0.3, 0.1],
         [1.0, 1.0, 1.0],
+        [0.1, 0.9, 0.2],
     ];
-    let c = PALETTE[(bit & 7) as usize];
-    linear(if bit >= 8 {
+    let c = PALETTE[(bit % REJECT_SPATIAL_SHIFT) as usize % PALETTE.len()];
+    linear(if bit >= REJECT_SPATIAL_SHIFT {
         mix(c, [1.0; 3], 0.5).map(|x| x * 0.8)
     } else {
         c
@@ -128,6 +130,8 @@ mod tests {
         );
         assert_eq!(source_color(0), Color32::BLACK);
         assert_eq!(reason_color(0), Color32::from_rgb(255, 0, 0));
+        // light_gone: (0.1, 0.9, 0.2) linear.
+        assert_eq!(reason_color(8), linear([0.1, 0.9, 0.2]));
         assert_eq!(heatmap(1.0), linear([0.993, 0.906, 0.144]));
     }
 }

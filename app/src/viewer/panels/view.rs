@@ -3,7 +3,9 @@
 //! changes the estimate.
 
 use egui::Ui;
-use restir_render::shader_constants::REJECT_REASON_NAMES;
+use restir_render::shader_constants::{
+    REJECT_ALL_REASONS, REJECT_REASON_NAMES, REJECT_SPATIAL_SHIFT,
+};
 use restir_render::{DebugView, Tonemapper};
 
 use super::accuracy;
@@ -105,7 +107,7 @@ fn legend(ui: &mut Ui, state: &mut ViewerState) {
 fn rejection_legend(ui: &mut Ui, mask: &mut u32) {
     ui.horizontal(|ui| {
         if ui.small_button("All").clicked() {
-            *mask = 0xffff;
+            *mask = REJECT_ALL_REASONS;
         }
         if ui.small_button("None").clicked() {
             *mask = 0;
@@ -121,7 +123,7 @@ fn rejection_legend(ui: &mut Ui, mask: &mut u32) {
             ui.end_row();
             for (i, name) in REJECT_REASON_NAMES.iter().enumerate() {
                 ui.label(*name);
-                for (stage, base) in [("temporal", 0u32), ("spatial", 8)] {
+                for (stage, base) in [("temporal", 0u32), ("spatial", REJECT_SPATIAL_SHIFT)] {
                     let bit = base + i as u32;
                     ui.horizontal(|ui| {
                         swatch(ui, reason_color(bit));

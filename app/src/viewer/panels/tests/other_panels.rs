@@ -1,6 +1,7 @@
 //! The View, Scene and Stats panels.
 
 use super::*;
+use restir_render::shader_constants::{REJECT_ALL_REASONS, REJECT_SPATIAL_SHIFT};
 
 #[test]
 fn the_rejection_legend_toggles_and_isolates_reasons() {
@@ -10,18 +11,18 @@ fn the_rejection_legend_toggles_and_isolates_reasons() {
     h.get_by_role_and_label(Role::CheckBox, "show temporal normal")
         .click();
     h.run();
-    assert_eq!(h.state().view.reason_mask, 0xffff & !(1 << 3));
+    assert_eq!(h.state().view.reason_mask, REJECT_ALL_REASONS & !(1 << 3));
     // "only" buttons row by row, temporal then spatial: depth is row 4.
     h.get_all_by_label("only").nth(2 * 4 + 1).unwrap().click();
     h.run();
     assert_eq!(
         h.state().view.reason_mask,
-        1 << (8 + 4),
+        1 << (REJECT_SPATIAL_SHIFT + 4),
         "spatial depth alone"
     );
     h.get_by_label("All").click();
     h.run();
-    assert_eq!(h.state().view.reason_mask, 0xffff);
+    assert_eq!(h.state().view.reason_mask, REJECT_ALL_REASONS);
 }
 
 #[test]

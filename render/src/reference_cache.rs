@@ -61,6 +61,9 @@ pub struct ReferenceRequest {
     /// The pipeline variant (WGSL defines) the reference is compiled with.
     pub effects: EffectSet,
     pub seed: u32,
+    /// The scene time an animated scene was posed at (`None` for a static scene, whose
+    /// keys stay what they were): references of different moments never share a file.
+    pub scene_time: Option<f32>,
 }
 
 impl ReferenceRequest {
@@ -84,6 +87,7 @@ impl ReferenceRequest {
             jitter,
             effects: EffectSet::detect(&SceneFeatures::of(scene), &settings, false),
             seed: REFERENCE_SEED,
+            scene_time: scene.animation.as_ref().map(|a| a.posed_at),
         }
     }
 

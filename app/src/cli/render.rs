@@ -77,6 +77,11 @@ struct SceneTimeStats {
     median_lights_ms: f64,
     median_upload_ms: f64,
     updated_frames: usize,
+    /// Refit against rebuild at the last frame: SAH cost of the refitted tree, of a tree
+    /// built from scratch over the same positions, and that build's time.
+    bvh_refit_sah_cost: f64,
+    bvh_rebuilt_sah_cost: f64,
+    bvh_rebuild_ms: f64,
 }
 
 /// The `--stats` JSON document.
@@ -143,7 +148,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     let (reports, updates) = render_frames(&mut renderer, &mut scene, timeline, &args)?;
     let scene_time = scene
         .is_animated()
-        .then(|| scene_time_stats(timeline, &args, &updates));
+        .then(|| scene_time_stats(timeline, &args, &updates, &renderer, scene.scene()));
 
     let image = if args.accumulate {
         renderer.read_accumulated()
@@ -232,8 +237,16 @@ fn scene_time_stats(
     timeline: Timeline,
     args: &RenderArgs,
     updates: &[FrameUpdate],
+    renderer: &Renderer,
+    scene: &restir_render::Scene,
 ) -> SceneTimeStats {
     let of = |f: fn(&FrameUpdate) -> f64| median(updates.iter().map(f).collect());
+    let positions: Vec<_> = (0..scene.triangles.len())
+        .map(|t| scene.triangle_positions(t))
+        .collect();
+    let build = Instant::now();
+    let rebuilt = restir_render::scene::bvh::Bvh::build(&positions);
+    let bvh_rebuild_ms = build.elapsed().as_secs_f64() * 1e3;
     SceneTimeStats {
         first_time: timeline.time_of(0),
         last_time: timeline.time_of(args.frames - 1),
@@ -243,6 +256,9 @@ fn scene_time_stats(
         median_lights_ms: of(|u| u.1.lights_ms),
         median_upload_ms: of(|u| u.1.upload_ms),
         updated_frames: updates.len(),
+        bvh_refit_sah_cost: renderer.bvh_sah_cost(),
+        bvh_rebuilt_sah_cost: rebuilt.sah_cost(),
+        bvh_rebuild_ms,
     }
 }
 

@@ -6,6 +6,8 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use restir_render::reference_cache::ReferenceCache;
+use restir_render::scene::animation::ClipChoice;
+use restir_render::timeline::AnimatedScene;
 use restir_render::view::auto_exposure_ev;
 use restir_render::{DebugView, Gpu, Renderer, Scene};
 use winit::dpi::PhysicalSize;
@@ -22,7 +24,7 @@ use super::panels;
 use super::scene_loader::SceneLoader;
 use super::scene_view;
 use super::screenshot::{self, Shot, WindowCapture};
-use super::state::{Action, DeviceInfo, DisplayOptions, ViewerState};
+use super::state::{Action, DeviceInfo, DisplayOptions, TimeState, ViewerState};
 
 /// What the event loop should do after an event.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -40,6 +42,8 @@ pub struct Viewer {
     pub state: ViewerState,
     /// The scene shown, kept for the accuracy panel's reference jobs.
     scene: Arc<Scene>,
+    /// An animated scene's clock (its own posed copy of the scene); `None` when static.
+    clock: Option<AnimatedScene>,
     accuracy: AccuracyTracker,
     loader: SceneLoader,
     screenshots: screenshot::Schedule,
@@ -93,6 +97,7 @@ impl Viewer {
         state.accuracy = AccuracyState::new(gpu.is_cpu());
         renderer.set_view(state.view);
         apply::scene_loaded(&renderer, &mut state, launch.scene_spec);
+        let clock = clock_for(&scene, &mut state.time);
         window.set_title(&title(&state));
         let egui = EguiLayer::new(
             &window,
@@ -109,6 +114,7 @@ impl Viewer {
             egui,
             state,
             scene,
+            clock,
             accuracy: AccuracyTracker::new(
                 ReferenceCache::at_default_dir(),
                 AccuracyTracker::SETTLE,
@@ -275,6 +281,9 @@ impl Viewer {
                 self.renderer.resize(w, h)?;
             }
             state.camera.advance_auto();
+            let dt = self.last_render.map_or(0.0, |t| t.elapsed().as_secs_f32());
+            self.advance_time(dt);
+            let state = &mut self.state;
             apply::before_frame(&mut self.renderer, state);
             self.renderer.render_frame()?;
             self.frames_rendered += 1;
@@ -302,7 +311,9 @@ impl Viewer {
             spec: &state.scene.spec,
             scene: &self.scene,
         };
-        let wanted = state.accuracy.panel_open || state.view.view == DebugView::Error;
+        // While scene time plays there is no reference of "now" to compare with.
+        let playing = state.time.playing && state.time.duration > 0.0;
+        let wanted = (state.accuracy.panel_open || state.view.view == DebugView::Error) && !playing;
         self.accuracy
             .update(&mut self.renderer, &source, &mut state.accuracy, wanted);
         if rendered {
@@ -347,6 +358,7 @@ impl Viewer {
         });
         match uploaded {
             Ok(scene) => {
+                self.clock = clock_for(&scene, &mut self.state.time);
                 self.scene = Arc::new(scene);
                 apply::scene_loaded(&self.renderer, &mut self.state, spec);
                 self.window.set_title(&title(&self.state));
@@ -356,6 +368,43 @@ impl Viewer {
                 log::warn!("cannot load {spec}: {e}");
                 self.state.scene.error = Some(e);
             }
+        }
+    }
+}
+
+/// A clock for an animated scene, and the Time section's view of it.
+fn clock_for(scene: &Scene, time: &mut TimeState) -> Option<AnimatedScene> {
+    *time = TimeState::default();
+    let anim = scene.animation.as_ref()?;
+    time.duration = anim.duration(ClipChoice::All);
+    time.clips = anim.clips.iter().map(|c| c.name.clone()).collect();
+    Some(AnimatedScene::new(scene.clone()))
+}
+
+impl Viewer {
+    /// Moves scene time on (playing, a step, a scrub) and poses the scene there. A paused
+    /// scene that changed also becomes the Accuracy panel's scene, so its reference is
+    /// of the moment shown.
+    fn advance_time(&mut self, dt: f32) {
+        let Some(clock) = &mut self.clock else {
+            return;
+        };
+        let time = &mut self.state.time;
+        clock.set_clip_choice(time.clip.map_or(ClipChoice::All, ClipChoice::One));
+        time.duration = clock.duration();
+        time.advance(dt);
+        let (change, _) = clock.set_time(&mut self.renderer, time.time);
+        if change.camera {
+            // A camera on an animated node: follow it unless the user flew away from it.
+            let followed = clock.scene().default_camera();
+            let cam = &mut self.state.camera;
+            if cam.camera == cam.scene_camera {
+                cam.camera = followed;
+            }
+            cam.scene_camera = followed;
+        }
+        if change.any() && !time.playing {
+            self.scene = Arc::new(clock.scene().clone());
         }
     }
 }

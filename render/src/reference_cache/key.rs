@@ -85,7 +85,7 @@ pub fn key_of(request: &ReferenceRequest) -> anyhow::Result<ReferenceKey> {
             Err(e) => shaders.write(e.to_string().as_bytes()),
         }
     }
-    let description = format!(
+    let mut description = format!(
         "version={CACHE_VERSION}\nscene={}\nscene_content={scene:016x}\ncamera_position={}\n\
          camera_rotation={}\ncamera_yfov={}\nsize={}x{}\nspp={}\njitter={}\neffects={}\n\
          seed={}\nshaders={:016x}\n",
@@ -101,6 +101,9 @@ pub fn key_of(request: &ReferenceRequest) -> anyhow::Result<ReferenceKey> {
         request.seed,
         shaders.finish(),
     );
+    if let Some(t) = request.scene_time {
+        description.push_str(&format!("scene_time={:08x}\n", t.to_bits()));
+    }
     Ok(ReferenceKey {
         hash: Fnv64::of(description.as_bytes()),
         description,

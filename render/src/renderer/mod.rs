@@ -149,6 +149,11 @@ impl Renderer {
         self.scene.light_select_pdf(light)
     }
 
+    /// The SAH cost of the BVH as it is now (after refits), see `Bvh::sah_cost`.
+    pub fn bvh_sah_cost(&self) -> f64 {
+        self.scene.bvh.sah_cost()
+    }
+
     /// The cost of the last `update_scene`.
     pub fn last_scene_update(&self) -> SceneUpdateTimes {
         self.last_update

@@ -244,10 +244,11 @@ impl Scene {
 
     /// Poses the scene at `time` with its own animation (nothing for a static scene).
     pub fn pose(&mut self, time: f32, choice: animation::ClipChoice) -> animation::SceneChange {
-        let Some(anim) = self.animation.take() else {
+        let Some(mut anim) = self.animation.take() else {
             return animation::SceneChange::default();
         };
         let change = anim.pose(self, time, choice);
+        anim.posed_at = time;
         self.animation = Some(anim);
         change
     }

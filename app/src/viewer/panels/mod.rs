@@ -9,6 +9,7 @@ pub mod palette;
 pub mod pipeline;
 pub mod scene;
 pub mod stats;
+pub mod time;
 pub mod view;
 
 #[cfg(test)]
@@ -55,6 +56,9 @@ fn sections(ui: &mut Ui, state: &mut ViewerState) {
         .body_returned
         .is_some();
     section("Stats", true).show(ui, |ui| stats::ui(ui, state));
+    if state.time.duration > 0.0 {
+        section("Time", true).show(ui, |ui| time::ui(ui, &mut state.time));
+    }
     section("Camera", false).show(ui, |ui| camera::ui(ui, &mut state.camera));
     section("Scene", false).show(ui, |ui| scene::ui(ui, state));
     section("Pixel inspector", false).show(ui, |ui| inspector::ui(ui, &mut state.inspector));

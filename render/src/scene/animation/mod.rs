@@ -35,6 +35,8 @@ pub struct SceneAnimation {
     pub materials: Vec<MaterialBinding>,
     /// The node carrying the scene camera, when that node moves.
     pub camera: Option<CameraBinding>,
+    /// The time of the last `pose` (references are keyed by it).
+    pub posed_at: f32,
 }
 
 /// Vertices `first..first + local.len()` of the scene, stored in node `node`'s space.

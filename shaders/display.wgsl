@@ -92,6 +92,14 @@ fn debug_color(index: u32, pixel: vec2<u32>) -> vec3<f32> {
             let r = reservoirs[index];
             return heatmap(r.m / max(display.m_scale, 1.0));
         }
+        case VIEW_AGE: {
+            // Frames since the survivor was first drawn, up to 2 × M cap (yellow).
+            let r = reservoirs[index];
+            if r.light == NO_LIGHT {
+                return vec3<f32>(0.0);
+            }
+            return heatmap(f32(r.source >> AGE_SHIFT) / max(2.0 * display.m_scale, 1.0));
+        }
         case VIEW_REJECTION: {
             let mask = (d.temporal_mask | (d.spatial_mask << REJECT_SPATIAL_SHIFT)) & display.reason_mask;
             if mask == 0u {

@@ -43,6 +43,13 @@ pub const SOURCE_INITIAL: u32 = 1;
 pub const SOURCE_TEMPORAL: u32 = 2;
 pub const SOURCE_SPATIAL: u32 = 3;
 pub const SOURCE_NAMES: [&str; 4] = ["null", "initial", "temporal", "spatial"];
+/// `Reservoir.source` holds the SOURCE_* in its low bits and the sample's age (frames
+/// since it was first drawn) above AGE_SHIFT: no new field, so the reservoir layout and
+/// its memory traffic stay what they are.
+pub const SOURCE_MASK: u32 = 0xff;
+pub const AGE_SHIFT: u32 = 8;
+/// The largest age stored (24 bits).
+pub const AGE_MAX: u32 = (1 << (32 - AGE_SHIFT)) - 1;
 
 pub const DEBUG_FLAG_TEMPORAL_CAP: u32 = 1 << 0;
 pub const DEBUG_FLAG_SPATIAL_CAP: u32 = 1 << 1;
@@ -123,6 +130,7 @@ pub const VIEW_ALBEDO: u32 = 6;
 pub const VIEW_DEPTH: u32 = 7;
 pub const VIEW_MOTION: u32 = 8;
 pub const VIEW_ERROR: u32 = 9;
+pub const VIEW_AGE: u32 = 10;
 
 pub const TONEMAP_ACES: u32 = 0;
 pub const TONEMAP_REINHARD: u32 = 1;
@@ -157,6 +165,9 @@ pub fn wgsl_prelude() -> String {
         ("SOURCE_INITIAL", SOURCE_INITIAL),
         ("SOURCE_TEMPORAL", SOURCE_TEMPORAL),
         ("SOURCE_SPATIAL", SOURCE_SPATIAL),
+        ("SOURCE_MASK", SOURCE_MASK),
+        ("AGE_SHIFT", AGE_SHIFT),
+        ("AGE_MAX", AGE_MAX),
         ("DEBUG_FLAG_TEMPORAL_CAP", DEBUG_FLAG_TEMPORAL_CAP),
         ("DEBUG_FLAG_SPATIAL_CAP", DEBUG_FLAG_SPATIAL_CAP),
         ("DEBUG_FLAG_FALLBACK_TRIED", DEBUG_FLAG_FALLBACK_TRIED),
@@ -210,6 +221,7 @@ pub fn wgsl_prelude() -> String {
         ("VIEW_DEPTH", VIEW_DEPTH),
         ("VIEW_MOTION", VIEW_MOTION),
         ("VIEW_ERROR", VIEW_ERROR),
+        ("VIEW_AGE", VIEW_AGE),
         ("TONEMAP_ACES", TONEMAP_ACES),
         ("TONEMAP_REINHARD", TONEMAP_REINHARD),
         ("TONEMAP_CLAMP", TONEMAP_CLAMP),

@@ -46,10 +46,11 @@ pub enum DebugView {
     Depth,
     Motion,
     Error,
+    Age,
 }
 
 impl DebugView {
-    pub const ALL: [DebugView; 10] = [
+    pub const ALL: [DebugView; 11] = [
         DebugView::Final,
         DebugView::Source,
         DebugView::M,
@@ -60,6 +61,7 @@ impl DebugView {
         DebugView::Depth,
         DebugView::Motion,
         DebugView::Error,
+        DebugView::Age,
     ];
 
     pub fn name(self) -> &'static str {
@@ -74,6 +76,7 @@ impl DebugView {
             DebugView::Depth => "depth",
             DebugView::Motion => "motion",
             DebugView::Error => "error",
+            DebugView::Age => "age",
         }
     }
 
@@ -93,6 +96,7 @@ impl DebugView {
             DebugView::Depth => VIEW_DEPTH,
             DebugView::Motion => VIEW_MOTION,
             DebugView::Error => VIEW_ERROR,
+            DebugView::Age => VIEW_AGE,
         }
     }
 }

@@ -73,7 +73,7 @@ struct Reservoir {
     w_sum: f32,
     weight: f32,   // W = w_sum / (M · p̂)
     m: f32,
-    source: u32,   // SOURCE_*
+    source: u32,   // SOURCE_* | age << AGE_SHIFT (frames since the sample was drawn)
 }
 
 // One presampled light of a light tile (a packed LightPoint plus its identity).

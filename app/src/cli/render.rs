@@ -46,7 +46,7 @@ pub struct RenderArgs {
     /// Write statistics as JSON here.
     #[arg(long)]
     pub stats: Option<PathBuf>,
-    /// final | source | m | rejection | w | normals | albedo | depth | motion (PNG only).
+    /// final | source | m | rejection | w | normals | albedo | depth | motion | age (PNG only).
     #[arg(long, default_value = "final")]
     pub debug_view: String,
     /// Orbit the camera about the scene centre by this many degrees per frame.

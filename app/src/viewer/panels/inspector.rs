@@ -102,6 +102,7 @@ fn reservoir_grid(ui: &mut Ui, i: &PixelInspection) {
                 "M",
                 "w_sum",
                 "source",
+                "age",
             ] {
                 ui.strong(h);
             }
@@ -122,7 +123,10 @@ fn reservoir_grid(ui: &mut Ui, i: &PixelInspection) {
                 ui.label(format!("{:.4e}", r.weight));
                 ui.label(format!("{}", r.m));
                 ui.label(format!("{:.4e}", r.w_sum));
-                ui.label(SOURCE_NAMES.get(r.source as usize).copied().unwrap_or("?"));
+                let source = (r.source & SOURCE_MASK) as usize;
+                ui.label(SOURCE_NAMES.get(source).copied().unwrap_or("?"));
+                ui.label((r.source >> AGE_SHIFT).to_string())
+                    .on_hover_text("frames since this sample was first drawn");
                 ui.end_row();
             }
         });

@@ -84,6 +84,9 @@ fn describe(v: DebugView) -> &'static str {
         DebugView::Error => {
             "|frame - reference| luminance against the reference of the Accuracy panel (obtained in the background while the camera stands still)"
         }
+        DebugView::Age => {
+            "Frames since the surviving sample was first drawn, 0 to 2 × the M cap; null samples black"
+        }
     }
 }
 
@@ -91,6 +94,11 @@ fn legend(ui: &mut Ui, state: &mut ViewerState) {
     match state.view.view {
         DebugView::Source => source_legend(ui, str::to_string),
         DebugView::M => ramp(ui, "0", &format!("M cap ({})", state.settings.m_cap)),
+        DebugView::Age => ramp(
+            ui,
+            "0",
+            &format!("2 × M cap ({})", 2.0 * state.settings.m_cap),
+        ),
         DebugView::Weight => ramp(ui, "W 1e-4", "1e4"),
         DebugView::Error => {
             ramp(ui, "0", "1 (at this exposure)");

@@ -69,6 +69,13 @@ pub struct GpuScene {
     prev_differs: bool,
     /// Per light entry, its select_pdf as uploaded (tests and the inspector).
     light_pdfs: Vec<f32>,
+    /// Per triangle light entry: (source triangle, area at the last table build), to tell
+    /// rigid emitter motion (table still valid) from a change of area (dynamic scenes).
+    light_areas: Vec<(u32, f32)>,
+    /// Per light entry: (is a triangle, BVH triangle or punctual index).
+    light_geometry_kinds: Vec<(bool, u32)>,
+    /// A directional light's power depends on the scene's size: any motion rebuilds.
+    directional: bool,
 }
 
 /// The storage buffers an update rewrites (bind group 1 holds them all).
@@ -207,6 +214,25 @@ impl GpuScene {
             bounds_min: bounds.min.into(),
             bounds_max: bounds.max.into(),
         };
+        let light_areas = if scene.animation.is_some() {
+            light_areas(scene, &bvh.triangle_order, &lights)
+        } else {
+            Vec::new()
+        };
+        let light_geometry_kinds = lights
+            .lights
+            .iter()
+            .map(|l| {
+                (
+                    l.kind_prim >> LIGHT_KIND_SHIFT == LIGHT_KIND_TRIANGLE,
+                    l.kind_prim & LIGHT_PRIM_MASK,
+                )
+            })
+            .collect();
+        let directional = scene
+            .punctual_lights
+            .iter()
+            .any(|p| p.kind == crate::scene::PunctualKind::Directional);
         Ok(GpuScene {
             bind_group,
             triangle_count: triangles.len() as u32,
@@ -231,6 +257,9 @@ impl GpuScene {
             updated_since_frame: false,
             prev_differs: false,
             light_pdfs: lights.lights.iter().map(|l| l.select_pdf).collect(),
+            light_areas,
+            light_geometry_kinds,
+            directional,
         })
     }
 
@@ -331,6 +360,20 @@ fn gpu_materials(scene: &Scene) -> Vec<GpuMaterial> {
                 emissive_texture: tex_index(m.emissive_texture),
                 _pad: 0,
             }
+        })
+        .collect()
+}
+
+/// (source triangle, area) of every triangle entry of `table`.
+fn light_areas(scene: &Scene, order: &[u32], table: &LightTable) -> Vec<(u32, f32)> {
+    table
+        .lights
+        .iter()
+        .filter(|l| l.kind_prim >> LIGHT_KIND_SHIFT == LIGHT_KIND_TRIANGLE)
+        .map(|l| {
+            let source = order[(l.kind_prim & LIGHT_PRIM_MASK) as usize];
+            let [a, b, c] = scene.triangle_positions(source as usize);
+            (source, 0.5 * (b - a).cross(c - a).length())
         })
         .collect()
 }

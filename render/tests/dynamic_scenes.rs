@@ -345,3 +345,19 @@ fn planted_stale_light_position_is_detected() {
         "detector silent: ratio {ratio:.3}, relative RMSE {rel_rmse:.3}"
     );
 }
+
+#[test]
+fn the_light_table_is_rebuilt_only_when_powers_can_change() {
+    // Rigid motion of an emitter: same areas, same powers, same table.
+    let mut scene = animated("builtin:dynamic:moving-light", 0.0);
+    let mut r = renderer_for(&scene, 8, 8, Settings::default());
+    let (change, times) = scene.set_time(&mut r, 0.5);
+    assert!(change.geometry && change.lights && !change.emission);
+    assert!(!times.light_table_rebuilt);
+    // Switching lights changes emission: rebuilt, and the switched lights get pdf 0.
+    let mut scene = animated("builtin:dynamic:blinking-lights", 0.5);
+    let mut r = renderer_for(&scene, 8, 8, Settings::default());
+    let (change, times) = scene.set_time(&mut r, 1.5);
+    assert!(change.emission && times.light_table_rebuilt);
+    assert!(r.light_select_pdf(0).is_some());
+}

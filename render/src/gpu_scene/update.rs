@@ -9,7 +9,7 @@ use std::time::Instant;
 
 use glam::Vec3;
 
-use super::{GpuScene, gpu_materials, light_geometry, triangle_records};
+use super::{GpuScene, gpu_materials, light_areas, triangle_records};
 use crate::gpu::Gpu;
 use crate::scene::Scene;
 use crate::scene::animation::SceneChange;
@@ -24,6 +24,8 @@ pub struct SceneUpdateTimes {
     pub lights_ms: f64,
     /// Building the GPU records and queueing their upload.
     pub upload_ms: f64,
+    /// Whether the light table was rebuilt (not for rigid emitter motion).
+    pub light_table_rebuilt: bool,
 }
 
 impl SceneUpdateTimes {
@@ -40,7 +42,12 @@ impl GpuScene {
             return times;
         }
         let start = Instant::now();
-        let lights = if change.lights {
+        // Rigid emitter motion keeps every power: the table (alias probabilities) stays
+        // valid, only the geometry it points at moved (the shader reads that from the
+        // triangles). Rebuild only when emission changed or some emitter's area did.
+        let rebuild_table = change.lights
+            && (change.emission || self.directional || !self.light_areas_match(scene));
+        let lights = if rebuild_table {
             let t = Instant::now();
             let table = LightTable::build_with_slots(
                 scene,
@@ -49,6 +56,7 @@ impl GpuScene {
                 self.keep_punctual,
             );
             times.lights_ms = t.elapsed().as_secs_f64() * 1e3;
+            times.light_table_rebuilt = true;
             Some(table)
         } else {
             None
@@ -83,12 +91,45 @@ impl GpuScene {
                 0,
                 bytemuck::cast_slice(&self.bvh.nodes),
             );
-            if let Some(table) = &lights {
-                self.light_geometry = light_geometry(table, &triangles);
-            }
+            self.light_geometry = self
+                .light_geometry_kinds
+                .iter()
+                .map(|&(is_triangle, index)| {
+                    if is_triangle {
+                        let t = &triangles[index as usize];
+                        [t.p0, t.p1, t.p2].map(Vec3::from)
+                    } else {
+                        [Vec3::from(scene.punctual_lights[index as usize].position); 3]
+                    }
+                })
+                .collect();
             self.bounds = scene.bounds();
             self.info.bounds_min = self.bounds.min.into();
             self.info.bounds_max = self.bounds.max.into();
+        }
+        if change.lights && !scene.punctual_lights.is_empty() {
+            // Moved or changed punctual lights: their records, whether or not the table is.
+            let punctual: Vec<_> = scene
+                .punctual_lights
+                .iter()
+                .map(crate::scene::lights::gpu_punctual)
+                .collect();
+            gpu.queue
+                .write_buffer(&self.buffers.punctual, 0, bytemuck::cast_slice(&punctual));
+            for (g, &(is_triangle, index)) in self
+                .light_geometry
+                .iter_mut()
+                .zip(&self.light_geometry_kinds)
+            {
+                if !is_triangle {
+                    *g = [scene.punctual_lights[index as usize].position; 3];
+                }
+            }
+        }
+        if change.emission {
+            let materials = gpu_materials(scene);
+            gpu.queue
+                .write_buffer(&self.buffers.materials, 0, bytemuck::cast_slice(&materials));
         }
         if let Some(table) = lights {
             if table.lights.len() as u32 != self.light_count {
@@ -104,40 +145,27 @@ impl GpuScene {
                     0,
                     bytemuck::cast_slice(&table.lights),
                 );
-                if !table.punctual.is_empty() {
-                    gpu.queue.write_buffer(
-                        &self.buffers.punctual,
-                        0,
-                        bytemuck::cast_slice(&table.punctual),
-                    );
-                }
-                let materials = gpu_materials(scene);
-                gpu.queue.write_buffer(
-                    &self.buffers.materials,
-                    0,
-                    bytemuck::cast_slice(&materials),
-                );
                 self.sampleable = table.sampleable();
                 self.light_pdfs = table.lights.iter().map(|l| l.select_pdf).collect();
+                self.light_areas = light_areas(scene, &self.bvh.triangle_order, &table);
                 self.info.power_range = table.power_range;
                 self.info.total_power = table.total_power;
-                if !change.geometry {
-                    for (entry, g) in table.lights.iter().zip(&mut self.light_geometry) {
-                        if entry.kind_prim >> crate::gpu_types::LIGHT_KIND_SHIFT
-                            != crate::gpu_types::LIGHT_KIND_TRIANGLE
-                        {
-                            let index =
-                                (entry.kind_prim & crate::gpu_types::LIGHT_PRIM_MASK) as usize;
-                            *g = [Vec3::from(table.punctual[index].position); 3];
-                        }
-                    }
-                }
             }
         }
         self.updated_since_frame = true;
         let total = start.elapsed().as_secs_f64() * 1e3;
         times.upload_ms = (total - times.bvh_ms - times.lights_ms).max(0.0);
         times
+    }
+
+    /// Whether every triangle light still has the area it had at the last table build
+    /// (relative 1e-4: rigid motion changes areas by rounding only).
+    fn light_areas_match(&self, scene: &Scene) -> bool {
+        self.light_areas.iter().all(|&(source, area)| {
+            let [a, b, c] = scene.triangle_positions(source as usize);
+            let now = 0.5 * (b - a).cross(c - a).length();
+            (now - area).abs() <= 1e-4 * area.max(now)
+        })
     }
 
     /// Called once per rendered frame: makes `prev_triangles` the triangles of the frame

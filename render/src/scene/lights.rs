@@ -196,7 +196,7 @@ fn punctual_power(light: &PunctualLight, scene_radius: f64) -> f64 {
 
 /// Point and directional lights get an all-accepting cone (cos = −1); shaders branch on
 /// `kind` anyway.
-fn gpu_punctual(light: &PunctualLight) -> GpuPunctualLight {
+pub(crate) fn gpu_punctual(light: &PunctualLight) -> GpuPunctualLight {
     let (kind, cos_outer, cos_inner) = match light.kind {
         PunctualKind::Point => (PUNCTUAL_POINT, -1.0, -1.0),
         PunctualKind::Spot {

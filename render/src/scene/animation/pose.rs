@@ -11,8 +11,11 @@ use crate::scene::{Camera, Scene};
 pub struct SceneChange {
     /// Some vertex moved: triangles and the BVH need updating.
     pub geometry: bool,
-    /// An emitter moved or a light's emission changed: the light table needs rebuilding.
+    /// An emitter moved or a light's emission changed: light data needs updating.
     pub lights: bool,
+    /// A light's emission changed (not only its place): its power, and with it the light
+    /// table's probabilities, may differ. Rigid emitter motion leaves this false.
+    pub emission: bool,
     /// The scene camera moved (it is used only where the user has not moved the camera).
     pub camera: bool,
 }
@@ -142,6 +145,7 @@ impl SceneAnimation {
             {
                 material.emission = emission;
                 change.lights = true;
+                change.emission = true;
             }
         }
 
@@ -165,6 +169,9 @@ impl SceneAnimation {
                 }
             }
             if updated != *light {
+                // Punctual power depends on intensity only (directional: also on the scene
+                // size, which the renderer checks), so moving one is not an emission change.
+                change.emission |= updated.intensity != light.intensity;
                 *light = updated;
                 change.lights = true;
             }

@@ -6,7 +6,6 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use restir_render::reference_cache::ReferenceCache;
-use restir_render::scene::animation::ClipChoice;
 use restir_render::timeline::AnimatedScene;
 use restir_render::view::auto_exposure_ev;
 use restir_render::{DebugView, Gpu, Renderer, Scene};
@@ -18,13 +17,14 @@ use super::accuracy::AccuracyState;
 use super::accuracy::tracker::{AccuracyTracker, SceneSource};
 use super::apply;
 use super::camera::CameraState;
+use super::clock::clock_for;
 use super::egui_layer::EguiLayer;
 use super::gpu_surface::GpuSurface;
 use super::panels;
 use super::scene_loader::SceneLoader;
 use super::scene_view;
 use super::screenshot::{self, Shot, WindowCapture};
-use super::state::{Action, DeviceInfo, DisplayOptions, TimeState, ViewerState};
+use super::state::{Action, DeviceInfo, DisplayOptions, ViewerState};
 
 /// What the event loop should do after an event.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -37,13 +37,13 @@ pub struct Viewer {
     window: Arc<Window>,
     gpu: Gpu,
     surface: GpuSurface,
-    renderer: Renderer,
+    pub(super) renderer: Renderer,
     egui: EguiLayer,
     pub state: ViewerState,
     /// The scene shown, kept for the accuracy panel's reference jobs.
-    scene: Arc<Scene>,
+    pub(super) scene: Arc<Scene>,
     /// An animated scene's clock (its own posed copy of the scene); `None` when static.
-    clock: Option<AnimatedScene>,
+    pub(super) clock: Option<AnimatedScene>,
     accuracy: AccuracyTracker,
     loader: SceneLoader,
     screenshots: screenshot::Schedule,
@@ -368,43 +368,6 @@ impl Viewer {
                 log::warn!("cannot load {spec}: {e}");
                 self.state.scene.error = Some(e);
             }
-        }
-    }
-}
-
-/// A clock for an animated scene, and the Time section's view of it.
-fn clock_for(scene: &Scene, time: &mut TimeState) -> Option<AnimatedScene> {
-    *time = TimeState::default();
-    let anim = scene.animation.as_ref()?;
-    time.duration = anim.duration(ClipChoice::All);
-    time.clips = anim.clips.iter().map(|c| c.name.clone()).collect();
-    Some(AnimatedScene::new(scene.clone()))
-}
-
-impl Viewer {
-    /// Moves scene time on (playing, a step, a scrub) and poses the scene there. A paused
-    /// scene that changed also becomes the Accuracy panel's scene, so its reference is
-    /// of the moment shown.
-    fn advance_time(&mut self, dt: f32) {
-        let Some(clock) = &mut self.clock else {
-            return;
-        };
-        let time = &mut self.state.time;
-        clock.set_clip_choice(time.clip.map_or(ClipChoice::All, ClipChoice::One));
-        time.duration = clock.duration();
-        time.advance(dt);
-        let (change, _) = clock.set_time(&mut self.renderer, time.time);
-        if change.camera {
-            // A camera on an animated node: follow it unless the user flew away from it.
-            let followed = clock.scene().default_camera();
-            let cam = &mut self.state.camera;
-            if cam.camera == cam.scene_camera {
-                cam.camera = followed;
-            }
-            cam.scene_camera = followed;
-        }
-        if change.any() && !time.playing {
-            self.scene = Arc::new(clock.scene().clone());
         }
     }
 }

@@ -12,6 +12,7 @@ mod accuracy;
 mod app;
 mod apply;
 mod camera;
+mod clock;
 mod egui_layer;
 mod frame;
 mod gpu_surface;

@@ -57,9 +57,9 @@ fn source_color(source: u32) -> vec3<f32> {
     }
 }
 
-// One colour per temporal rejection reason (bit index 0..7).
+// One colour per temporal rejection reason (bit index 0..REJECT_REASON_COUNT).
 fn reason_color(bit: u32) -> vec3<f32> {
-    var palette = array<vec3<f32>, 8>(
+    var palette = array<vec3<f32>, REJECT_REASON_COUNT>(
         vec3<f32>(1.0, 0.0, 0.0),   // off-screen: red
         vec3<f32>(1.0, 0.5, 0.0),   // previous surface invalid: orange
         vec3<f32>(1.0, 0.0, 1.0),   // material: magenta
@@ -68,8 +68,9 @@ fn reason_color(bit: u32) -> vec3<f32> {
         vec3<f32>(1.0, 1.0, 0.0),   // reservoir null: yellow
         vec3<f32>(0.6, 0.3, 0.1),   // target ≤ 0: brown
         vec3<f32>(1.0, 1.0, 1.0),   // target ratio: white
+        vec3<f32>(0.1, 0.9, 0.2),   // light gone (off or removed): green
     );
-    return palette[bit & 7u];
+    return palette[min(bit, REJECT_REASON_COUNT - 1u)];
 }
 
 // Fraction of spatial neighbours rejected: black (none) to a mid grey (all), darker than
@@ -105,12 +106,20 @@ fn debug_color(index: u32, pixel: vec2<u32>) -> vec3<f32> {
             let r = reservoirs[index];
             return heatmap(r.m / max(display.m_scale, 1.0));
         }
+        case VIEW_AGE: {
+            // Frames since the survivor was first drawn, up to 2 × M cap (yellow).
+            let r = reservoirs[index];
+            if r.light == NO_LIGHT {
+                return vec3<f32>(0.0);
+            }
+            return heatmap(f32(r.source >> AGE_SHIFT) / max(2.0 * display.m_scale, 1.0));
+        }
         case VIEW_REJECTION: {
             // Temporal: the first enabled reason. Elsewhere, spatial: how many of the
             // neighbours tried were rejected, for any reason, as a grey level (the union of
             // K neighbours' reasons paints almost every pixel one colour and says little;
             // the reasons themselves are in the Stats panel and the inspector).
-            let mask = d.temporal_mask & display.reason_mask & 0xffu;
+            let mask = d.temporal_mask & display.reason_mask & ((1u << REJECT_REASON_COUNT) - 1u);
             if mask != 0u {
                 return reason_color(firstTrailingBit(mask));
             }

@@ -6,6 +6,10 @@
 
 @group(2) @binding(0) var visibility: texture_2d<u32>;
 @group(2) @binding(1) var<storage, read_write> surfaces: array<Surface>;
+#ifdef ANIMATION
+// Last frame's triangles, same BVH order: where this surface point was (object motion).
+@group(2) @binding(2) var<storage, read> prev_triangles: array<Triangle>;
+#endif
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -32,7 +36,16 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     s.specular = m.specular;
     s.emission = emission_toward_viewer(hs);
 #ifdef MOTION
-    let prev_clip = frame.prev_view_proj * vec4<f32>(hs.position, 1.0);
+    var prev_position = hs.position;
+#ifdef ANIMATION
+    // The same triangle and barycentrics on last frame's geometry: a moving object's
+    // surface reprojects to where it was, not to whatever was behind it.
+    let pt = prev_triangles[vis.x - 1u];
+    let bu = bitcast<f32>(vis.y);
+    let bv = bitcast<f32>(vis.z);
+    prev_position = pt.p0 * (1.0 - bu - bv) + pt.p1 * bu + pt.p2 * bv;
+#endif
+    let prev_clip = frame.prev_view_proj * vec4<f32>(prev_position, 1.0);
     if prev_clip.w > 0.0 {
         let ndc = prev_clip.xy / prev_clip.w;
         let unjittered = vec2<f32>((ndc.x * 0.5 + 0.5) * f32(frame.size.x), (0.5 - ndc.y * 0.5) * f32(frame.size.y));

@@ -122,7 +122,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     reservoirs_out[index] = r;
     var d: PixelDebug;
-    d.source = r.source;
+    d.source = reservoir_source(r);
     d.m_initial = r.m;
     debug[index] = d;
 }

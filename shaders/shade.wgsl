@@ -49,7 +49,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             }
 #endif
         }
-        let source = select(r.source, SOURCE_NULL, reservoir_is_null(r));
+        let source = select(reservoir_source(r), SOURCE_NULL, reservoir_is_null(r));
         count_stat(STAT_SOURCE + source);
         d.source = source;
         debug[index] = d;

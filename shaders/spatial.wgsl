@@ -108,7 +108,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             let nr = load_neighbour(q_index);
             let target_here = target_at(sp, nr.light, nr.uv);
             let m_i = pairwise_mis_noncanonical(c_total, canonical.m, nr.m, nr.p_hat, target_here);
-            reservoir_merge_mis(&r, nr, target_here, m_i, SOURCE_SPATIAL, rand_f32(&rng));
+            reservoir_merge_mis(&r, nr, target_here, m_i, source_with_age(SOURCE_SPATIAL, reservoir_age(nr)), rand_f32(&rng));
             let neighbour_sp = shading_point_from_surface(surfaces[q_index], frame.camera_position);
             let neighbour_at_canonical = target_at(neighbour_sp, canonical.light, canonical.uv);
             m_canonical += pairwise_mis_canonical_term(c_total, canonical.m, nr.m, canonical.p_hat, neighbour_at_canonical);
@@ -121,7 +121,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         for (var i = 0u; i < n_accepted; i++) {
             let nr = load_neighbour(accepted[i]);
             let target_here = target_at(sp, nr.light, nr.uv);
-            reservoir_merge(&r, nr, target_here, nr.m, SOURCE_SPATIAL, rand_f32(&rng));
+            reservoir_merge(&r, nr, target_here, nr.m, source_with_age(SOURCE_SPATIAL, reservoir_age(nr)), rand_f32(&rng));
         }
         reservoir_finalize(&r, r.m);
     }
@@ -135,7 +135,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         r = reservoir_empty();
     }
     reservoirs_out[index] = r;
-    d.source = r.source;
+    d.source = reservoir_source(r);
     d.m_spatial = r.m;
     d.spatial_mask |= pass_mask;
     d.spatial_accepted += n_accepted;

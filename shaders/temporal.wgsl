@@ -58,6 +58,15 @@ fn validate_previous(pixel: vec2<i32>, s: Surface, sp: ShadingPoint) -> Temporal
     if prev_null && check_enabled(REJECT_RESERVOIR) {
         c.mask |= REJECT_RESERVOIR;
     }
+#ifdef ANIMATION
+    // Light identity is the table slot (fixed for the animation); a slot with select_pdf 0
+    // is a light that is off now. Its sample cannot be reused, whatever the checks say:
+    // not a switchable heuristic, so not behind check_enabled.
+    if !prev_null && (prev.light >= arrayLength(&lights) || lights[prev.light].select_pdf <= 0.0) {
+        c.mask |= REJECT_LIGHT_GONE;
+        return c;
+    }
+#endif
     c.target_here = target_at(sp, prev.light, prev.uv);
     if c.target_here <= 0.0 && check_enabled(REJECT_TARGET) {
         c.mask |= REJECT_TARGET;
@@ -119,6 +128,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         }
         let u_current = rand_f32(&rng);
         let u_prev = rand_f32(&rng);
+        // A history sample that survives is one frame older.
+        let temporal_source = source_with_age(SOURCE_TEMPORAL, reservoir_age(cand.reservoir) + 1u);
         r = reservoir_empty();
         if (params.flags & PARAM_FLAG_PAIRWISE) != 0u {
             // Pairwise MIS with the current (initial) reservoir as the canonical sample.
@@ -129,12 +140,12 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
                 + pairwise_mis_canonical_term(c_total, current.m, m_prev, current.p_hat, prev_at_current);
             let m_temporal = pairwise_mis_noncanonical(c_total, current.m, m_prev, cand.reservoir.p_hat, cand.target_here);
             reservoir_merge_mis(&r, current, current.p_hat, m_current, current.source, u_current);
-            reservoir_merge_mis(&r, cand.reservoir, cand.target_here, m_temporal, SOURCE_TEMPORAL, u_prev);
+            reservoir_merge_mis(&r, cand.reservoir, cand.target_here, m_temporal, temporal_source, u_prev);
             reservoir_finalize(&r, 1.0);
             r.m = c_total;
         } else {
             reservoir_merge(&r, current, current.p_hat, current.m, current.source, u_current);
-            reservoir_merge(&r, cand.reservoir, cand.target_here, m_prev, SOURCE_TEMPORAL, u_prev);
+            reservoir_merge(&r, cand.reservoir, cand.target_here, m_prev, temporal_source, u_prev);
             reservoir_finalize(&r, r.m);
         }
     }
@@ -148,7 +159,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         r.m = 1.0;
     }
     reservoirs_out[index] = r;
-    d.source = r.source;
+    d.source = reservoir_source(r);
     d.m_temporal = r.m;
     debug[index] = d;
 }

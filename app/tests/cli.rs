@@ -218,6 +218,10 @@ fn scenes_and_params_list_everything() {
         "builtin:many-lights",
         "builtin:hard:mirror",
         "builtin:hard:no-emitters",
+        "builtin:dynamic:moving-light",
+        "builtin:dynamic:blinking-lights",
+        "builtin:dynamic:moving-occluder",
+        "builtin:dynamic:many-lights",
     ] {
         assert!(
             text.lines().any(|l| l == name),
@@ -482,5 +486,57 @@ fn env_flags_render_a_sky_and_bad_environments_fail_with_one_line() {
         (vec!["--env-rotation", "10"], vec!["need --env"]),
     ] {
         assert_one_line_error(&render("builtin:cornell", &args, &png), &needles);
+    }
+}
+
+#[test]
+fn render_takes_scene_time_and_reports_the_update_cost() {
+    let dir = temp_dir("time");
+    let png = dir.join("blink.png");
+    let stats = dir.join("stats.json");
+    let out = render(
+        "builtin:dynamic:blinking-lights",
+        &[
+            "--frames",
+            "3",
+            "--time",
+            "0.95",
+            "--fps",
+            "30",
+            "--stats",
+            stats.to_str().unwrap(),
+        ],
+        &png,
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let doc: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+    let time = &doc["scene_time"];
+    assert!((time["first_time"].as_f64().unwrap() - 0.95).abs() < 1e-6);
+    // Frames at 0.95, 0.983, 1.017 s: the blink at 1 s changes the lights once.
+    assert!((time["last_time"].as_f64().unwrap() - (0.95 + 2.0 / 30.0)).abs() < 1e-5);
+    assert_eq!(time["updated_frames"].as_u64(), Some(1));
+    assert!(doc["effects"].as_str().unwrap().contains("animation"));
+    // A static scene has no scene_time block and no animation effect.
+    let out = render(
+        "builtin:cornell",
+        &["--stats", stats.to_str().unwrap()],
+        &png,
+    );
+    assert!(out.status.success());
+    let doc: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+    assert!(doc.get("scene_time").is_none());
+    assert!(!doc["effects"].as_str().unwrap().contains("animation"));
+    for (arg, flag) in [
+        ("--fps=-1", "--fps"),
+        ("--time=nan", "--time"),
+        ("--fps=inf", "--fps"),
+    ] {
+        assert_one_line_error(&render("builtin:cornell", &[arg], &png), &[flag]);
     }
 }

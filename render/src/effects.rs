@@ -33,6 +33,8 @@ pub struct SceneFeatures {
     pub can_occlude: bool,
     /// An environment lights the scene and shows where camera rays miss (issue 13).
     pub environment: bool,
+    /// The scene has an animation (moving geometry or changing lights).
+    pub animated: bool,
 }
 
 impl SceneFeatures {
@@ -55,7 +57,7 @@ impl SceneFeatures {
             |f: &dyn Fn(&crate::scene::Material) -> bool| mats.iter().filter(|m| f(m)).count();
         let specular = |m: &crate::scene::Material| m.metallic > 0.0 || m.specular > 0.0;
         SceneFeatures {
-            emissive_triangles: scene.emissive_triangle_count(),
+            emissive_triangles: potential_emitters(scene),
             emissive_textured_materials: count(&|m| {
                 m.is_emissive() && m.emissive_texture.is_some()
             }),
@@ -69,8 +71,28 @@ impl SceneFeatures {
             alpha_masked_materials: count(&|m| matches!(m.alpha_mode, AlphaMode::Mask(_))),
             can_occlude: can_occlude(scene),
             environment: scene.environment.is_some(),
+            animated: scene.animation.is_some(),
         }
     }
+}
+
+/// Emissive triangles, counting those of animated materials dark at load time: a light
+/// that switches on later needs the area-light code compiled in from the start.
+fn potential_emitters(scene: &Scene) -> usize {
+    let Some(anim) = &scene.animation else {
+        return scene.emissive_triangle_count();
+    };
+    let mut emits: Vec<bool> = scene.materials.iter().map(|m| m.is_emissive()).collect();
+    for b in &anim.materials {
+        if let Some(e) = emits.get_mut(b.material) {
+            *e = true;
+        }
+    }
+    scene
+        .triangles
+        .iter()
+        .filter(|t| emits.get(t.material as usize).copied().unwrap_or(false))
+        .count()
 }
 
 /// Above this many triangles the convexity proof is not attempted (it is O(T·V)).
@@ -116,10 +138,11 @@ pub enum Effect {
     BsdfCandidates,
     LightTiles,
     Environment,
+    Animation,
 }
 
 impl Effect {
-    pub const ALL: [Effect; 13] = [
+    pub const ALL: [Effect; 14] = [
         Effect::AreaLights,
         Effect::EmissiveTextures,
         Effect::PunctualLights,
@@ -133,6 +156,7 @@ impl Effect {
         Effect::BsdfCandidates,
         Effect::LightTiles,
         Effect::Environment,
+        Effect::Animation,
     ];
 
     /// The WGSL define.
@@ -151,6 +175,7 @@ impl Effect {
             Effect::BsdfCandidates => "BSDF_CANDIDATES",
             Effect::LightTiles => "LIGHT_TILES",
             Effect::Environment => "ENVIRONMENT",
+            Effect::Animation => "ANIMATION",
         }
     }
 
@@ -170,6 +195,7 @@ impl Effect {
             Effect::BsdfCandidates => "bsdf-candidates",
             Effect::LightTiles => "light-tiles",
             Effect::Environment => "environment",
+            Effect::Animation => "animation",
         }
     }
 
@@ -317,9 +343,19 @@ impl EffectSet {
         );
         decide(
             Effect::Motion,
-            camera_moves,
-            "the camera moved: motion vectors reproject history".into(),
+            camera_moves || f.animated,
+            if camera_moves {
+                "the camera moved: motion vectors reproject history".into()
+            } else {
+                "objects move: motion vectors follow them".into()
+            },
             "static camera and scene: a point stays in its pixel".into(),
+        );
+        decide(
+            Effect::Animation,
+            f.animated,
+            "the scene is animated: object motion, light identity checks".into(),
+            "static scene".into(),
         );
         decide(
             Effect::BsdfCandidates,

@@ -1,5 +1,10 @@
 //! Uploading a CPU `Scene`: BVH build, triangle reordering, light table, materials and
 //! textures, into the eight storage buffers of bind group 1 (scene_bindings.wgsl).
+//! `update.rs` rewrites them in place when an animated scene changes.
+
+mod update;
+
+pub use update::SceneUpdateTimes;
 
 use std::time::Instant;
 
@@ -64,11 +69,49 @@ pub struct GpuScene {
     pub environment_light: u32,
     /// (cos, sin) of the environment's rotation, to turn a sample's uv into a direction.
     environment_rotation: [f32; 2],
-    /// The light table's `(kind_prim, power)` entries and buffer, and the environment
-    /// share it was last built with (`set_environment_share`).
+    /// The light table's `(kind_prim, power)` entries, and the environment share it was
+    /// last written with (`set_environment_share`).
     light_entries: Vec<(u32, f64)>,
-    lights_buffer: wgpu::Buffer,
     environment_share: f32,
+    buffers: SceneBuffers,
+    /// Last frame's triangles (object motion vectors). For a static scene this is the
+    /// triangle buffer itself: previous = current, at no cost.
+    pub prev_triangles: wgpu::Buffer,
+    /// Materials whose triangles keep a light-table slot at zero power (see
+    /// `LightTable::build_with_slots`); empty for a static scene.
+    kept_materials: Vec<bool>,
+    keep_punctual: bool,
+    /// False when no light has power (every light of a dynamic scene off): the shaders
+    /// then sample no light (`frame.light_count` is 0) although the table has entries.
+    sampleable: bool,
+    /// The scene has an animation: the fields below are in use.
+    pub dynamic: bool,
+    /// Per triangle in BVH order, its light entry (fixed for the scene's lifetime).
+    triangle_light: Vec<u32>,
+    /// An update happened since the last `begin_frame`.
+    updated_since_frame: bool,
+    /// `prev_triangles` holds other positions than the current triangles.
+    prev_differs: bool,
+    /// Per light entry, its select_pdf as uploaded (tests and the inspector).
+    light_pdfs: Vec<f32>,
+    /// Per triangle light entry: (source triangle, area at the last table build), to tell
+    /// rigid emitter motion (table still valid) from a change of area (dynamic scenes).
+    light_areas: Vec<(u32, f32)>,
+    /// Per light entry: (is a triangle, BVH triangle or punctual index); `None` for the
+    /// environment, which has no geometry.
+    light_geometry_kinds: Vec<Option<(bool, u32)>>,
+    /// A directional light's power depends on the scene's size: any motion rebuilds.
+    directional: bool,
+}
+
+/// The storage buffers an update rewrites (bind group 1 holds them all).
+struct SceneBuffers {
+    triangles: wgpu::Buffer,
+    shading: wgpu::Buffer,
+    materials: wgpu::Buffer,
+    lights: wgpu::Buffer,
+    punctual: wgpu::Buffer,
+    bvh_nodes: wgpu::Buffer,
 }
 
 /// Octahedral encoding into two snorm16, bit-identical to `oct_encode` in math.wgsl.
@@ -102,7 +145,9 @@ fn storage_buffer<T: bytemuck::Pod + Default>(gpu: &Gpu, label: &str, data: &[T]
         .create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(label),
             contents: bytemuck::cast_slice(contents),
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            usage: wgpu::BufferUsages::STORAGE
+                | wgpu::BufferUsages::COPY_DST
+                | wgpu::BufferUsages::COPY_SRC,
         })
 }
 
@@ -126,35 +171,19 @@ impl GpuScene {
             });
         }
         let bvh_build_ms = start.elapsed().as_secs_f64() * 1e3;
-        let lights = LightTable::build(scene, &bvh.triangle_order);
-
-        let mut triangles = Vec::with_capacity(positions.len());
-        let mut shading = Vec::with_capacity(positions.len());
-        for (bvh_index, &source) in bvh.triangle_order.iter().enumerate() {
-            let tri = &scene.triangles[source as usize];
-            let [p0, p1, p2] = positions[source as usize];
-            let verts = tri.indices.map(|i| scene.vertices[i as usize]);
-            let has_normals = verts.iter().all(|v| v.normal.length_squared() > 0.0);
-            triangles.push(GpuTriangle {
-                p0: p0.into(),
-                material: tri.material,
-                p1: p1.into(),
-                light: lights.triangle_light[bvh_index],
-                p2: p2.into(),
-                source_index: source,
-            });
-            shading.push(GpuTriangleShading {
-                normals: verts.map(|v| {
-                    if has_normals {
-                        oct_encode(v.normal.normalize())
-                    } else {
-                        0
-                    }
-                }),
-                has_normals: has_normals as u32,
-                uvs: verts.map(|v| v.uv.into()),
-            });
-        }
+        let (kept_materials, keep_punctual) = light_slots(scene);
+        let lights = LightTable::build_with_slots(
+            scene,
+            &bvh.triangle_order,
+            &kept_materials,
+            keep_punctual,
+        );
+        let (triangles, shading) = triangle_records(
+            scene,
+            &bvh.triangle_order,
+            &positions,
+            &lights.triangle_light,
+        );
 
         let mut texels: Vec<u32> = Vec::new();
         let mut textures = Vec::with_capacity(scene.textures.len());
@@ -167,69 +196,31 @@ impl GpuScene {
             });
             texels.extend(t.texels.iter().map(|c| u32::from_le_bytes(*c)));
         }
-        let tex_index = |r: Option<crate::scene::TextureRef>| r.map_or(NO_TEXTURE, |r| r.texture);
-        let materials: Vec<GpuMaterial> = scene
-            .materials
-            .iter()
-            .map(|m| {
-                let mut flags = 0;
-                if m.double_sided {
-                    flags |= MATERIAL_DOUBLE_SIDED;
-                }
-                let mut alpha_cutoff = 0.0;
-                if let AlphaMode::Mask(cutoff) = m.alpha_mode {
-                    flags |= MATERIAL_ALPHA_MASK;
-                    alpha_cutoff = cutoff;
-                }
-                GpuMaterial {
-                    base_color: m.base_color.into(),
-                    emission: m.emission.into(),
-                    metallic: m.metallic,
-                    roughness: m.roughness,
-                    specular: m.specular,
-                    alpha_cutoff,
-                    flags,
-                    base_color_texture: tex_index(m.base_color_texture),
-                    metallic_roughness_texture: tex_index(m.metallic_roughness_texture),
-                    emissive_texture: tex_index(m.emissive_texture),
-                    _pad: 0,
-                }
-            })
-            .collect();
-
-        let light_geometry = lights
-            .lights
-            .iter()
-            .map(|l| {
-                let index = (l.kind_prim & LIGHT_PRIM_MASK) as usize;
-                match l.kind_prim >> LIGHT_KIND_SHIFT {
-                    LIGHT_KIND_TRIANGLE => {
-                        let t = &triangles[index];
-                        Some([t.p0, t.p1, t.p2].map(Vec3::from))
-                    }
-                    LIGHT_KIND_PUNCTUAL => Some([Vec3::from(lights.punctual[index].position); 3]),
-                    // An environment sample is a direction: it has no point.
-                    _ => None,
-                }
-            })
-            .collect();
+        let materials = gpu_materials(scene);
+        let light_geometry = light_geometry(&lights, &triangles);
+        let buffers = SceneBuffers {
+            triangles: storage_buffer(gpu, "triangles", &triangles),
+            shading: storage_buffer(gpu, "triangle shading", &shading),
+            materials: storage_buffer(gpu, "materials", &materials),
+            lights: storage_buffer(gpu, "lights", &lights.lights),
+            punctual: storage_buffer(gpu, "punctual lights", &lights.punctual),
+            bvh_nodes: storage_buffer(gpu, "bvh nodes", &bvh.nodes),
+        };
+        let refs = [
+            &buffers.triangles,
+            &buffers.shading,
+            &buffers.materials,
+            &storage_buffer(gpu, "textures", &textures),
+            &storage_buffer(gpu, "texels", &texels),
+            &buffers.lights,
+            &buffers.punctual,
+            &buffers.bvh_nodes,
+        ];
         let environment = EnvironmentResources::upload(
             gpu,
             scene.environment.as_deref(),
             lights.environment_light,
         );
-        let buffers = [
-            storage_buffer(gpu, "triangles", &triangles),
-            storage_buffer(gpu, "triangle shading", &shading),
-            storage_buffer(gpu, "materials", &materials),
-            storage_buffer(gpu, "textures", &textures),
-            storage_buffer(gpu, "texels", &texels),
-            storage_buffer(gpu, "lights", &lights.lights),
-            storage_buffer(gpu, "punctual lights", &lights.punctual),
-            storage_buffer(gpu, "bvh nodes", &bvh.nodes),
-        ];
-        let lights_buffer = buffers[5].clone();
-        let refs: Vec<&wgpu::Buffer> = buffers.iter().collect();
         let mut entries = crate::passes::buffer_entries(&refs);
         entries.extend([
             wgpu::BindGroupEntry {
@@ -250,6 +241,11 @@ impl GpuScene {
             layout,
             entries: &entries,
         });
+        let prev_triangles = if scene.animation.is_some() {
+            storage_buffer(gpu, "previous triangles", &triangles)
+        } else {
+            buffers.triangles.clone()
+        };
         gpu.check()?;
 
         let bounds = scene.bounds();
@@ -280,6 +276,16 @@ impl GpuScene {
                 distribution_build_ms: e.build_ms,
             }),
         };
+        let light_areas = if scene.animation.is_some() {
+            light_areas(scene, &bvh.triangle_order, &lights)
+        } else {
+            Vec::new()
+        };
+        let light_geometry_kinds = lights.lights.iter().map(geometry_kind).collect();
+        let directional = scene
+            .punctual_lights
+            .iter()
+            .any(|p| p.kind == crate::scene::PunctualKind::Directional);
         Ok(GpuScene {
             bind_group,
             triangle_count: triangles.len() as u32,
@@ -295,10 +301,36 @@ impl GpuScene {
                 .environment
                 .as_ref()
                 .map_or([1.0, 0.0], |e| e.rotation_cos_sin()),
-            light_entries: lights.entries,
-            lights_buffer,
             environment_share: 0.0,
+            buffers,
+            prev_triangles,
+            kept_materials,
+            keep_punctual,
+            sampleable: lights.sampleable(),
+            dynamic: scene.animation.is_some(),
+            triangle_light: if scene.animation.is_some() {
+                lights.triangle_light
+            } else {
+                Vec::new()
+            },
+            updated_since_frame: false,
+            prev_differs: false,
+            light_pdfs: lights.lights.iter().map(|l| l.select_pdf).collect(),
+            light_areas,
+            light_geometry_kinds,
+            directional,
+            light_entries: lights.entries,
         })
+    }
+
+    /// The light count the shaders sample from (0 while no light has power).
+    pub fn sampled_light_count(&self) -> u32 {
+        if self.sampleable { self.light_count } else { 0 }
+    }
+
+    /// The current selection probability of light entry `light` (0 while it is off).
+    pub fn light_select_pdf(&self, light: u32) -> Option<f32> {
+        self.light_pdfs.get(light as usize).copied()
     }
 
     /// Rebuilds the light table with the environment picked with probability `share` (0:
@@ -309,15 +341,23 @@ impl GpuScene {
             return;
         }
         self.environment_share = share;
+        self.write_light_table(gpu);
+    }
+
+    /// Writes the light table from `light_entries` with the current environment share.
+    fn write_light_table(&mut self, gpu: &Gpu) {
         let table = crate::scene::lights::with_environment_share(
             &self.light_entries,
             self.environment_light,
-            share,
+            self.environment_share,
         );
         gpu.queue
-            .write_buffer(&self.lights_buffer, 0, bytemuck::cast_slice(&table));
+            .write_buffer(&self.buffers.lights, 0, bytemuck::cast_slice(&table));
+        self.light_pdfs = table.iter().map(|l| l.select_pdf).collect();
         if let Some(info) = self.info.environment.as_mut() {
-            info.light_share = table[self.environment_light as usize].select_pdf;
+            info.light_share = table
+                .get(self.environment_light as usize)
+                .map_or(0.0, |l| l.select_pdf);
         }
     }
 
@@ -333,4 +373,132 @@ impl GpuScene {
         let [p0, p1, p2] = (*self.light_geometry.get(light as usize)?)?;
         Some((p0 * (1.0 - uv[0] - uv[1]) + p1 * uv[0] + p2 * uv[1]).into())
     }
+}
+
+/// Which light-table slots a scene keeps at zero power: for a dynamic scene every material
+/// that emits now or is animated, and every punctual light; nothing for a static scene.
+fn light_slots(scene: &Scene) -> (Vec<bool>, bool) {
+    let Some(anim) = &scene.animation else {
+        return (Vec::new(), false);
+    };
+    let mut kept: Vec<bool> = scene.materials.iter().map(|m| m.is_emissive()).collect();
+    for binding in &anim.materials {
+        if let Some(k) = kept.get_mut(binding.material) {
+            *k = true;
+        }
+    }
+    (kept, true)
+}
+
+/// Triangles and their shading data in BVH order.
+fn triangle_records(
+    scene: &Scene,
+    order: &[u32],
+    positions: &[[Vec3; 3]],
+    triangle_light: &[u32],
+) -> (Vec<GpuTriangle>, Vec<GpuTriangleShading>) {
+    let mut triangles = Vec::with_capacity(order.len());
+    let mut shading = Vec::with_capacity(order.len());
+    for (bvh_index, &source) in order.iter().enumerate() {
+        let tri = &scene.triangles[source as usize];
+        let [p0, p1, p2] = positions[source as usize];
+        let verts = tri.indices.map(|i| scene.vertices[i as usize]);
+        let has_normals = verts.iter().all(|v| v.normal.length_squared() > 0.0);
+        triangles.push(GpuTriangle {
+            p0: p0.into(),
+            material: tri.material,
+            p1: p1.into(),
+            light: triangle_light[bvh_index],
+            p2: p2.into(),
+            source_index: source,
+        });
+        shading.push(GpuTriangleShading {
+            normals: verts.map(|v| {
+                if has_normals {
+                    oct_encode(v.normal.normalize())
+                } else {
+                    0
+                }
+            }),
+            has_normals: has_normals as u32,
+            uvs: verts.map(|v| v.uv.into()),
+        });
+    }
+    (triangles, shading)
+}
+
+fn gpu_materials(scene: &Scene) -> Vec<GpuMaterial> {
+    let tex_index = |r: Option<crate::scene::TextureRef>| r.map_or(NO_TEXTURE, |r| r.texture);
+    scene
+        .materials
+        .iter()
+        .map(|m| {
+            let mut flags = 0;
+            if m.double_sided {
+                flags |= MATERIAL_DOUBLE_SIDED;
+            }
+            let mut alpha_cutoff = 0.0;
+            if let AlphaMode::Mask(cutoff) = m.alpha_mode {
+                flags |= MATERIAL_ALPHA_MASK;
+                alpha_cutoff = cutoff;
+            }
+            GpuMaterial {
+                base_color: m.base_color.into(),
+                emission: m.emission.into(),
+                metallic: m.metallic,
+                roughness: m.roughness,
+                specular: m.specular,
+                alpha_cutoff,
+                flags,
+                base_color_texture: tex_index(m.base_color_texture),
+                metallic_roughness_texture: tex_index(m.metallic_roughness_texture),
+                emissive_texture: tex_index(m.emissive_texture),
+                _pad: 0,
+            }
+        })
+        .collect()
+}
+
+/// (source triangle, area) of every triangle entry of `table`.
+fn light_areas(scene: &Scene, order: &[u32], table: &LightTable) -> Vec<(u32, f32)> {
+    table
+        .lights
+        .iter()
+        .filter(|l| l.kind_prim >> LIGHT_KIND_SHIFT == LIGHT_KIND_TRIANGLE)
+        .map(|l| {
+            let source = order[(l.kind_prim & LIGHT_PRIM_MASK) as usize];
+            let [a, b, c] = scene.triangle_positions(source as usize);
+            (source, 0.5 * (b - a).cross(c - a).length())
+        })
+        .collect()
+}
+
+/// Per light entry: (is a triangle, BVH triangle or punctual index), `None` for the
+/// environment (a direction, no point).
+fn geometry_kind(l: &GpuLight) -> Option<(bool, u32)> {
+    let index = l.kind_prim & LIGHT_PRIM_MASK;
+    match l.kind_prim >> LIGHT_KIND_SHIFT {
+        LIGHT_KIND_TRIANGLE => Some((true, index)),
+        LIGHT_KIND_PUNCTUAL => Some((false, index)),
+        _ => None,
+    }
+}
+
+/// Per light entry: its triangle's corners, a punctual light's position three times, or
+/// `None` for the environment.
+fn light_geometry(lights: &LightTable, triangles: &[GpuTriangle]) -> Vec<Option<[Vec3; 3]>> {
+    lights
+        .lights
+        .iter()
+        .map(|l| {
+            geometry_kind(l).map(|(is_triangle, index)| {
+                if is_triangle {
+                    let t = &triangles[index as usize];
+                    [t.p0, t.p1, t.p2].map(Vec3::from)
+                } else {
+                    [Vec3::from(lights.punctual[index as usize].position); 3]
+                }
+            })
+        })
+        .collect()
 }

@@ -133,7 +133,8 @@ pub struct GpuReservoir {
     pub weight: f32,
     /// Confidence M: 1 for a fresh initial reservoir, summed by reuse, capped by `m_cap`.
     pub m: f32,
-    /// Which stage's candidate survived: one of `SOURCE_*`.
+    /// Which stage's candidate survived (`SOURCE_*`, bits 0..8) and the age of its sample
+    /// in frames (bits `AGE_SHIFT`..): see `shader_constants::SOURCE_MASK`.
     pub source: u32,
 }
 

@@ -19,6 +19,7 @@ pub mod settings;
 pub mod shader_constants;
 pub mod shader_source;
 pub mod stats;
+pub mod timeline;
 pub mod view;
 
 pub use environment::{Environment, load_environment};

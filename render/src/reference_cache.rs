@@ -64,6 +64,9 @@ pub struct ReferenceRequest {
     /// `Environment::fingerprint` of the scene's environment (file, content, strength,
     /// rotation); `None` without one.
     pub environment: Option<String>,
+    /// The scene time an animated scene was posed at (`None` for a static scene, whose
+    /// keys stay what they were): references of different moments never share a file.
+    pub scene_time: Option<f32>,
 }
 
 impl ReferenceRequest {
@@ -88,6 +91,7 @@ impl ReferenceRequest {
             effects: EffectSet::detect(&SceneFeatures::of(scene), &settings, false),
             seed: REFERENCE_SEED,
             environment: scene.environment.as_ref().map(|e| e.fingerprint()),
+            scene_time: scene.animation.as_ref().map(|a| a.posed_at),
         }
     }
 

@@ -14,7 +14,13 @@ pub const REJECT_DEPTH: u32 = 1 << 4;
 pub const REJECT_RESERVOIR: u32 = 1 << 5;
 pub const REJECT_TARGET: u32 = 1 << 6;
 pub const REJECT_TARGET_RATIO: u32 = 1 << 7;
-pub const REJECT_REASON_COUNT: usize = 8;
+/// The stored sample's light is off or gone (dynamic scenes): never reusable, so this one
+/// is not a switchable check.
+pub const REJECT_LIGHT_GONE: u32 = 1 << 8;
+pub const REJECT_REASON_COUNT: usize = 9;
+/// Every temporal rejection reason (the rejection view's default reason mask; its
+/// spatial part is a count of rejected neighbours, not a mask).
+pub const REJECT_TEMPORAL_REASONS: u32 = (1 << REJECT_REASON_COUNT) - 1;
 
 /// Human names of the rejection bits, in bit order (stats JSON keys and UI legend).
 pub const REJECT_REASON_NAMES: [&str; REJECT_REASON_COUNT] = [
@@ -26,6 +32,7 @@ pub const REJECT_REASON_NAMES: [&str; REJECT_REASON_COUNT] = [
     "reservoir_null",
     "target_zero",
     "target_ratio",
+    "light_gone",
 ];
 
 /// Which stage's candidate survived in a pixel.
@@ -34,6 +41,13 @@ pub const SOURCE_INITIAL: u32 = 1;
 pub const SOURCE_TEMPORAL: u32 = 2;
 pub const SOURCE_SPATIAL: u32 = 3;
 pub const SOURCE_NAMES: [&str; 4] = ["null", "initial", "temporal", "spatial"];
+/// `Reservoir.source` holds the SOURCE_* in its low bits and the sample's age (frames
+/// since it was first drawn) above AGE_SHIFT: no new field, so the reservoir layout and
+/// its memory traffic stay what they are.
+pub const SOURCE_MASK: u32 = 0xff;
+pub const AGE_SHIFT: u32 = 8;
+/// The largest age stored (24 bits).
+pub const AGE_MAX: u32 = (1 << (32 - AGE_SHIFT)) - 1;
 
 pub const DEBUG_FLAG_TEMPORAL_CAP: u32 = 1 << 0;
 pub const DEBUG_FLAG_SPATIAL_CAP: u32 = 1 << 1;
@@ -64,9 +78,10 @@ pub const GUARDED_PASS_NAMES: [&str; 6] = [
     "reference",
 ];
 
-/// Indices into the per-frame atomic counter buffer.
+/// Indices into the per-frame atomic counter buffer (REJECT_REASON_COUNT each for the
+/// temporal and spatial rejections).
 pub const STAT_TEMPORAL_REJECT: u32 = 0;
-pub const STAT_SPATIAL_REJECT: u32 = 8;
+pub const STAT_SPATIAL_REJECT: u32 = 40;
 pub const STAT_SOURCE: u32 = 16;
 pub const STAT_TEMPORAL_CAP: u32 = 20;
 pub const STAT_SPATIAL_CAP: u32 = 21;
@@ -76,7 +91,7 @@ pub const STAT_NONFINITE: u32 = 24;
 pub const STAT_SURFACE_PIXELS: u32 = 32;
 pub const STAT_TEMPORAL_ACCEPTED: u32 = 33;
 pub const STAT_BOILING_DROPPED: u32 = 34;
-pub const STAT_COUNT: u32 = 40;
+pub const STAT_COUNT: u32 = STAT_SPATIAL_REJECT + REJECT_REASON_COUNT as u32;
 
 /// Random-number streams, one per purpose (`rng_seed` in rng.wgsl).
 pub const STREAM_INITIAL: u32 = 0;
@@ -118,6 +133,7 @@ pub const VIEW_DEPTH: u32 = 7;
 pub const VIEW_MOTION: u32 = 8;
 pub const VIEW_ERROR: u32 = 9;
 pub const VIEW_DIFFERENCE: u32 = 10;
+pub const VIEW_AGE: u32 = 11;
 
 pub const TONEMAP_ACES: u32 = 0;
 pub const TONEMAP_REINHARD: u32 = 1;
@@ -146,10 +162,15 @@ pub fn wgsl_prelude() -> String {
         ("REJECT_RESERVOIR", REJECT_RESERVOIR),
         ("REJECT_TARGET", REJECT_TARGET),
         ("REJECT_TARGET_RATIO", REJECT_TARGET_RATIO),
+        ("REJECT_LIGHT_GONE", REJECT_LIGHT_GONE),
+        ("REJECT_REASON_COUNT", REJECT_REASON_COUNT as u32),
         ("SOURCE_NULL", SOURCE_NULL),
         ("SOURCE_INITIAL", SOURCE_INITIAL),
         ("SOURCE_TEMPORAL", SOURCE_TEMPORAL),
         ("SOURCE_SPATIAL", SOURCE_SPATIAL),
+        ("SOURCE_MASK", SOURCE_MASK),
+        ("AGE_SHIFT", AGE_SHIFT),
+        ("AGE_MAX", AGE_MAX),
         ("DEBUG_FLAG_TEMPORAL_CAP", DEBUG_FLAG_TEMPORAL_CAP),
         ("DEBUG_FLAG_SPATIAL_CAP", DEBUG_FLAG_SPATIAL_CAP),
         ("DEBUG_FLAG_FALLBACK_TRIED", DEBUG_FLAG_FALLBACK_TRIED),
@@ -208,6 +229,7 @@ pub fn wgsl_prelude() -> String {
         ("VIEW_MOTION", VIEW_MOTION),
         ("VIEW_ERROR", VIEW_ERROR),
         ("VIEW_DIFFERENCE", VIEW_DIFFERENCE),
+        ("VIEW_AGE", VIEW_AGE),
         ("TONEMAP_ACES", TONEMAP_ACES),
         ("TONEMAP_REINHARD", TONEMAP_REINHARD),
         ("TONEMAP_CLAMP", TONEMAP_CLAMP),

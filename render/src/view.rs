@@ -48,10 +48,11 @@ pub enum DebugView {
     Error,
     /// |A − B| against the other side of a split-screen comparison.
     Difference,
+    Age,
 }
 
 impl DebugView {
-    pub const ALL: [DebugView; 11] = [
+    pub const ALL: [DebugView; 12] = [
         DebugView::Final,
         DebugView::Source,
         DebugView::M,
@@ -63,6 +64,7 @@ impl DebugView {
         DebugView::Motion,
         DebugView::Error,
         DebugView::Difference,
+        DebugView::Age,
     ];
 
     pub fn name(self) -> &'static str {
@@ -78,6 +80,7 @@ impl DebugView {
             DebugView::Motion => "motion",
             DebugView::Error => "error",
             DebugView::Difference => "difference",
+            DebugView::Age => "age",
         }
     }
 
@@ -98,6 +101,7 @@ impl DebugView {
             DebugView::Motion => VIEW_MOTION,
             DebugView::Error => VIEW_ERROR,
             DebugView::Difference => VIEW_DIFFERENCE,
+            DebugView::Age => VIEW_AGE,
         }
     }
 }
@@ -151,7 +155,7 @@ impl Default for ViewSettings {
             exposure_ev: 0.0,
             tonemapper: Tonemapper::Aces,
             accumulate: false,
-            reason_mask: 0xff,
+            reason_mask: crate::shader_constants::REJECT_TEMPORAL_REASONS,
             spatial_count: true,
         }
     }

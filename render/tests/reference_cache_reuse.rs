@@ -91,6 +91,14 @@ fn reference_cache_second_request_loads_instead_of_rendering() {
         ..req.clone()
     };
     assert_ne!(jittered.key().unwrap(), req.key().unwrap());
+    // Static scenes have no scene time; two moments of an animated scene differ.
+    assert_eq!(req.scene_time, None);
+    let at = |t: f32| ReferenceRequest {
+        scene_time: Some(t),
+        ..req.clone()
+    };
+    assert_ne!(at(1.0).key().unwrap(), at(1.5).key().unwrap());
+    assert_eq!(at(1.0).key().unwrap(), at(1.0).key().unwrap());
     assert!(cache.load(&more).unwrap().is_none());
 }
 

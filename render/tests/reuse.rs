@@ -399,3 +399,45 @@ fn with_defaults_restir_beats_ris_at_96_pixels_because_the_radius_scales() {
         "30 px {unscaled} vs scaled {restir}"
     );
 }
+
+/// Reservoir age (issue 10): frames since the surviving sample was first drawn, packed
+/// above AGE_SHIFT in `source`. It grows by one per frame a history sample survives, never
+/// beyond the frames rendered, and stays 0 without temporal reuse.
+#[test]
+fn reservoir_age_counts_frames_of_survival() {
+    let frames = 6u32;
+    let ages = |assign: &[&str]| {
+        let mut r = common::renderer(
+            "builtin:cornell",
+            32,
+            24,
+            Mode::Restir,
+            common::settings(&[&["jitter=false"][..], assign].concat()),
+        );
+        for _ in 0..frames {
+            r.render_frame().unwrap();
+        }
+        r.read_final_reservoirs()
+            .iter()
+            .filter(|res| res.light != restir_render::gpu_types::NO_LIGHT)
+            .map(|res| (res.source & SOURCE_MASK, res.source >> AGE_SHIFT))
+            .collect::<Vec<_>>()
+    };
+    let with_history = ages(&[]);
+    assert!(with_history.iter().all(|&(_, age)| age < frames));
+    let old = with_history.iter().filter(|&&(_, age)| age >= 2).count();
+    assert!(
+        old > with_history.len() / 10,
+        "{old} of {} pixels keep a sample ≥ 2 frames",
+        with_history.len()
+    );
+    // A fresh initial survivor is age 0.
+    assert!(
+        with_history
+            .iter()
+            .filter(|&&(s, _)| s == SOURCE_INITIAL)
+            .all(|&(_, a)| a == 0)
+    );
+    let without = ages(&["temporal=false"]);
+    assert!(without.iter().all(|&(_, age)| age == 0));
+}

@@ -11,6 +11,8 @@ use restir_render::scene::load::SceneError;
 use restir_render::scene::{Camera, Scene, Wrap, load_scene};
 use serde_json::{Value, json};
 
+#[path = "scene_loading/animation.rs"]
+mod animation;
 #[path = "scene_loading/files.rs"]
 mod files;
 #[path = "scene_loading/fuzz.rs"]

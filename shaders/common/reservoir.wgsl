@@ -30,6 +30,20 @@ fn sanitize(x: f32) -> f32 {
 // Streaming weighted selection: keep the candidate with probability w / w_sum. A weight or
 // target that is not finite and positive cannot contribute and is ignored; w_sum saturates
 // instead of overflowing.
+// The SOURCE_* of a reservoir, and the age of its sample (frames since it was first
+// drawn), packed together in `source` (see shader_constants.rs).
+fn reservoir_source(r: Reservoir) -> u32 {
+    return r.source & SOURCE_MASK;
+}
+
+fn reservoir_age(r: Reservoir) -> u32 {
+    return r.source >> AGE_SHIFT;
+}
+
+fn source_with_age(source: u32, age: u32) -> u32 {
+    return source | (min(age, AGE_MAX) << AGE_SHIFT);
+}
+
 fn reservoir_update(r: ptr<function, Reservoir>, light: u32, uv: vec2<f32>, w: f32, p_hat: f32, source: u32, u: f32) -> bool {
     if !is_positive_finite(w) || !is_positive_finite(p_hat) {
         return false;

@@ -73,7 +73,7 @@ struct Reservoir {
     w_sum: f32,
     weight: f32,   // W = w_sum / (M · p̂)
     m: f32,
-    source: u32,   // SOURCE_*
+    source: u32,   // SOURCE_* | age << AGE_SHIFT (frames since the sample was drawn)
 }
 
 // One presampled light of a light tile (a packed LightPoint plus its identity).
@@ -156,7 +156,7 @@ struct Display {
     exposure: f32,       // linear (2^EV)
     tonemapper: u32,     // TONEMAP_*
     view: u32,           // VIEW_*
-    reason_mask: u32,    // temporal rejection reasons shown (bits 0..8)
+    reason_mask: u32,    // temporal rejection reasons shown (bits 0..REJECT_REASON_COUNT)
     m_scale: f32,        // M drawn at the top of the heatmap
     reference_scale: f32,
     spatial_tries: u32,  // neighbours tried per pixel (K × passes); 0 hides the spatial count

@@ -6,13 +6,15 @@ use std::time::Instant;
 
 use anyhow::{Context, bail};
 use clap::Args;
+use restir_render::gpu_scene::SceneUpdateTimes;
 use restir_render::stats::{FrameReport, StatsSummary};
+use restir_render::timeline::{AnimatedScene, Timeline};
 use restir_render::view::auto_exposure_ev;
 use restir_render::{DebugView, Gpu, LinearImage, Mode, Renderer, Settings, load_scene};
 use serde::Serialize;
 
 use super::camera_path::{cut_viewpoint, orbit};
-use super::setup::{PipelineArgs, parse_size};
+use super::setup::{PipelineArgs, TimeArgs, parse_size};
 use crate::compare::{CompareTarget, divider_column, split_columns};
 
 #[derive(Args, Debug)]
@@ -63,6 +65,30 @@ pub struct RenderArgs {
     /// (reference, nee, ris, restir: these settings in that mode) or a preset .toml file.
     #[arg(long, value_name = "B")]
     pub compare: Option<String>,
+    /// Scene time (`--time`, `--fps`).
+    #[command(flatten)]
+    pub time: TimeArgs,
+}
+
+/// Scene time and the per-frame update cost of an animated scene (`--stats`).
+#[derive(Clone, Serialize)]
+struct SceneTimeStats {
+    /// Scene time of the first and the last frame, seconds.
+    first_time: f32,
+    last_time: f32,
+    fps: f32,
+    /// Median CPU cost per frame of the scene update (posing, BVH refit, light table,
+    /// upload), over frames that changed something.
+    median_pose_ms: f64,
+    median_bvh_ms: f64,
+    median_lights_ms: f64,
+    median_upload_ms: f64,
+    updated_frames: usize,
+    /// Refit against rebuild at the last frame: SAH cost of the refitted tree, of a tree
+    /// built from scratch over the same positions, and that build's time.
+    bvh_refit_sah_cost: f64,
+    bvh_rebuilt_sah_cost: f64,
+    bvh_rebuild_ms: f64,
 }
 
 /// The `--stats` JSON document.
@@ -81,6 +107,8 @@ struct StatsFile<'a> {
     /// `spatial_radius` is set at 1080p; this is the radius used at this height.
     effective_spatial_radius_px: f32,
     mean_luminance: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    scene_time: Option<SceneTimeStats>,
     #[serde(flatten)]
     summary: StatsSummary,
     /// With `--compare`: a block per side (left = this configuration, right = B).
@@ -102,6 +130,8 @@ struct Side {
     renderer: Renderer,
     reports: Vec<FrameReport>,
     image: LinearImage,
+    /// Scene time and update costs, for an animated scene.
+    scene_time: Option<SceneTimeStats>,
 }
 
 pub fn run(args: RenderArgs) -> anyhow::Result<()> {
@@ -146,15 +176,22 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         bail!("--debug-view difference shows |A − B|: it needs --compare B");
     }
 
-    let mut scene = load_scene(&args.scene)?;
-    args.env.apply(&mut scene)?;
+    let timeline = args.time.timeline()?;
+    let mut loaded = load_scene(&args.scene)?;
+    args.env.apply(&mut loaded)?;
     let gpu = Gpu::new_headless()?;
+    // Each side poses its own copy of the scene along the same timeline.
     let side = |mode: Mode, settings: Settings| -> anyhow::Result<Side> {
-        let mut renderer = Renderer::new(gpu.clone(), &scene, size.0, size.1, settings)?;
+        let mut scene = AnimatedScene::new(loaded.clone());
+        scene.pose_only(timeline.time_of(0));
+        let mut renderer = Renderer::new(gpu.clone(), scene.scene(), size.0, size.1, settings)?;
         renderer.set_mode(mode);
         renderer.set_seed(args.pipeline.seed);
         renderer.force_effects(effects.clone());
-        let reports = render_frames(&mut renderer, &args)?;
+        let (reports, updates) = render_frames(&mut renderer, &mut scene, timeline, &args)?;
+        let scene_time = scene
+            .is_animated()
+            .then(|| scene_time_stats(timeline, &args, &updates, &renderer, scene.scene()));
         let image = if args.accumulate {
             renderer.read_accumulated()
         } else {
@@ -164,6 +201,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
             renderer,
             reports,
             image,
+            scene_time,
         })
     };
     let mut left = side(mode, settings)?;
@@ -222,14 +260,36 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn render_frames(renderer: &mut Renderer, args: &RenderArgs) -> anyhow::Result<Vec<FrameReport>> {
-    let start_camera = renderer.camera();
+/// One frame's scene update: posing time (ms) and the renderer's update cost.
+type FrameUpdate = (f64, SceneUpdateTimes);
+
+fn render_frames(
+    renderer: &mut Renderer,
+    scene: &mut AnimatedScene,
+    timeline: Timeline,
+    args: &RenderArgs,
+) -> anyhow::Result<(Vec<FrameReport>, Vec<FrameUpdate>)> {
+    let mut start_camera = renderer.camera();
     let center = renderer.scene_bounds().center();
     let mut camera = start_camera;
     let mut reports = Vec::with_capacity(args.frames as usize);
+    let mut updates = Vec::new();
     let started = Instant::now();
     let mut last_progress = Instant::now();
     for frame in 0..args.frames {
+        if frame > 0 {
+            let posing = Instant::now();
+            let (change, times) = scene.set_time(renderer, timeline.time_of(frame));
+            if change.camera {
+                // A camera on an animated node: follow it (orbit and cuts start from it).
+                start_camera = scene.scene().default_camera();
+                camera = start_camera;
+            }
+            if change.any() {
+                let total = posing.elapsed().as_secs_f64() * 1e3;
+                updates.push(((total - times.total_ms()).max(0.0), times));
+            }
+        }
         if args.orbit != 0.0 {
             camera = orbit(start_camera, center, args.orbit * frame as f32);
         }
@@ -256,7 +316,44 @@ fn render_frames(renderer: &mut Renderer, args: &RenderArgs) -> anyhow::Result<V
     if args.frames > 1 && started.elapsed().as_secs_f32() > 1.0 {
         eprintln!();
     }
-    Ok(reports)
+    Ok((reports, updates))
+}
+
+fn median(mut values: Vec<f64>) -> f64 {
+    if values.is_empty() {
+        return 0.0;
+    }
+    values.sort_by(f64::total_cmp);
+    values[values.len() / 2]
+}
+
+fn scene_time_stats(
+    timeline: Timeline,
+    args: &RenderArgs,
+    updates: &[FrameUpdate],
+    renderer: &Renderer,
+    scene: &restir_render::Scene,
+) -> SceneTimeStats {
+    let of = |f: fn(&FrameUpdate) -> f64| median(updates.iter().map(f).collect());
+    let positions: Vec<_> = (0..scene.triangles.len())
+        .map(|t| scene.triangle_positions(t))
+        .collect();
+    let build = Instant::now();
+    let rebuilt = restir_render::scene::bvh::Bvh::build(&positions);
+    let bvh_rebuild_ms = build.elapsed().as_secs_f64() * 1e3;
+    SceneTimeStats {
+        first_time: timeline.time_of(0),
+        last_time: timeline.time_of(args.frames - 1),
+        fps: timeline.fps,
+        median_pose_ms: of(|u| u.0),
+        median_bvh_ms: of(|u| u.1.bvh_ms),
+        median_lights_ms: of(|u| u.1.lights_ms),
+        median_upload_ms: of(|u| u.1.upload_ms),
+        updated_frames: updates.len(),
+        bvh_refit_sah_cost: renderer.bvh_sah_cost(),
+        bvh_rebuilt_sah_cost: rebuilt.sah_cost(),
+        bvh_rebuild_ms,
+    }
 }
 
 #[derive(PartialEq)]
@@ -340,6 +437,7 @@ fn side_stats(side: &Side) -> StatsFile<'_> {
             .collect(),
         effective_spatial_radius_px: settings.effective_spatial_radius(height),
         mean_luminance: side.image.mean_luminance(),
+        scene_time: side.scene_time.clone(),
         summary: StatsSummary::from_reports(&side.reports, side.image.non_finite_count() as u64),
         compare: None,
     }

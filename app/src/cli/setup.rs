@@ -96,3 +96,21 @@ pub fn parse_effects(text: &str) -> anyhow::Result<Option<EffectSet>> {
         .map(Some)
         .map_err(|e| anyhow::anyhow!("--effects: {e}"))
 }
+
+/// `--time T --fps F` of `render` and `bench`: frame i shows scene time T + i/F.
+#[derive(clap::Args, Debug, Clone, Copy)]
+pub struct TimeArgs {
+    /// Scene time of the first frame, in seconds (animated scenes).
+    #[arg(long, default_value_t = 0.0)]
+    pub time: f32,
+    /// Scene time advances 1/F seconds per frame; 0 freezes time (a reference of one
+    /// moment is accumulated that way).
+    #[arg(long, default_value_t = 30.0)]
+    pub fps: f32,
+}
+
+impl TimeArgs {
+    pub fn timeline(&self) -> anyhow::Result<restir_render::timeline::Timeline> {
+        restir_render::timeline::Timeline::new(self.time, self.fps).map_err(anyhow::Error::msg)
+    }
+}

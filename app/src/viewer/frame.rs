@@ -6,6 +6,7 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use restir_render::reference_cache::ReferenceCache;
+use restir_render::timeline::AnimatedScene;
 use restir_render::view::auto_exposure_ev;
 use restir_render::{DebugView, Environment, Gpu, Renderer, Scene};
 use winit::dpi::PhysicalSize;
@@ -16,6 +17,7 @@ use super::accuracy::AccuracyState;
 use super::accuracy::tracker::{AccuracyTracker, SceneSource};
 use super::apply;
 use super::camera::CameraState;
+use super::clock::clock_for;
 use super::compare_side::CompareSide;
 use super::egui_layer::EguiLayer;
 use super::gpu_surface::GpuSurface;
@@ -36,14 +38,16 @@ pub struct Viewer {
     window: Arc<Window>,
     gpu: Gpu,
     surface: GpuSurface,
-    renderer: Renderer,
+    pub(super) renderer: Renderer,
     egui: EguiLayer,
     pub state: ViewerState,
     /// The scene shown, kept for the accuracy panel's reference jobs.
-    scene: Arc<Scene>,
+    pub(super) scene: Arc<Scene>,
+    /// An animated scene's clock (its own posed copy of the scene); `None` when static.
+    pub(super) clock: Option<AnimatedScene>,
     accuracy: AccuracyTracker,
     /// Configuration B of the split screen, while the Compare section has it on.
-    compare: Option<CompareSide>,
+    pub(super) compare: Option<CompareSide>,
     /// When the two sides were last scored (each score reads both images back).
     compare_scored: Option<Instant>,
     loader: SceneLoader,
@@ -105,6 +109,7 @@ impl Viewer {
         state.accuracy = AccuracyState::new(gpu.is_cpu());
         renderer.set_view(state.view);
         apply::scene_loaded(&renderer, &mut state, launch.scene_spec);
+        let clock = clock_for(&scene, &mut state.time);
         window.set_title(&title(&state));
         let egui = EguiLayer::new(
             &window,
@@ -121,6 +126,7 @@ impl Viewer {
             egui,
             state,
             scene,
+            clock,
             accuracy: AccuracyTracker::new(
                 ReferenceCache::at_default_dir(),
                 AccuracyTracker::SETTLE,
@@ -297,14 +303,13 @@ impl Viewer {
                 self.renderer.resize(w, h)?;
             }
             state.camera.advance_auto();
+            let dt = self.last_render.map_or(0.0, |t| t.elapsed().as_secs_f32());
+            self.advance_time(dt);
+            let state = &mut self.state;
             apply::before_frame(&mut self.renderer, state);
-            if CompareSide::sync(
-                &mut self.compare,
-                &self.gpu,
-                &self.scene,
-                &self.renderer,
-                state,
-            ) {
+            // B starts from the scene as posed now (an animated scene's clock has it).
+            let posed = self.clock.as_ref().map_or(&*self.scene, |c| c.scene());
+            if CompareSide::sync(&mut self.compare, &self.gpu, posed, &self.renderer, state) {
                 self.egui.unbind_compare_image();
             }
             if let Some(compare) = &mut self.compare {
@@ -339,9 +344,12 @@ impl Viewer {
             spec: &state.scene.spec,
             scene: &self.scene,
         };
-        let wanted = state.accuracy.panel_open
+        // While scene time plays there is no reference of "now" to compare with.
+        let playing = state.time.playing && state.time.duration > 0.0;
+        let wanted = (state.accuracy.panel_open
             || state.view.view == DebugView::Error
-            || state.compare.enabled;
+            || state.compare.enabled)
+            && !playing;
         self.accuracy
             .update(&mut self.renderer, &source, &mut state.accuracy, wanted);
         if rendered {
@@ -445,6 +453,7 @@ impl Viewer {
         });
         match uploaded {
             Ok(scene) => {
+                self.clock = clock_for(&scene, &mut self.state.time);
                 self.scene = Arc::new(scene);
                 // B is rebuilt on the new scene at the next frame.
                 self.compare = None;

@@ -12,6 +12,7 @@ mod accuracy;
 mod app;
 mod apply;
 mod camera;
+mod clock;
 mod compare_side;
 mod egui_layer;
 mod frame;

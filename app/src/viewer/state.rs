@@ -112,6 +112,68 @@ impl StatsHistory {
     }
 }
 
+/// Scene time (the Time section). The viewer advances `time` while playing and poses
+/// the scene at it before each rendered frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TimeState {
+    pub playing: bool,
+    /// Seconds, in [0, duration].
+    pub time: f32,
+    /// Scene seconds per wall-clock second.
+    pub speed: f32,
+    pub looping: bool,
+    /// Advance one frame (1/30 s) on the next rendered frame.
+    pub step: bool,
+    /// The loop length; 0 for a static scene.
+    pub duration: f32,
+    /// The scene's clips, and the one playing alone (`None`: all together).
+    pub clips: Vec<String>,
+    pub clip: Option<usize>,
+}
+
+impl Default for TimeState {
+    fn default() -> Self {
+        Self {
+            playing: true,
+            time: 0.0,
+            speed: 1.0,
+            looping: true,
+            step: false,
+            duration: 0.0,
+            clips: Vec::new(),
+            clip: None,
+        }
+    }
+}
+
+impl TimeState {
+    pub const SPEED_RANGE: std::ops::RangeInclusive<f32> = 0.05..=4.0;
+    /// One step of `Step` (and of a frozen inspector's N while playing).
+    pub const STEP: f32 = 1.0 / 30.0;
+
+    /// The next time after `dt` wall-clock seconds: playing advances by dt × speed, a step
+    /// by one frame; the end wraps (loop) or stops playback.
+    pub fn advance(&mut self, dt: f32) {
+        if self.duration <= 0.0 {
+            return;
+        }
+        if std::mem::take(&mut self.step) {
+            self.time += Self::STEP;
+        } else if self.playing {
+            self.time += dt.clamp(0.0, 0.1) * self.speed;
+        }
+        if self.looping {
+            self.time = self.time.rem_euclid(self.duration);
+        } else if self.time >= self.duration {
+            self.time = self.duration;
+            self.playing = false;
+        }
+        if !self.time.is_finite() {
+            self.time = 0.0;
+        }
+    }
+}
+
 /// What the Scene panel shows and edits.
 #[derive(Clone, Debug, Default)]
 pub struct SceneState {
@@ -182,6 +244,7 @@ pub struct ViewerState {
     pub accuracy: AccuracyState,
     pub scene: SceneState,
     pub compare: CompareState,
+    pub time: TimeState,
     pub device: DeviceInfo,
     /// The preset file the Pipeline panel saves to and loads from.
     pub preset_path: String,
@@ -213,6 +276,7 @@ impl ViewerState {
             accuracy: AccuracyState::new(true),
             scene: SceneState::default(),
             compare: CompareState::default(),
+            time: TimeState::default(),
             device: DeviceInfo::default(),
             preset_path: "preset.toml".to_string(),
             preset_message: None,

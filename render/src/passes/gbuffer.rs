@@ -12,7 +12,8 @@ use crate::gpu::{Gpu, GpuError};
 pub const VISIBILITY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
-/// Resolve pass group 2: 0 visibility texture, 1 surfaces out.
+/// Resolve pass group 2: 0 visibility texture, 1 surfaces out, 2 the previous frame's
+/// triangles (object motion; read only under ANIMATION).
 pub fn resolve_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
     vec![
         wgpu::BindGroupLayoutEntry {
@@ -26,6 +27,7 @@ pub fn resolve_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
             count: None,
         },
         storage(1, false),
+        storage(2, true),
     ]
 }
 

@@ -102,10 +102,14 @@ pub fn key_of(request: &ReferenceRequest) -> anyhow::Result<ReferenceKey> {
         shaders.finish(),
     );
     // Only with an environment, so keys (and caches) of scenes without one are unchanged.
-    let description = match &request.environment {
+    let mut description = match &request.environment {
         Some(env) => format!("{description}environment={env}\n"),
         None => description,
     };
+    // Likewise only for an animated scene.
+    if let Some(t) = request.scene_time {
+        description.push_str(&format!("scene_time={:08x}\n", t.to_bits()));
+    }
     Ok(ReferenceKey {
         hash: Fnv64::of(description.as_bytes()),
         description,

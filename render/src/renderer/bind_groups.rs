@@ -52,6 +52,8 @@ pub struct Uniforms<'a> {
     pub display: &'a wgpu::Buffer,
     /// The presampled light tiles (a one-element placeholder until tiles are used).
     pub light_tiles: &'a wgpu::Buffer,
+    /// The scene's previous-frame triangles (the triangle buffer itself when static).
+    pub prev_triangles: &'a wgpu::Buffer,
 }
 
 #[derive(Default)]
@@ -108,6 +110,10 @@ fn create(
                 wgpu::BindGroupEntry {
                     binding: 1,
                     resource: t.surfaces[surfaces].as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: u.prev_triangles.as_entire_binding(),
                 },
             ],
         }),

@@ -26,9 +26,10 @@ use crate::frame_targets::FrameTargets;
 use crate::gpu::readback::ReadbackRing;
 use crate::gpu::timing::{PassTimer, TimingMode};
 use crate::gpu::{Gpu, GpuError};
-use crate::gpu_scene::{GpuScene, SceneInfo};
+use crate::gpu_scene::{GpuScene, SceneInfo, SceneUpdateTimes};
 use crate::gpu_types::*;
 use crate::passes::{ComputePass, PassLayouts, gbuffer::GBufferPass};
+use crate::scene::animation::SceneChange;
 use crate::scene::{Camera, Scene};
 use crate::settings::Settings;
 use crate::stats::FrameCounters;
@@ -104,6 +105,7 @@ pub struct Renderer {
     last_passes: Vec<&'static str>,
     /// Radiance scale of the comparison image (1/N of an accumulated other side).
     comparison_scale: f32,
+    last_update: SceneUpdateTimes,
 }
 
 impl Renderer {
@@ -128,10 +130,36 @@ impl Renderer {
     pub fn set_scene(&mut self, scene: &Scene) -> anyhow::Result<()> {
         self.scene = GpuScene::upload(&self.gpu, scene, &self.layouts.scene)?;
         self.features = SceneFeatures::of(scene);
+        // The resolve group binds the scene's previous-triangle buffer.
+        self.bind_groups.clear();
         self.camera = scene.default_camera();
         self.invalidate_history();
         self.reset_accumulation();
         Ok(())
+    }
+
+    /// Brings an animated scene, posed by `SceneAnimation::pose`, to the GPU: what
+    /// `change` names is rewritten in place (no re-upload, history kept: reuse across
+    /// the change is what dynamic scenes are for). Returns the update's CPU cost.
+    pub fn update_scene(&mut self, scene: &Scene, change: SceneChange) -> SceneUpdateTimes {
+        let times = self.scene.update(&self.gpu, scene, change);
+        self.last_update = times;
+        times
+    }
+
+    /// The current selection probability of a light entry (0 while the light is off).
+    pub fn light_select_pdf(&self, light: u32) -> Option<f32> {
+        self.scene.light_select_pdf(light)
+    }
+
+    /// The SAH cost of the BVH as it is now (after refits), see `Bvh::sah_cost`.
+    pub fn bvh_sah_cost(&self) -> f64 {
+        self.scene.bvh.sah_cost()
+    }
+
+    /// The cost of the last `update_scene`.
+    pub fn last_scene_update(&self) -> SceneUpdateTimes {
+        self.last_update
     }
 
     pub fn size(&self) -> (u32, u32) {

@@ -115,6 +115,7 @@ impl Renderer {
 
     /// Renders one frame with the current camera, mode, settings and view, and submits it.
     pub fn render_frame(&mut self) -> Result<(), GpuError> {
+        self.scene.begin_frame(&self.gpu);
         let settings = self.effective_settings();
         let camera = self.camera;
         let moved = self.prev_camera.is_some_and(|p| p != camera);
@@ -196,6 +197,7 @@ impl Renderer {
             pass_info: &self.pass_info,
             display: &self.display_uniform,
             light_tiles: &self.light_tiles,
+            prev_triangles: &self.scene.prev_triangles,
         };
         let tiles =
             self.light_tiles.size() > std::mem::size_of::<crate::gpu_types::GpuTileSample>() as u64;
@@ -390,6 +392,7 @@ impl Renderer {
             pass_info: &self.pass_info,
             display: &self.display_uniform,
             light_tiles: &self.light_tiles,
+            prev_triangles: &self.scene.prev_triangles,
         };
         let key = Key::Display {
             surfaces: self.ping_pong.surfaces,

@@ -167,6 +167,7 @@ impl Renderer {
             last_effects: None,
             last_passes: Vec::new(),
             comparison_scale: 1.0,
+            last_update: Default::default(),
             gpu,
         })
     }

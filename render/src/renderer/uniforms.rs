@@ -49,7 +49,7 @@ impl Renderer {
             size: [width, height],
             scene_scale: self.scene.scale,
             history_valid: self.history_valid as u32,
-            light_count: self.scene.light_count,
+            light_count: self.scene.sampled_light_count(),
             punctual_count: self.scene.punctual_count,
             prev_jitter: self.prev_jitter.into(),
             _pad: [0; 2],

@@ -39,7 +39,18 @@ pub fn alias_slots(weights: &[f64]) -> (Vec<AliasSlot>, f64) {
             large.push(l)
         }
     }
-    // Whatever is left is 1 up to rounding and keeps its own slot (the defaults).
+    // Whatever is left is 1 up to rounding and keeps its own slot (the defaults) — except
+    // a zero-weight slot, which must never be picked: it hands its slot to an entry that
+    // has weight (only reachable by rounding, but a zero pdf picked is a division by zero;
+    // dynamic scenes keep zero-power slots for lights that are off).
+    if let Some(donor) = weights.iter().position(|&w| w > 0.0) {
+        for s in small {
+            if weights[s] <= 0.0 {
+                slots[s].threshold = 0.0;
+                slots[s].alias = donor as u32;
+            }
+        }
+    }
     (slots, total)
 }
 

@@ -12,6 +12,7 @@ use glam::Vec3;
 use super::Aabb;
 use crate::gpu_types::GpuBvhNode;
 
+mod refit;
 mod traverse;
 
 pub use traverse::{Hit, Ray};

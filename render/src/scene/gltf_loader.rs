@@ -2,8 +2,10 @@
 //! space. Bad files give a `SceneError` naming the file; the gltf crate's own panics are
 //! caught as a second line of defence (a malformed file must never crash the viewer).
 
+mod animations;
 mod data;
 mod materials;
+mod pointer_channels;
 mod primitives;
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
@@ -12,6 +14,7 @@ use std::path::Path;
 use glam::{Mat4, Vec3};
 use gltf::khr_lights_punctual::Kind;
 
+use super::animation::{CameraBinding, MeshBinding};
 use super::load::{SceneError, one_line, validate};
 use super::{Camera, Material, PunctualKind, PunctualLight, Scene};
 use primitives::{PrimitiveId, append_primitive};
@@ -19,6 +22,7 @@ use primitives::{PrimitiveId, append_primitive};
 /// Extensions whose meaning this loader implements; a file that *requires* any other one
 /// cannot be shown correctly and is refused.
 const SUPPORTED_EXTENSIONS: &[&str] = &[
+    "KHR_animation_pointer",
     "KHR_lights_punctual",
     "KHR_materials_emissive_strength",
     "KHR_materials_specular",
@@ -61,7 +65,7 @@ fn load_unvalidated(path: &Path, file: &str) -> Result<Scene, SceneError> {
         what: "the file".to_string(),
         error: source,
     })?;
-    let gltf::Gltf { document, blob } = open_document(file, &bytes)?;
+    let (gltf::Gltf { document, blob }, pointers) = open_document(file, &bytes)?;
     let base = path.parent().unwrap_or(Path::new("."));
     let buffers = data::load_buffers(file, &document, base, blob)?;
 
@@ -78,20 +82,48 @@ fn load_unvalidated(path: &Path, file: &str) -> Result<Scene, SceneError> {
         buffers: &buffers,
         scene: &mut scene,
         default_material: None,
+        moving: animations::moving_nodes(&document),
+        records: animations::Records::default(),
     };
     walker.walk(&document)?;
+    let records = std::mem::take(&mut walker.records);
+    warn_rest_pose_only(file, &document);
+    scene.animation = animations::build(file, &document, &buffers, &pointers, records, &scene)?;
     Ok(scene)
+}
+
+/// Skins and morph targets are shown in their rest pose (one warning says so).
+fn warn_rest_pose_only(file: &str, doc: &gltf::Document) {
+    let skins = doc.skins().len();
+    let morphs = doc
+        .meshes()
+        .flat_map(|m| m.primitives().collect::<Vec<_>>())
+        .filter(|p| p.morph_targets().len() > 0)
+        .count();
+    if skins > 0 || morphs > 0 {
+        log::warn!(
+            "{file}: {skins} skin(s) and {morphs} primitive(s) with morph targets are shown in \
+             their rest pose (skinning and morphing are not implemented)"
+        );
+    }
 }
 
 /// Parse JSON/GLB, refuse unsupported required extensions, then run the crate's schema
 /// validation. The crate's own required-extension check is skipped because it does not know
 /// KHR_materials_specular, which this loader reads.
-fn open_document(file: &str, bytes: &[u8]) -> Result<gltf::Gltf, SceneError> {
+fn open_document(
+    file: &str,
+    bytes: &[u8],
+) -> Result<(gltf::Gltf, Vec<pointer_channels::PointerChannel>), SceneError> {
     let parse_error = |e: gltf::Error| SceneError::Parse {
         file: file.to_string(),
         detail: one_line(e.to_string()),
     };
-    let gltf = gltf::Gltf::from_slice_without_validation(bytes).map_err(parse_error)?;
+    let (gltf, pointers) = parse_without_pointer_channels(file, bytes)?;
+    let gltf = match gltf {
+        Some(gltf) => gltf,
+        None => gltf::Gltf::from_slice_without_validation(bytes).map_err(parse_error)?,
+    };
     let mut json = gltf.document.into_json();
     if let Some(ext) = json
         .extensions_required
@@ -113,10 +145,52 @@ fn open_document(file: &str, bytes: &[u8]) -> Result<gltf::Gltf, SceneError> {
     json.extensions_required.clear();
     check_crate_assumptions(file, &json)?;
     let document = gltf::Document::from_json(json).map_err(parse_error)?;
-    Ok(gltf::Gltf {
-        document,
-        blob: gltf.blob,
-    })
+    Ok((
+        gltf::Gltf {
+            document,
+            blob: gltf.blob,
+        },
+        pointers,
+    ))
+}
+
+/// Files with KHR_animation_pointer channels: those channels out of the JSON (the crate
+/// cannot deserialise them), the rest parsed as usual. `None` when the file has none, so
+/// every other file takes exactly the crate's own path.
+fn parse_without_pointer_channels(
+    file: &str,
+    bytes: &[u8],
+) -> Result<(Option<gltf::Gltf>, Vec<pointer_channels::PointerChannel>), SceneError> {
+    let parse_error = |detail: String| SceneError::Parse {
+        file: file.to_string(),
+        detail: one_line(detail),
+    };
+    let is_glb = bytes.starts_with(b"glTF");
+    let (json_bytes, blob) = if is_glb {
+        let glb = gltf::binary::Glb::from_slice(bytes).map_err(|e| parse_error(e.to_string()))?;
+        (glb.json.into_owned(), glb.bin.map(|b| b.into_owned()))
+    } else {
+        (bytes.to_vec(), None)
+    };
+    // Cheap test first: most files never mention the extension.
+    if !json_bytes
+        .windows(b"KHR_animation_pointer".len())
+        .any(|w| w == b"KHR_animation_pointer")
+    {
+        return Ok((None, Vec::new()));
+    }
+    let mut value: serde_json::Value =
+        serde_json::from_slice(&json_bytes).map_err(|e| parse_error(e.to_string()))?;
+    let pointers = pointer_channels::take_pointer_channels(file, &mut value)?;
+    let root: gltf::json::Root =
+        serde_json::from_value(value).map_err(|e| parse_error(e.to_string()))?;
+    Ok((
+        Some(gltf::Gltf {
+            document: gltf::Document::from_json_without_validation(root),
+            blob,
+        }),
+        pointers,
+    ))
 }
 
 /// References the gltf crate (1.4.1) reads with `unwrap` or unchecked indexing before or
@@ -166,6 +240,9 @@ struct Walker<'a> {
     scene: &'a mut Scene,
     /// Index of `Material::default()` in the scene, added the first time a primitive has none.
     default_material: Option<u32>,
+    /// Per node: whether it (or an ancestor) is animated, so its geometry must be re-posed.
+    moving: Vec<bool>,
+    records: animations::Records,
 }
 
 impl Walker<'_> {
@@ -215,7 +292,8 @@ impl Walker<'_> {
                     None => self.default_material(),
                 };
                 let id = PrimitiveId { mesh: &mesh, index };
-                append_primitive(
+                let first = self.scene.vertices.len() as u32;
+                let local = append_primitive(
                     self.file,
                     &id,
                     &primitive,
@@ -224,6 +302,14 @@ impl Walker<'_> {
                     material,
                     self.scene,
                 )?;
+                if self.moving[node.index()] {
+                    self.records.meshes.push(MeshBinding {
+                        node: node.index(),
+                        first,
+                        local,
+                        materials: Vec::new(),
+                    });
+                }
             }
         }
         let yfov = node.camera().and_then(|c| match c.projection() {
@@ -238,8 +324,19 @@ impl Walker<'_> {
                 rotation: rotation.normalize(),
                 yfov,
             });
+            if self.moving[node.index()] {
+                self.records.camera = Some(CameraBinding {
+                    node: node.index(),
+                    yfov,
+                });
+            }
         }
         if let Some(light) = node.light() {
+            self.records.lights.push((
+                self.scene.punctual_lights.len(),
+                light.index(),
+                node.index(),
+            ));
             self.scene
                 .punctual_lights
                 .push(punctual_light(&light, world));

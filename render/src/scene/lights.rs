@@ -38,6 +38,21 @@ pub struct LightTable {
 impl LightTable {
     /// `triangle_order[i]` is the scene triangle at BVH position `i` (see `Bvh`).
     pub fn build(scene: &Scene, triangle_order: &[u32]) -> LightTable {
+        Self::build_with_slots(scene, triangle_order, &[], false)
+    }
+
+    /// As `build`, but every triangle of a material with `kept_materials[m]` (and, with
+    /// `keep_punctual`, every punctual light) keeps its entry even at zero power, with
+    /// select_pdf 0 and no alias slot pointing at it. Dynamic scenes keep every light that
+    /// can ever emit, so an entry's index is the light's identity for the whole animation:
+    /// a stored (light, uv) sample still names the same light after others switched off.
+    pub fn build_with_slots(
+        scene: &Scene,
+        triangle_order: &[u32],
+        kept_materials: &[bool],
+        keep_punctual: bool,
+    ) -> LightTable {
+        let kept = |m: usize| kept_materials.get(m).copied().unwrap_or(false);
         let radiance: Vec<Option<Vec3>> = scene
             .materials
             .iter()
@@ -47,8 +62,10 @@ impl LightTable {
         let mut triangle_light = vec![NO_LIGHT; triangle_order.len()];
         for (bvh_index, &source) in triangle_order.iter().enumerate() {
             let material = scene.triangles[source as usize].material as usize;
-            let Some(le) = radiance[material] else {
-                continue;
+            let le = match radiance[material] {
+                Some(le) => le,
+                None if kept(material) => Vec3::ZERO,
+                None => continue,
             };
             let sides = if scene.materials[material].double_sided {
                 2.0
@@ -58,7 +75,8 @@ impl LightTable {
             let area = triangle_area(scene.triangle_positions(source as usize));
             let power = area * luminance(le.to_array()) as f64 * std::f64::consts::PI * sides;
             // The shader divides by the f32 area, so that must be usable too.
-            if is_usable(area) && is_usable(power) {
+            let usable = is_usable(area) && is_usable(power);
+            if usable || kept(material) {
                 assert!(
                     bvh_index as u32 <= LIGHT_PRIM_MASK,
                     "too many triangles for a light index"
@@ -66,7 +84,7 @@ impl LightTable {
                 triangle_light[bvh_index] = entries.len() as u32;
                 entries.push((
                     LIGHT_KIND_TRIANGLE << LIGHT_KIND_SHIFT | bvh_index as u32,
-                    power,
+                    if usable { power } else { 0.0 },
                 ));
             }
         }
@@ -75,7 +93,8 @@ impl LightTable {
         let scene_radius = 0.5 * scene.bounds().extent().length() as f64;
         for (i, light) in scene.punctual_lights.iter().enumerate() {
             let power = punctual_power(light, scene_radius);
-            if is_usable(power) {
+            if is_usable(power) || keep_punctual {
+                let power = if is_usable(power) { power } else { 0.0 };
                 entries.push((LIGHT_KIND_PUNCTUAL << LIGHT_KIND_SHIFT | i as u32, power));
             }
         }
@@ -91,12 +110,13 @@ impl LightTable {
                 entries.push((LIGHT_KIND_ENVIRONMENT << LIGHT_KIND_SHIFT, power));
             }
         }
-        let power_range = entries
-            .iter()
-            .fold(None, |range: Option<(f32, f32)>, &(_, p)| {
+        let power_range = entries.iter().filter(|e| e.1 > 0.0).fold(
+            None,
+            |range: Option<(f32, f32)>, &(_, p)| {
                 let p = p as f32;
                 Some(range.map_or((p, p), |(lo, hi)| (lo.min(p), hi.max(p))))
-            });
+            },
+        );
         let (lights, total_power) = alias_table(&entries);
         LightTable {
             lights,
@@ -107,6 +127,12 @@ impl LightTable {
             environment_light,
             entries,
         }
+    }
+
+    /// Entries that can be picked (zero-power kept slots cannot): the shader samples the
+    /// table only when this is positive.
+    pub fn sampleable(&self) -> bool {
+        self.total_power > 0.0
     }
 
     /// Picks an entry exactly as the shader does: `(index, select_pdf)` from two uniform
@@ -191,7 +217,7 @@ fn punctual_power(light: &PunctualLight, scene_radius: f64) -> f64 {
 
 /// Point and directional lights get an all-accepting cone (cos = −1); shaders branch on
 /// `kind` anyway.
-fn gpu_punctual(light: &PunctualLight) -> GpuPunctualLight {
+pub(crate) fn gpu_punctual(light: &PunctualLight) -> GpuPunctualLight {
     let (kind, cos_outer, cos_inner) = match light.kind {
         PunctualKind::Point => (PUNCTUAL_POINT, -1.0, -1.0),
         PunctualKind::Spot {
@@ -244,12 +270,19 @@ pub fn with_environment_share(
 fn alias_table(entries: &[(u32, f64)]) -> (Vec<GpuLight>, f64) {
     let powers: Vec<f64> = entries.iter().map(|e| e.1).collect();
     let (slots, total) = alias_slots(&powers);
+    // Only kept zero-power slots (every light of a dynamic scene off): nothing can be
+    // picked (the renderer then samples no light at all), and no 0/0 reaches a select_pdf.
+    let sampleable = total > 0.0;
     let lights = entries
         .iter()
         .zip(slots)
         .map(|(&(kind_prim, power), slot)| GpuLight {
             kind_prim,
-            select_pdf: (power / total) as f32,
+            select_pdf: if sampleable {
+                (power / total) as f32
+            } else {
+                0.0
+            },
             alias_threshold: slot.threshold,
             alias_index: slot.alias,
         })

@@ -2,6 +2,7 @@
 //! is uploaded. Everything is in world space and linear units; see README "Conventions".
 
 pub mod alias;
+pub mod animation;
 pub mod builtin;
 pub mod bvh;
 pub mod camera;
@@ -28,6 +29,8 @@ pub struct Scene {
     pub camera: Option<Camera>,
     /// The sky around the scene (`--env`); glTF files carry none.
     pub environment: Option<std::sync::Arc<crate::environment::Environment>>,
+    /// What moves and changes with scene time; `None` for a static scene.
+    pub animation: Option<animation::SceneAnimation>,
 }
 
 /// A world-space vertex. `normal` is zero when the source had none: shaders then use the
@@ -240,6 +243,17 @@ impl Scene {
     pub fn default_camera(&self) -> Camera {
         self.camera
             .unwrap_or_else(|| Camera::framing(self.bounds()))
+    }
+
+    /// Poses the scene at `time` with its own animation (nothing for a static scene).
+    pub fn pose(&mut self, time: f32, choice: animation::ClipChoice) -> animation::SceneChange {
+        let Some(mut anim) = self.animation.take() else {
+            return animation::SceneChange::default();
+        };
+        let change = anim.pose(self, time, choice);
+        anim.posed_at = time;
+        self.animation = Some(anim);
+        change
     }
 
     /// Number of triangles whose material emits.

@@ -10,6 +10,15 @@ use crate::viewer::accuracy::{AccuracyState, Curve, ReferenceStatus, SPP_CHOICES
 use crate::viewer::state::ViewerState;
 
 pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
+    if state.time.duration > 0.0 && state.time.playing {
+        ui.label(
+            "Scene time is playing: a reference is of one moment, and per-frame references \
+             are far too slow to render live on a CPU. Nothing is measured until time is \
+             paused; then the reference is of the paused moment. For lag over time use \
+             `bench` (docs/bench.md).",
+        );
+        return;
+    }
     let is_cpu = state.device.is_cpu;
     let accuracy = &mut state.accuracy;
     egui::ComboBox::from_label("Reference spp")

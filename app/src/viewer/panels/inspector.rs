@@ -100,7 +100,7 @@ fn reservoir_grid(ui: &mut Ui, i: &PixelInspection) {
             (_, None, None) => "?".to_string(),
         }
     }
-    let rows: [(&str, Cell); 10] = [
+    let rows: [(&str, Cell); 11] = [
         ("light", |s| {
             match (s.reservoir.light, s.environment_direction) {
                 (NO_LIGHT, _) => "null".to_string(),
@@ -121,11 +121,13 @@ fn reservoir_grid(ui: &mut Ui, i: &PixelInspection) {
         ("w_sum", |s| format!("{:.4e}", s.reservoir.w_sum)),
         ("source", |s| {
             SOURCE_NAMES
-                .get(s.reservoir.source as usize)
+                .get((s.reservoir.source & SOURCE_MASK) as usize)
                 .copied()
                 .unwrap_or("?")
                 .to_string()
         }),
+        // Frames since the sample was first drawn (packed above the source).
+        ("age", |s| (s.reservoir.source >> AGE_SHIFT).to_string()),
     ];
     // Cells keep their text on one line: the grid widens a column to fit it (and the
     // scroll area takes the overflow) instead of wrapping into the next column.

@@ -11,6 +11,7 @@ pub mod palette;
 pub mod pipeline;
 pub mod scene;
 pub mod stats;
+pub mod time;
 pub mod view;
 
 #[cfg(test)]
@@ -58,6 +59,9 @@ fn sections(ui: &mut Ui, state: &mut ViewerState) {
         .body_returned
         .is_some();
     section("Stats", true).show(ui, |ui| stats::ui(ui, state));
+    if state.time.duration > 0.0 {
+        section("Time", true).show(ui, |ui| time::ui(ui, &mut state.time));
+    }
     section("Camera", false).show(ui, |ui| camera::ui(ui, &mut state.camera));
     section("Scene", false).show(ui, |ui| scene::ui(ui, state));
     // Picking a pixel opens the inspector and brings it into view (once: afterwards the

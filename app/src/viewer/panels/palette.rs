@@ -26,9 +26,9 @@ pub fn source_color(source: u32) -> Color32 {
     })
 }
 
-/// Temporal rejection reason `bit` (0..8).
+/// Temporal rejection reason `bit` (0..REJECT_REASON_COUNT).
 pub fn reason_color(bit: u32) -> Color32 {
-    const PALETTE: [[f32; 3]; 8] = [
+    const PALETTE: [[f32; 3]; 9] = [
         [1.0, 0.0, 0.0],
         [1.0, 0.5, 0.0],
         [1.0, 0.0, 1.0],
@@ -37,8 +37,9 @@ pub fn reason_color(bit: u32) -> Color32 {
         [1.0, 1.0, 0.0],
         [0.6, 0.3, 0.1],
         [1.0, 1.0, 1.0],
+        [0.1, 0.9, 0.2],
     ];
-    linear(PALETTE[(bit & 7) as usize])
+    linear(PALETTE[(bit as usize).min(PALETTE.len() - 1)])
 }
 
 /// The rejection view's spatial part: the fraction of neighbours rejected, black to grey.
@@ -137,6 +138,8 @@ mod tests {
         );
         assert_eq!(source_color(0), Color32::BLACK);
         assert_eq!(reason_color(0), Color32::from_rgb(255, 0, 0));
+        // light_gone: (0.1, 0.9, 0.2) linear.
+        assert_eq!(reason_color(8), linear([0.1, 0.9, 0.2]));
         assert_eq!(heatmap(1.0), linear([0.993, 0.906, 0.144]));
     }
 }

@@ -3,7 +3,7 @@
 //! changes the estimate.
 
 use egui::Ui;
-use restir_render::shader_constants::REJECT_REASON_NAMES;
+use restir_render::shader_constants::{REJECT_REASON_NAMES, REJECT_TEMPORAL_REASONS};
 use restir_render::{DebugView, Settings, Tonemapper, ViewSettings};
 
 use super::accuracy;
@@ -85,6 +85,9 @@ fn describe(v: DebugView) -> &'static str {
         DebugView::Difference => {
             "|A - B| luminance between the two sides of the split-screen comparison (Compare section)"
         }
+        DebugView::Age => {
+            "Frames since the surviving sample was first drawn, 0 to 2 × the M cap; null samples black"
+        }
     }
 }
 
@@ -92,6 +95,11 @@ fn legend(ui: &mut Ui, state: &mut ViewerState) {
     match state.view.view {
         DebugView::Source => source_legend(ui, str::to_string),
         DebugView::M => ramp(ui, "0", &format!("M cap ({})", state.settings.m_cap)),
+        DebugView::Age => ramp(
+            ui,
+            "0",
+            &format!("2 × M cap ({})", 2.0 * state.settings.m_cap),
+        ),
         DebugView::Weight => ramp(ui, "W 1e-4", "1e4"),
         DebugView::Error => {
             ramp(ui, "0", "1 (at this exposure)");
@@ -115,7 +123,7 @@ fn rejection_legend(ui: &mut Ui, view: &mut ViewSettings, settings: &Settings) {
     ui.horizontal(|ui| {
         ui.strong("temporal");
         if ui.small_button("All").clicked() {
-            view.reason_mask = 0xff;
+            view.reason_mask = REJECT_TEMPORAL_REASONS;
         }
         if ui.small_button("None").clicked() {
             view.reason_mask = 0;

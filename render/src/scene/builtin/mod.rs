@@ -4,6 +4,7 @@
 
 mod concourse;
 mod cornell;
+pub mod dynamic;
 mod hard;
 mod many_lights;
 mod plane_light;
@@ -49,6 +50,12 @@ const SCENES: &[(&str, Generator)] = &[
     ("hard:mirror", |name| {
         many_lights_room(name, 512, hard::mirror_floor())
     }),
+    ("dynamic:moving-light", dynamic::moving_light),
+    ("dynamic:blinking-lights", dynamic::blinking_lights),
+    ("dynamic:moving-occluder", dynamic::moving_occluder),
+    ("dynamic:many-lights", |name| {
+        dynamic::orbiting_lights(name, DEFAULT_LIGHT_COUNT)
+    }),
 ];
 
 /// Build a built-in scene. `name` has no `builtin:` prefix; `many-lights:N` takes a light
@@ -57,13 +64,18 @@ pub fn builtin_scene(name: &str) -> Result<Scene, SceneError> {
     if let Some((_, build)) = SCENES.iter().find(|(n, _)| *n == name) {
         return Ok(build(name));
     }
-    // `many-lights:N` and `many-lights-diffuse:N`: the room with N lights.
-    type Floor = fn() -> crate::scene::Material;
-    let families: [(&str, Floor); 2] = [
-        ("many-lights:", glossy_floor),
-        ("many-lights-diffuse:", diffuse_floor),
+    // `many-lights:N`, `many-lights-diffuse:N`, `dynamic:many-lights:N`: N lights.
+    type Room = fn(&str, usize) -> Scene;
+    let families: [(&str, Room); 3] = [
+        ("many-lights:", |name, n| {
+            many_lights_room(name, n, glossy_floor())
+        }),
+        ("many-lights-diffuse:", |name, n| {
+            many_lights_room(name, n, diffuse_floor())
+        }),
+        ("dynamic:many-lights:", dynamic::orbiting_lights),
     ];
-    for (prefix, floor) in families {
+    for (prefix, room) in families {
         let Some(count) = name.strip_prefix(prefix) else {
             continue;
         };
@@ -79,12 +91,13 @@ pub fn builtin_scene(name: &str) -> Result<Scene, SceneError> {
                 "light count must be in 1..={MAX_LIGHT_COUNT}"
             )));
         }
-        return Ok(many_lights_room(name, n, floor()));
+        return Ok(room(name, n));
     }
     Err(SceneError::Builtin {
         name: name.to_string(),
         detail: format!(
-            "unknown built-in scene (known: {}, many-lights:N, many-lights-diffuse:N)",
+            "unknown built-in scene (known: {}, many-lights:N, many-lights-diffuse:N, \
+             dynamic:many-lights:N)",
             builtin_names().join(", ")
         ),
     })

@@ -124,6 +124,16 @@ impl SceneBuilder {
         self.cuboid(center, half, rotation, Facing::Outward, [Some(material); 6]);
     }
 
+    /// Vertices so far: where the next shape's vertices start.
+    pub(super) fn vertex_count(&self) -> u32 {
+        self.scene.vertices.len() as u32
+    }
+
+    /// The vertices added since `first` (a moving shape is built in its node's space).
+    pub(super) fn vertices_since(&self, first: u32) -> Vec<Vertex> {
+        self.scene.vertices[first as usize..].to_vec()
+    }
+
     pub(super) fn finish(mut self, camera: Option<Camera>) -> Scene {
         self.scene.camera = camera;
         self.scene

@@ -31,6 +31,7 @@ impl std::fmt::Display for PrimitiveId<'_> {
 }
 
 /// Append `primitive`, transformed by `world`, with every triangle using `material`.
+/// Returns the vertices in the primitive's local space (kept for nodes that move).
 pub(super) fn append_primitive(
     file: &str,
     id: &PrimitiveId,
@@ -39,7 +40,7 @@ pub(super) fn append_primitive(
     world: Mat4,
     material: u32,
     scene: &mut Scene,
-) -> Result<(), SceneError> {
+) -> Result<Vec<Vertex>, SceneError> {
     let fail = |detail: String| SceneError::invalid(file, format!("{id}: {detail}"));
     let mode = primitive.mode();
     if !matches!(
@@ -120,7 +121,7 @@ pub(super) fn append_primitive(
             },
             material,
         }));
-    Ok(())
+    Ok(local)
 }
 
 /// POSITION (required, float VEC3), NORMAL (optional, zero when absent) and TEXCOORD_0

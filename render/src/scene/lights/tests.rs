@@ -297,3 +297,53 @@ fn environment_share_sets_its_probability_and_keeps_the_others_proportions() {
     let alone = [(0u32, 5.0)];
     assert_eq!(with_environment_share(&alone, 0, 0.3)[0].select_pdf, 1.0);
 }
+
+#[test]
+fn kept_slots_keep_their_index_at_zero_power_and_are_never_picked() {
+    let on = Material::emitter("on", Vec3::ONE, false);
+    let mut off = Material::emitter("off", Vec3::ONE, false);
+    off.emission = Vec3::ZERO;
+    let s = scene(
+        &[(tri(1.0, 0.0), 0), (tri(1.0, 1.0), 1), (tri(2.0, 2.0), 0)],
+        vec![on, off],
+    );
+    let order = [0, 1, 2];
+    // Without slots the dark triangle is left out and the third light becomes entry 1.
+    let plain = LightTable::build(&s, &order);
+    assert_eq!(plain.triangle_light, vec![0, NO_LIGHT, 1]);
+    let kept = LightTable::build_with_slots(&s, &order, &[false, true], false);
+    assert_eq!(kept.triangle_light, vec![0, 1, 2]);
+    assert_eq!(kept.lights[1].select_pdf, 0.0);
+    let p = implied_probabilities(&kept.lights);
+    assert_eq!(p[1], 0.0);
+    assert!(
+        (p[0] - 1.0 / 3.0).abs() < 1e-6 && (p[2] - 2.0 / 3.0).abs() < 1e-6,
+        "{p:?}"
+    );
+    assert!(kept.sampleable());
+    // Every light off: a table of kept slots that cannot be sampled, with no NaN in it.
+    let dark = scene(
+        &[(tri(1.0, 0.0), 0)],
+        vec![Material::diffuse("d", Vec3::ONE)],
+    );
+    let t = LightTable::build_with_slots(&dark, &[0], &[true], false);
+    assert_eq!(t.lights.len(), 1);
+    assert!(!t.sampleable());
+    assert_eq!(t.lights[0].select_pdf, 0.0);
+    assert_eq!(t.power_range, None);
+}
+
+#[test]
+fn zero_power_entries_in_an_alias_table_get_no_probability() {
+    // Many zero slots around a few lit ones: rounding must not leave a zero slot picked.
+    let powers: Vec<f64> = (0..1000)
+        .map(|i| if i % 7 == 0 { 1.0 + i as f64 } else { 0.0 })
+        .collect();
+    let table = table_from_powers(&powers);
+    let p = implied_probabilities(&table.lights);
+    for (i, &power) in powers.iter().enumerate() {
+        if power == 0.0 {
+            assert_eq!(p[i], 0.0, "entry {i}");
+        }
+    }
+}

@@ -56,3 +56,4 @@ mod inspector_panel;
 mod other_panels;
 mod pipeline_panel;
 mod side_panel;
+mod time_panel;

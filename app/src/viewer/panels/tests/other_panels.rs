@@ -1,6 +1,7 @@
 //! The View, Scene and Stats panels.
 
 use super::*;
+use restir_render::shader_constants::REJECT_TEMPORAL_REASONS;
 
 #[test]
 fn the_rejection_legend_toggles_and_isolates_reasons() {
@@ -10,14 +11,17 @@ fn the_rejection_legend_toggles_and_isolates_reasons() {
     h.get_by_role_and_label(Role::CheckBox, "show temporal normal")
         .click();
     h.run();
-    assert_eq!(h.state().view.reason_mask, 0xff & !(1 << 3));
+    assert_eq!(
+        h.state().view.reason_mask,
+        REJECT_TEMPORAL_REASONS & !(1 << 3)
+    );
     // "only" buttons, one per temporal reason: depth is row 4.
     h.get_all_by_label("only").nth(4).unwrap().click();
     h.run();
     assert_eq!(h.state().view.reason_mask, 1 << 4, "temporal depth alone");
     h.get_by_label("All").click();
     h.run();
-    assert_eq!(h.state().view.reason_mask, 0xff);
+    assert_eq!(h.state().view.reason_mask, REJECT_TEMPORAL_REASONS);
     // The spatial part is a count of rejected neighbours, switched on and off as one.
     assert!(h.state().view.spatial_count);
     h.get_by_role_and_label(Role::CheckBox, "rejected neighbours")

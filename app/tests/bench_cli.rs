@@ -260,3 +260,51 @@ fn bench_orbit_uses_a_reference_per_frame_and_the_sweep_times_light_counts() {
     );
     assert_png(&sweep.join("sweep.png"));
 }
+
+#[test]
+fn bench_on_an_animated_scene_scores_each_frame_against_its_own_moment() {
+    let out = temp("dynamic");
+    let cache = temp("dynamic_cache");
+    let (o, c) = (out.to_str().unwrap(), cache.to_str().unwrap());
+    let base = [
+        "--scene",
+        "builtin:dynamic:blinking-lights",
+        "--size",
+        "32x24",
+        "--reference-spp",
+        "8",
+        "--configs",
+        "restir",
+        "--frames",
+        "3",
+        "--time",
+        "0.95",
+    ];
+    let run = |extra: &[&str]| {
+        let mut args = base.to_vec();
+        args.extend(["--out", o, "--cache-dir", c]);
+        args.extend(extra);
+        bench(&args)
+    };
+    // Time running: one reference per measured frame (0.95, 0.983, 1.017 s: across the
+    // switch at 1 s), each of its own moment.
+    let first = run(&[]);
+    assert!(
+        first.contains("0 loaded") && first.contains("3 rendered"),
+        "{first}"
+    );
+    let rows = csv(&out.join("frames.csv"));
+    assert_eq!(rows.len(), 3);
+    // Frozen time: one reference, a different one from all three above.
+    let frozen = run(&["--fps", "0"]);
+    assert!(
+        frozen.contains("1 rendered") || frozen.contains("1 loaded"),
+        "{frozen}"
+    );
+    // Running again loads all three.
+    let again = run(&[]);
+    assert!(
+        again.contains("3 loaded") && again.contains("0 rendered"),
+        "{again}"
+    );
+}

@@ -112,6 +112,20 @@ impl AnimatedScene {
         (change, times)
     }
 
+    /// Uploads the whole posed scene to `renderer` (one that was made from, or last
+    /// updated by, another copy of the scene), so it matches this clock exactly.
+    pub fn sync(&self, renderer: &mut Renderer) {
+        if self.is_animated() {
+            let everything = SceneChange {
+                geometry: true,
+                lights: true,
+                emission: true,
+                camera: false,
+            };
+            renderer.update_scene(&self.scene, everything);
+        }
+    }
+
     /// Poses the CPU scene only (for a renderer made from it afterwards).
     pub fn pose_only(&mut self, time: f32) -> SceneChange {
         self.time = Some(time);

@@ -26,6 +26,8 @@ use std::time::Instant;
 use anyhow::{Context, bail};
 use clap::Args;
 use restir_render::reference_cache::ReferenceCache;
+use restir_render::scene::animation::ClipChoice;
+use restir_render::timeline::AnimatedScene;
 use restir_render::{Gpu, Renderer, load_scene};
 
 use crate::cli::environment::EnvArgs;
@@ -83,6 +85,10 @@ pub struct BenchArgs {
     /// scene load and BVH build only, no reference.
     #[arg(long, value_name = "N,N,...")]
     pub sweep_lights: Option<String>,
+    /// Scene time of an animated scene (`--time`, `--fps`): frame i (warm-up included) is
+    /// at T + i/F, and with F > 0 every measured frame has its own reference.
+    #[command(flatten)]
+    pub time: crate::cli::setup::TimeArgs,
 }
 
 /// Everything the writers need besides the results.
@@ -148,8 +154,14 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     }
 
     let started = Instant::now();
+    let timeline = args.time.timeline()?;
     let mut scene = load_scene(&args.scene)?;
     args.env.apply(&mut scene)?;
+    let animated = scene.animation.is_some();
+    if animated && args.budget_ms.is_some() && timeline.fps > 0.0 {
+        bail!("--budget-ms compares running averages of one moment: use --fps 0");
+    }
+    scene.pose(timeline.time_of(0), ClipChoice::All);
     let gpu = Gpu::new_headless()?;
     // One renderer per configuration, so their frames can interleave (see run_loop.rs).
     let renderers = configs
@@ -164,7 +176,12 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     );
     let mut renderers = renderers.into_iter();
     let mut first = renderers.next().expect("at least one configuration");
-    let shot = Shot::of(first.camera(), first.scene_bounds().center(), camera);
+    let mut shot = Shot::of(first.camera(), first.scene_bounds().center(), camera);
+    if animated {
+        shot = shot.with_time(timeline);
+    }
+    let clock = || animated.then(|| AnimatedScene::new(scene.clone()));
+    let mut reference_clock = clock();
     let cache = ReferenceCache::new(
         args.cache_dir
             .clone()
@@ -179,7 +196,14 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         jitter: base.jitter,
         effects: effects.clone(),
     };
-    let refs = references::obtain(&mut first, &reference_plan, &shot, args.warmup, measured)?;
+    let refs = references::obtain(
+        &mut first,
+        &reference_plan,
+        &shot,
+        args.warmup,
+        measured,
+        reference_clock.as_mut(),
+    )?;
     let plan = RunPlan {
         frames: measured,
         warmup: args.warmup,
@@ -197,14 +221,15 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         .map(|(c, r)| {
             Ok((
                 c.name.clone(),
-                ConfigRun::start(r, c, &plan, scoring_for(&refs, camera))?,
+                ConfigRun::start(r, c, &plan, scoring_for(&refs, &shot), clock())?,
             ))
         })
         .collect::<anyhow::Result<Vec<_>>>()?;
     let (mut results, renderers): (Vec<ConfigResult>, Vec<Renderer>) =
         run_interleaved(runs, &plan)?.into_iter().unzip();
     compare_with_nee(&mut results);
-    if camera == CameraPath::Static && args.budget_ms.is_none() {
+    // One reference for every frame: a still camera on a still (or frozen) scene.
+    if !shot.moves() && args.budget_ms.is_none() {
         write_strip(&args.out, &results, &renderers, &refs)?;
     }
     let info = BenchInfo {
@@ -253,10 +278,11 @@ fn write_strip(
     strip::write(&out.join("strip.png"), &panels)
 }
 
-fn scoring_for(refs: &References, camera: CameraPath) -> Scoring<'_> {
-    match camera {
-        CameraPath::Static => Scoring::still(&refs.images[0]),
-        CameraPath::Orbit(_) => Scoring::moving(&refs.images),
+fn scoring_for<'a>(refs: &'a References, shot: &Shot) -> Scoring<'a> {
+    if shot.moves() {
+        Scoring::moving(&refs.images)
+    } else {
+        Scoring::still(&refs.images[0])
     }
 }
 

@@ -8,6 +8,7 @@ use anyhow::{Context, bail};
 use glam::Vec3;
 use restir_render::effects::EffectSet;
 use restir_render::reference_cache::{Progress, ReferenceCache, ReferenceRequest};
+use restir_render::timeline::{AnimatedScene, Timeline};
 use restir_render::{Camera, LinearImage, Renderer, Scene};
 
 use crate::cli::camera_path::orbit;
@@ -47,12 +48,15 @@ impl CameraPath {
     }
 }
 
-/// The camera of every frame: the scene's camera moved along the path.
+/// The camera of every frame: the scene's camera moved along the path; and, for an
+/// animated scene, the scene time of every frame.
 #[derive(Clone, Copy, Debug)]
 pub struct Shot {
     pub start: Camera,
     pub center: Vec3,
     pub path: CameraPath,
+    /// `--time`/`--fps` of an animated scene (`None` for a static one).
+    pub timeline: Option<Timeline>,
 }
 
 impl Shot {
@@ -61,7 +65,27 @@ impl Shot {
             start: renderer_start,
             center,
             path,
+            timeline: None,
         }
+    }
+
+    /// The same shot of an animated scene, whose frame i shows `timeline.time_of(i)`.
+    pub fn with_time(self, timeline: Timeline) -> Shot {
+        Shot {
+            timeline: Some(timeline),
+            ..self
+        }
+    }
+
+    /// Scene time at frame `frame` (counted from the first warm-up frame).
+    pub fn time(&self, frame: u32) -> f32 {
+        self.timeline.map_or(0.0, |t| t.time_of(frame))
+    }
+
+    /// Whether frames differ from each other: a moving camera or running scene time. Then
+    /// every measured frame has its own reference.
+    pub fn moves(&self) -> bool {
+        self.path != CameraPath::Static || self.timeline.is_some_and(|t| t.fps > 0.0)
     }
 
     /// The camera at frame `frame` (counted from the first warm-up frame).
@@ -98,17 +122,20 @@ pub struct ReferencePlan<'a> {
 }
 
 /// Loads or renders the references of frames `first..first + count` of `shot` (one for a
-/// still camera).
+/// still shot). An animated scene's `clock` poses the scene (and `renderer`) at each
+/// frame's time first: a reference of one moment, keyed by that time.
 pub fn obtain(
     renderer: &mut Renderer,
     plan: &ReferencePlan,
     shot: &Shot,
     first: u32,
     count: u32,
+    mut clock: Option<&mut AnimatedScene>,
 ) -> anyhow::Result<References> {
-    let frames: Vec<u32> = match shot.path {
-        CameraPath::Static => vec![first],
-        CameraPath::Orbit(_) => (first..first + count).collect(),
+    let frames: Vec<u32> = if shot.moves() {
+        (first..first + count).collect()
+    } else {
+        vec![first]
     };
     let mut refs = References {
         images: Vec::with_capacity(frames.len()),
@@ -121,9 +148,13 @@ pub fn obtain(
     };
     let size = renderer.size();
     for (i, &frame) in frames.iter().enumerate() {
+        if let Some(clock) = clock.as_deref_mut() {
+            clock.set_time(renderer, shot.time(frame));
+        }
+        let scene = clock.as_deref().map_or(plan.scene, |c| c.scene());
         let mut request = ReferenceRequest::new(
             plan.scene_spec,
-            plan.scene,
+            scene,
             shot.camera(frame),
             size,
             plan.spp,

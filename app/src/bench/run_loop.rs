@@ -12,6 +12,7 @@ use std::io::Write;
 use restir_render::Renderer;
 use restir_render::effects::EffectSet;
 use restir_render::stats::{FrameReport, StatsSummary};
+use restir_render::timeline::AnimatedScene;
 
 use super::configs::Config;
 use super::equal_time::{Budget, BudgetClock};
@@ -76,6 +77,8 @@ pub struct ConfigRun<'a> {
     config: Config,
     scoring: Scoring<'a>,
     clock: Option<BudgetClock>,
+    /// An animated scene's clock: this configuration's renderer is posed per frame.
+    scene_clock: Option<AnimatedScene>,
     records: Vec<FrameRecord>,
     reports: Vec<FrameReport>,
 }
@@ -89,12 +92,23 @@ impl<'a> ConfigRun<'a> {
         config: &Config,
         plan: &RunPlan,
         scoring: Scoring<'a>,
+        mut scene_clock: Option<AnimatedScene>,
     ) -> anyhow::Result<ConfigRun<'a>> {
+        if let Some(c) = &scene_clock {
+            // The renderer may have rendered references at other times.
+            c.sync(&mut renderer);
+        }
+        let mut pose = |renderer: &mut Renderer, frame: u32| {
+            if let Some(c) = &mut scene_clock {
+                c.set_time(renderer, plan.shot.time(frame));
+            }
+        };
         renderer.set_mode(config.mode);
         renderer.set_settings(config.settings.clone());
         renderer.set_seed(plan.seed);
         renderer.force_effects(plan.effects.clone());
         for frame in 0..2 {
+            pose(&mut renderer, frame);
             renderer.set_camera(plan.shot.camera(frame));
             renderer.render_frame()?;
             renderer.collect_reports(true);
@@ -102,6 +116,7 @@ impl<'a> ConfigRun<'a> {
         renderer.request_cut();
         renderer.reset_accumulation();
         for frame in 0..plan.warmup {
+            pose(&mut renderer, frame);
             renderer.set_camera(plan.shot.camera(frame));
             renderer.render_frame()?;
             renderer.collect_reports(true);
@@ -112,6 +127,7 @@ impl<'a> ConfigRun<'a> {
             config: config.clone(),
             scoring,
             clock: plan.budget.map(BudgetClock::new),
+            scene_clock,
             records: Vec::new(),
             reports: Vec::new(),
         })
@@ -127,8 +143,11 @@ impl<'a> ConfigRun<'a> {
     /// Renders, times and scores the next measured frame.
     pub fn step(&mut self, plan: &RunPlan) -> anyhow::Result<()> {
         let index = self.records.len();
-        self.renderer
-            .set_camera(plan.shot.camera(plan.warmup + index as u32));
+        let frame = plan.warmup + index as u32;
+        if let Some(c) = &mut self.scene_clock {
+            c.set_time(&mut self.renderer, plan.shot.time(frame));
+        }
+        self.renderer.set_camera(plan.shot.camera(frame));
         self.renderer.render_frame()?;
         let report = self
             .renderer

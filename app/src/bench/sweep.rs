@@ -114,7 +114,7 @@ pub fn run(
             };
             runs.push((
                 format!("{lights}/{}", config.name),
-                ConfigRun::start(r, config, this_plan, Scoring::Off)?,
+                ConfigRun::start(r, config, this_plan, Scoring::Off, None)?,
             ));
         }
         rows.push(SweepRow {

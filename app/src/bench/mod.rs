@@ -12,6 +12,7 @@ mod configs;
 mod csv;
 pub mod env_cost;
 mod equal_time;
+mod lag;
 mod markdown;
 mod plots;
 mod references;

@@ -5,10 +5,15 @@
 //! Definitions (docs/bench.md, "Lag and ghosting"). An event's *segment* is the measured
 //! frames from the event frame (the first frame that shows the change) up to the next event
 //! or the end of the run.
-//! - `steady_error`: the median error of the segment's last `STEADY_FRAMES` frames — the
-//!   level the configuration settles at in the changed scene. The level *before* the event
-//!   belongs to another image (a switch-on makes the image brighter and its absolute noise
-//!   larger), so it cannot be the target of the recovery.
+//! - `steady_error`: the lower of (a) the median error of the segment's last
+//!   `STEADY_FRAMES` frames — the level the configuration settles at in the changed scene —
+//!   and (b) when the 5 frames before the event are measured and belong to no earlier
+//!   event, their median error × (mean reference luminance of the segment / of those 5
+//!   frames): the configuration's level before the event, carried over to the new image's
+//!   brightness (absolute noise scales with brightness at a fixed relative error; a switch
+//!   off halves it). (a) alone hides a lag that outlasts the run (its tail is still
+//!   lagging); (b) alone is only as good as that scaling; the lower of the two keeps both
+//!   a run that settles lower and a run that never settles honest.
 //! - `peak_error`: the largest error in the segment; `peak_over_steady` = peak / steady.
 //! - `recovery_frames`: the first k such that frames k..k+5 of the segment all have error
 //!   ≤ 1.1 × steady (below the band counts: being better than steady is not lag); `None`
@@ -41,14 +46,18 @@ pub struct CurveMetrics {
     pub lag_area: f64,
 }
 
-/// The curve metrics of `segment` (errors from the event frame on). `None` when the
+/// The curve metrics of `segment` (errors from the event frame on), `before` the level
+/// carried over from before the event ((b) above) when there is one. `None` when the
 /// segment is shorter than two windows (a steady level needs frames after the recovery) or
 /// has a non-finite error.
-pub fn curve_metrics(segment: &[f64]) -> Option<CurveMetrics> {
+pub fn curve_metrics(segment: &[f64], before: Option<f64>) -> Option<CurveMetrics> {
     if segment.len() < 2 * STEADY_FRAMES || segment.iter().any(|e| !e.is_finite()) {
         return None;
     }
-    let steady = median(&segment[segment.len() - STEADY_FRAMES..]);
+    let tail = median(&segment[segment.len() - STEADY_FRAMES..]);
+    let steady = before
+        .filter(|b| b.is_finite())
+        .map_or(tail, |b| b.min(tail));
     let peak = segment.iter().copied().fold(f64::MIN, f64::max);
     let band = (1.0 + RECOVERY_TOLERANCE) * steady;
     let recovery_frames = segment
@@ -68,7 +77,7 @@ pub fn curve_metrics(segment: &[f64]) -> Option<CurveMetrics> {
     })
 }
 
-fn median(v: &[f64]) -> f64 {
+pub fn median(v: &[f64]) -> f64 {
     let mut s = v.to_vec();
     s.sort_by(f64::total_cmp);
     let n = s.len();

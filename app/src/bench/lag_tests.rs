@@ -8,7 +8,7 @@ fn flat(w: u32, h: u32, v: f32) -> LinearImage {
 fn lag_curve_metrics_match_hand_computed_values() {
     // Peak 5 at the event, then 3, 2, 1.2, and the steady 1.0 (last five frames' median).
     let curve = [5.0, 3.0, 2.0, 1.2, 1.05, 1.0, 1.1, 0.9, 1.0, 1.0, 1.0, 1.0];
-    let m = curve_metrics(&curve).unwrap();
+    let m = curve_metrics(&curve, None).unwrap();
     assert_eq!(m.steady_error, 1.0);
     assert_eq!(m.peak_error, 5.0);
     assert_eq!(m.peak_over_steady, 5.0);
@@ -20,13 +20,13 @@ fn lag_curve_metrics_match_hand_computed_values() {
 
 #[test]
 fn lag_a_curve_already_steady_recovers_at_once() {
-    let m = curve_metrics(&[2.0; 10]).unwrap();
+    let m = curve_metrics(&[2.0; 10], None).unwrap();
     assert_eq!(m.recovery_frames, Some(0));
     assert_eq!(m.lag_area, 0.0);
     assert_eq!(m.peak_over_steady, 1.0);
     // Too short for a steady level after a recovery window.
-    assert!(curve_metrics(&[2.0; 9]).is_none());
-    assert!(curve_metrics(&[f64::NAN; 12]).is_none());
+    assert!(curve_metrics(&[2.0; 9], None).is_none());
+    assert!(curve_metrics(&[f64::NAN; 12], None).is_none());
 }
 
 #[test]
@@ -35,14 +35,32 @@ fn lag_a_curve_that_never_settles_never_recovers() {
     // its level never has five frames within 10 % of the tail median: "never".
     let mut curve = vec![3.0; 10];
     curve.extend((0..11).map(|k| if k % 2 == 0 { 1.0 } else { 1.3 }));
-    let m = curve_metrics(&curve).unwrap();
+    let m = curve_metrics(&curve, None).unwrap();
     assert_eq!(m.steady_error, 1.0);
     assert_eq!(m.recovery_frames, None);
     // 10 × 2 + 5 × 0.3 = 21.5: the lag and the boiling both count.
     assert!((m.lag_area - 21.5).abs() < 1e-9, "{}", m.lag_area);
     // A dip far below steady then back is not lag: it counts as recovered.
     let dip = [1.0, 0.2, 0.2, 0.2, 0.2, 0.2, 1.0, 1.0, 1.0, 1.0, 1.0];
-    assert_eq!(curve_metrics(&dip).unwrap().recovery_frames, Some(0));
+    assert_eq!(curve_metrics(&dip, None).unwrap().recovery_frames, Some(0));
+}
+
+#[test]
+fn lag_a_lag_that_outlasts_the_run_is_measured_against_the_level_before() {
+    // Test power: a planted lag that never ends in the window (error 0.4 throughout, as a
+    // huge M cap gives) looks steady from its own tail; the level carried over from before
+    // the event (0.15) exposes it.
+    let stuck = [0.4; 12];
+    let own = curve_metrics(&stuck, None).unwrap();
+    assert_eq!((own.lag_area, own.recovery_frames), (0.0, Some(0)));
+    let m = curve_metrics(&stuck, Some(0.15)).unwrap();
+    assert_eq!(m.steady_error, 0.15);
+    assert_eq!(m.recovery_frames, None);
+    assert!((m.lag_area - 12.0 * 0.25).abs() < 1e-9);
+    // A run that settles lower than the carried-over level keeps its own tail.
+    let settles = [0.3, 0.2, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1, 0.1];
+    let m = curve_metrics(&settles, Some(0.15)).unwrap();
+    assert_eq!((m.steady_error, m.recovery_frames), (0.1, Some(2)));
 }
 
 #[test]

@@ -233,7 +233,15 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     let mut renderers: Vec<Renderer> = std::iter::once(first).chain(renderers).collect();
     let mut results: Vec<ConfigResult> = Vec::new();
     let mut per_seed: Vec<Vec<Vec<events::SeedEvent>>> = vec![Vec::new(); configs.len()];
-    for k in 0..args.seeds {
+    // Extra seeds only average the lag metrics: without events they would measure nothing.
+    let seeds = if events.is_some() { args.seeds } else { 1 };
+    if seeds < args.seeds {
+        eprintln!(
+            "--seeds {}: no light events in the measured frames, running seed {} only",
+            args.seeds, args.pipeline.seed
+        );
+    }
+    for k in 0..seeds {
         let plan = RunPlan {
             seed: args.pipeline.seed.wrapping_add(k),
             ..plan.clone()
@@ -287,7 +295,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         reference_noise_luma: refs.noise_luma_rmse,
         reference_noise_rgb: refs.noise_rgb_rmse,
         reference_count: refs.images.len(),
-        seeds: args.seeds,
+        seeds,
         event_source: events.as_ref().map(|e| e.source),
     };
     write_outputs(&args.out, &info, &results)

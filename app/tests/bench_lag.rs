@@ -91,6 +91,8 @@ fn bench_lag_metrics_see_the_switch_off_and_the_planted_lag() {
             .unwrap()
             .contains("## Lag around events (2 seeds")
     );
+    // No running average with a reference per frame.
+    assert!(!out.join("error_vs_time.png").exists());
     assert_png(&out.join("lag.png"));
     assert_png(&out.join("event_strip.png"));
 }

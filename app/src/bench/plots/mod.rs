@@ -43,7 +43,8 @@ pub fn write_all(
             error_per_frame(a, info, results)
         })?;
         written.push("error_per_frame.png".into());
-        if info.camera == CameraPath::Static {
+        // A running average needs one reference: a still camera on a still (or frozen) scene.
+        if info.camera == CameraPath::Static && info.reference_count == 1 {
             render_png(&out.join("error_vs_time.png"), (1200, 800), |a| {
                 error_vs_time(a, &note, info, results)
             })?;

@@ -5,80 +5,10 @@
 //! them with the bench's own message ("no GPU adapter found ...").
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
-/// A fresh directory under cargo's per-test temp dir.
-fn temp(name: &str) -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("bench_{name}_{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
+mod bench_support;
 
-/// Runs `bench` with `args`; returns stderr. Fails with the command's output when it fails.
-fn bench(args: &[&str]) -> String {
-    let out = Command::new(env!("CARGO_BIN_EXE_restir-viewer"))
-        .arg("bench")
-        .args(args)
-        .output()
-        .expect("the restir-viewer binary runs");
-    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
-    assert!(
-        out.status.success(),
-        "bench {args:?} failed (GPU tests need a wgpu adapter, lavapipe in CI):\n{stderr}"
-    );
-    stderr
-}
-
-/// Splits one CSV line, honouring quotes ("" inside quotes is a quote).
-fn split_csv(line: &str) -> Vec<String> {
-    let (mut cells, mut cell, mut quoted) = (Vec::new(), String::new(), false);
-    let mut chars = line.chars().peekable();
-    while let Some(c) = chars.next() {
-        match (c, quoted) {
-            ('"', true) if chars.peek() == Some(&'"') => {
-                cell.push('"');
-                chars.next();
-            }
-            ('"', _) => quoted = !quoted,
-            (',', false) => cells.push(std::mem::take(&mut cell)),
-            _ => cell.push(c),
-        }
-    }
-    cells.push(cell);
-    cells
-}
-
-/// The rows of a CSV file as maps from header to cell.
-fn csv(path: &Path) -> Vec<std::collections::HashMap<String, String>> {
-    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let mut lines = text.lines();
-    let header = split_csv(lines.next().expect("a header"));
-    lines
-        .map(|l| header.iter().cloned().zip(split_csv(l)).collect())
-        .collect()
-}
-
-fn assert_png(path: &Path) {
-    let img = image::open(path).unwrap_or_else(|e| panic!("{}: not a PNG: {e}", path.display()));
-    assert!(
-        img.width() >= 800 && img.height() >= 300,
-        "{}",
-        path.display()
-    );
-    // Not blank: some pixels are neither white nor one colour.
-    let rgb = img.to_rgb8();
-    let dark = rgb
-        .pixels()
-        .filter(|p| p.0.iter().all(|&c| c < 100))
-        .count();
-    assert!(
-        dark > 500,
-        "{}: no text or axes drawn ({dark} dark pixels)",
-        path.display()
-    );
-}
+use bench_support::{assert_png, bench, csv, temp};
 
 /// `bench` on `builtin:many-lights` at 48×32 with an 8-spp reference, writing to `out` and
 /// caching in `cache`, plus `extra`; returns stderr.
@@ -129,6 +59,11 @@ fn bench_writes_every_configuration_and_plots_and_reuses_the_reference() {
         }
     }
     assert_eq!(rows[0]["time_vs_nee"], "1");
+    // A static scene has no events: the lag columns are there, empty.
+    for column in ["events", "recovery_frames", "lag_area", "signed_bias"] {
+        assert_eq!(rows[0][column], "", "{column}");
+    }
+    assert!(!out.join("events.csv").exists() && !out.join("lag.png").exists());
     assert_eq!(csv(&out.join("frames.csv")).len(), 6 * 3);
     let md = std::fs::read_to_string(out.join("results.md")).unwrap();
     assert!(

@@ -8,6 +8,7 @@ use std::path::Path;
 use anyhow::Context;
 
 use super::BenchInfo;
+use super::events::{EventLag, recovery_cell};
 use super::run_loop::ConfigResult;
 
 /// The passes in pipeline order; others (from a newer renderer) follow alphabetically.
@@ -142,6 +143,7 @@ pub fn write_results(
         "device",
         "timing",
     ]);
+    header.extend(LAG_COLUMNS);
     let mut table = Table::new(&header);
     for r in results {
         let s = r.scores.clone().unwrap_or_default();
@@ -181,7 +183,66 @@ pub fn write_results(
             info.device.clone(),
             info.timing_note().to_string(),
         ]);
+        cells.extend(lag_cells(info, r));
         table.row(cells);
+    }
+    table.write(path)
+}
+
+/// The lag columns of `results.csv`: the first event's numbers averaged over the seeds
+/// (`events.csv` has every event). Empty without events (a static scene, frozen time).
+pub const LAG_COLUMNS: [&str; 11] = [
+    "events",
+    "event_source",
+    "event_frame",
+    "event_time",
+    "seeds",
+    "peak_error",
+    "steady_error",
+    "peak_over_steady",
+    "recovery_frames",
+    "lag_area",
+    "signed_bias",
+];
+
+fn lag_cells(info: &BenchInfo, r: &ConfigResult) -> Vec<String> {
+    let Some(e) = r.lag.first() else {
+        return vec![String::new(); LAG_COLUMNS.len()];
+    };
+    let mut cells = vec![
+        r.lag.len().to_string(),
+        info.event_source.unwrap_or_default().to_string(),
+    ];
+    cells.extend(event_cells(e));
+    cells
+}
+
+/// Frame, time, seeds and the metrics of one event.
+fn event_cells(e: &EventLag) -> Vec<String> {
+    vec![
+        e.frame.to_string(),
+        e.time.to_string(),
+        e.seeds.to_string(),
+        num(e.peak_error),
+        num(e.steady_error),
+        num(e.peak_over_steady),
+        recovery_cell(e.recovery_frames),
+        num(e.lag_area),
+        num(e.signed_bias),
+    ]
+}
+
+/// `events.csv`: one row per configuration and event.
+pub fn write_events(path: &Path, results: &[ConfigResult]) -> anyhow::Result<()> {
+    let mut header = vec!["config", "event"];
+    header.extend(&LAG_COLUMNS[2..]);
+    let mut table = Table::new(&header);
+    for r in results {
+        for (k, e) in r.lag.iter().enumerate() {
+            let mut cells = vec![r.config.name.clone(), k.to_string()];
+            cells.extend(event_cells(e));
+            table.row(cells);
+        }
     }
     table.write(path)
 }

@@ -12,6 +12,9 @@ mod configs;
 mod csv;
 pub mod env_cost;
 mod equal_time;
+mod event_strip;
+mod events;
+mod lag;
 mod markdown;
 mod plots;
 mod references;
@@ -34,6 +37,7 @@ use crate::cli::environment::EnvArgs;
 use crate::cli::setup::{PipelineArgs, parse_size};
 use configs::{BASE_ASSIGNMENTS, DEFAULT_CONFIGS, parse_configs};
 use equal_time::{Budget, mse_ratio};
+use events::{Events, LagProbe};
 use references::{CameraPath, ReferencePlan, References, Shot};
 use run_loop::{ConfigResult, ConfigRun, RunPlan, run_interleaved};
 use scoring::Scoring;
@@ -89,6 +93,10 @@ pub struct BenchArgs {
     /// at T + i/F, and with F > 0 every measured frame has its own reference.
     #[command(flatten)]
     pub time: crate::cli::setup::TimeArgs,
+    /// Runs every configuration K times, seeds S..S+K (S = `--seed`), and averages the lag
+    /// metrics of a dynamic scene's events over them; every other number is seed S's.
+    #[arg(long, default_value_t = 1)]
+    pub seeds: u32,
 }
 
 /// Everything the writers need besides the results.
@@ -109,6 +117,9 @@ pub struct BenchInfo {
     pub reference_noise_luma: Option<f64>,
     pub reference_noise_rgb: Option<f64>,
     pub reference_count: usize,
+    /// Seeds the lag metrics are averaged over, and where the events came from.
+    pub seeds: u32,
+    pub event_source: Option<&'static str>,
 }
 
 impl BenchInfo {
@@ -142,6 +153,9 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     }
     if args.frames == Some(0) {
         bail!("--frames must be at least 1");
+    }
+    if args.seeds == 0 {
+        bail!("--seeds must be at least 1");
     }
     let base = args.pipeline.settings(BASE_ASSIGNMENTS)?;
     let radius = (base.spatial_radius, base.effective_spatial_radius(size.1));
@@ -215,18 +229,51 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         seed: args.pipeline.seed,
         effects,
     };
-    let runs = configs
-        .iter()
-        .zip(std::iter::once(first).chain(renderers))
-        .map(|(c, r)| {
-            Ok((
-                c.name.clone(),
-                ConfigRun::start(r, c, &plan, scoring_for(&refs, &shot), clock())?,
-            ))
-        })
-        .collect::<anyhow::Result<Vec<_>>>()?;
-    let (mut results, renderers): (Vec<ConfigResult>, Vec<Renderer>) =
-        run_interleaved(runs, &plan)?.into_iter().unzip();
+    let events = Events::find(&scene, &shot, args.warmup, &refs.images);
+    let mut renderers: Vec<Renderer> = std::iter::once(first).chain(renderers).collect();
+    let mut results: Vec<ConfigResult> = Vec::new();
+    let mut per_seed: Vec<Vec<Vec<events::SeedEvent>>> = vec![Vec::new(); configs.len()];
+    // Extra seeds only average the lag metrics: without events they would measure nothing.
+    let seeds = if events.is_some() { args.seeds } else { 1 };
+    if seeds < args.seeds {
+        eprintln!(
+            "--seeds {}: no light events in the measured frames, running seed {} only",
+            args.seeds, args.pipeline.seed
+        );
+    }
+    for k in 0..seeds {
+        let plan = RunPlan {
+            seed: args.pipeline.seed.wrapping_add(k),
+            ..plan.clone()
+        };
+        let runs = configs
+            .iter()
+            .zip(renderers.drain(..))
+            .map(|(c, r)| {
+                let probe = events
+                    .as_ref()
+                    .map(|e| LagProbe::new(e, &refs.images, k == 0));
+                let scoring = scoring_for(&refs, &shot);
+                let run = ConfigRun::start(r, c, &plan, scoring, clock(), probe)?;
+                Ok((c.name.clone(), run))
+            })
+            .collect::<anyhow::Result<Vec<_>>>()?;
+        let (seed_results, back): (Vec<ConfigResult>, Vec<Renderer>) =
+            run_interleaved(runs, &plan)?.into_iter().unzip();
+        renderers = back;
+        for (all, r) in per_seed.iter_mut().zip(&seed_results) {
+            all.push(r.seed_events.clone());
+        }
+        if k == 0 {
+            results = seed_results;
+        }
+    }
+    if let Some(e) = &events {
+        for (r, seeds) in results.iter_mut().zip(&per_seed) {
+            r.lag = events::average(e, seeds);
+        }
+        event_strip::write(&args.out.join("event_strip.png"), e, &results, &refs)?;
+    }
     compare_with_nee(&mut results);
     // One reference for every frame: a still camera on a still (or frozen) scene.
     if !shot.moves() && args.budget_ms.is_none() {
@@ -248,6 +295,8 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         reference_noise_luma: refs.noise_luma_rmse,
         reference_noise_rgb: refs.noise_rgb_rmse,
         reference_count: refs.images.len(),
+        seeds,
+        event_source: events.as_ref().map(|e| e.source),
     };
     write_outputs(&args.out, &info, &results)
 }
@@ -313,6 +362,9 @@ fn write_outputs(
 ) -> anyhow::Result<()> {
     csv::write_results(&out.join("results.csv"), info, results)?;
     csv::write_frames(&out.join("frames.csv"), results)?;
+    if results.iter().any(|r| !r.lag.is_empty()) {
+        csv::write_events(&out.join("events.csv"), results)?;
+    }
     let md = markdown::results(info, results);
     std::fs::write(out.join("results.md"), &md)
         .with_context(|| format!("{}: cannot write", out.display()))?;

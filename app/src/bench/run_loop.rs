@@ -16,10 +16,12 @@ use restir_render::timeline::AnimatedScene;
 
 use super::configs::Config;
 use super::equal_time::{Budget, BudgetClock};
+use super::events::{EventLag, LagProbe, SeedEvent};
 use super::references::Shot;
 use super::scoring::{FrameScores, ScoreSummary, Scoring};
 
 /// How every configuration is run.
+#[derive(Clone)]
 pub struct RunPlan {
     /// Measured frames (fixed mode); ignored with a budget.
     pub frames: u32,
@@ -58,6 +60,12 @@ pub struct ConfigResult {
     pub time_vs_nee: Option<f64>,
     pub frame_mse_vs_nee: Option<f64>,
     pub budget_mse_vs_nee: Option<f64>,
+    /// A dynamic scene's events: this run's numbers per event, the first event's frames
+    /// for `event_strip.png` (index, image), and (filled in by `mod.rs` once every seed
+    /// ran) the numbers averaged over seeds.
+    pub seed_events: Vec<SeedEvent>,
+    pub event_frames: Vec<(usize, restir_render::LinearImage)>,
+    pub lag: Vec<EventLag>,
 }
 
 impl ConfigResult {
@@ -81,6 +89,7 @@ pub struct ConfigRun<'a> {
     scene_clock: Option<AnimatedScene>,
     records: Vec<FrameRecord>,
     reports: Vec<FrameReport>,
+    lag: Option<LagProbe<'a>>,
 }
 
 impl<'a> ConfigRun<'a> {
@@ -93,6 +102,7 @@ impl<'a> ConfigRun<'a> {
         plan: &RunPlan,
         scoring: Scoring<'a>,
         mut scene_clock: Option<AnimatedScene>,
+        lag: Option<LagProbe<'a>>,
     ) -> anyhow::Result<ConfigRun<'a>> {
         if let Some(c) = &scene_clock {
             // The renderer may have rendered references at other times.
@@ -130,6 +140,7 @@ impl<'a> ConfigRun<'a> {
             scene_clock,
             records: Vec::new(),
             reports: Vec::new(),
+            lag,
         })
     }
 
@@ -161,7 +172,11 @@ impl<'a> ConfigRun<'a> {
             c.add(ms);
         }
         let scores = if self.scoring.wants_images() {
-            self.scoring.push(index, &self.renderer.read_radiance())?
+            let image = self.renderer.read_radiance();
+            if let Some(lag) = &mut self.lag {
+                lag.push(index, &image);
+            }
+            self.scoring.push(index, &image)?
         } else {
             FrameScores::default()
         };
@@ -176,7 +191,14 @@ impl<'a> ConfigRun<'a> {
     }
 
     pub fn finish(self) -> anyhow::Result<(ConfigResult, Renderer)> {
+        let (seed_events, event_frames) = match self.lag {
+            Some(probe) => probe.finish(&self.records),
+            None => Default::default(),
+        };
         let result = ConfigResult {
+            seed_events,
+            event_frames,
+            lag: Vec::new(),
             times: StatsSummary::from_reports(&self.reports, 0),
             scores: self.scoring.summary()?,
             config: self.config,

@@ -25,32 +25,45 @@ pub struct Panel<'a> {
 
 /// Writes the panels side by side, left to right, to `path`.
 pub fn write(path: &Path, panels: &[Panel]) -> anyhow::Result<()> {
-    let Some(first) = panels.first() else {
+    let Some(last) = panels.last() else {
+        anyhow::bail!("{}: no image for the strip", path.display());
+    };
+    // The exposure of the last panel (the reference): the same for all.
+    write_grid(path, &[panels], 2f32.powf(auto_exposure_ev(last.image)))
+}
+
+/// Writes rows of panels (each row left to right, rows top to bottom) to `path`, every
+/// panel at the linear `exposure`.
+pub fn write_grid(path: &Path, rows: &[&[Panel]], exposure: f32) -> anyhow::Result<()> {
+    let Some(first) = rows.iter().flat_map(|r| r.iter()).next() else {
         anyhow::bail!("{}: no image for the strip", path.display());
     };
     let (w, h) = (first.image.width, first.image.height);
     anyhow::ensure!(
-        panels
-            .iter()
+        rows.iter()
+            .flat_map(|r| r.iter())
             .all(|p| (p.image.width, p.image.height) == (w, h)),
         "{}: strip panels differ in size",
         path.display()
     );
     let zoom = MIN_PANEL_HEIGHT.div_ceil(h.max(1)).max(1);
-    // The exposure of the last panel (the reference): the same for all.
-    let exposure = 2f32.powf(auto_exposure_ev(panels[panels.len() - 1].image));
     let (pw, ph) = (w * zoom, h * zoom);
-    let size = (pw * panels.len() as u32, ph + LABEL_HEIGHT);
+    let columns = rows.iter().map(|r| r.len()).max().unwrap_or(0) as u32;
+    let row_height = ph + LABEL_HEIGHT;
+    let size = (pw * columns, row_height * rows.len() as u32);
     render_png(path, size, |area| {
         area.fill(&BLACK)?;
-        for (i, panel) in panels.iter().enumerate() {
-            draw_panel(area, panel, exposure, (i as u32 * pw, zoom))?;
-            let label = Text::new(
-                panel.label.clone(),
-                ((i as u32 * pw + 8) as i32, (ph + 6) as i32),
-                text(22).color(&WHITE),
-            );
-            area.draw(&label)?;
+        for (j, row) in rows.iter().enumerate() {
+            let y0 = j as u32 * row_height;
+            for (i, panel) in row.iter().enumerate() {
+                draw_panel(area, panel, exposure, (i as u32 * pw, y0, zoom))?;
+                let label = Text::new(
+                    panel.label.clone(),
+                    ((i as u32 * pw + 8) as i32, (y0 + ph + 6) as i32),
+                    text(22).color(&WHITE),
+                );
+                area.draw(&label)?;
+            }
         }
         Ok(())
     })
@@ -60,13 +73,13 @@ fn draw_panel(
     area: &super::plots::canvas::Area,
     panel: &Panel,
     exposure: f32,
-    (x0, zoom): (u32, u32),
+    (x0, y0, zoom): (u32, u32, u32),
 ) -> DrawResult {
     let img = panel.image;
     for y in 0..img.height {
         for x in 0..img.width {
             let [r, g, b] = display_srgb8(img.rgb(x, y), exposure);
-            let (px, py) = ((x0 + x * zoom) as i32, (y * zoom) as i32);
+            let (px, py) = ((x0 + x * zoom) as i32, (y0 + y * zoom) as i32);
             let z = zoom as i32;
             area.draw(&Rectangle::new(
                 [(px, py), (px + z, py + z)],

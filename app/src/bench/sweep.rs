@@ -114,7 +114,7 @@ pub fn run(
             };
             runs.push((
                 format!("{lights}/{}", config.name),
-                ConfigRun::start(r, config, this_plan, Scoring::Off, None)?,
+                ConfigRun::start(r, config, this_plan, Scoring::Off, None, None)?,
             ));
         }
         rows.push(SweepRow {
@@ -160,7 +160,7 @@ pub fn run(
                 y_desc: "median time per frame (ms; see note below)",
                 log_x: true,
                 log_y: false,
-                marker_x: None,
+                markers_x: &[],
             },
             &series,
         )

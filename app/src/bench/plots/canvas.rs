@@ -94,8 +94,9 @@ pub struct LineChart<'a> {
     pub y_desc: &'a str,
     pub log_x: bool,
     pub log_y: bool,
-    /// A labelled vertical line (the equal-time budget).
-    pub marker_x: Option<(f64, &'a str)>,
+    /// Labelled vertical lines (the equal-time budget, a dynamic scene's events); the
+    /// legend names the first.
+    pub markers_x: &'a [(f64, &'a str)],
 }
 
 /// The legend box of a chart, in one style everywhere.
@@ -189,7 +190,7 @@ pub fn line_chart(area: &Area, chart: &LineChart, series: &[Series]) -> DrawResu
         series
             .iter()
             .flat_map(|s| s.points.iter().map(|p| p.0))
-            .chain(chart.marker_x.map(|m| m.0)),
+            .chain(chart.markers_x.iter().map(|m| m.0)),
         chart.log_x,
     );
     // Room on the right for the legend, so it never hides the curves' ends.
@@ -222,15 +223,16 @@ pub fn line_chart(area: &Area, chart: &LineChart, series: &[Series]) -> DrawResu
                 .x_label_formatter(&|v| tick(*v))
                 .y_label_formatter(&|v| tick(*v))
                 .draw()?;
-            if let Some((x, label)) = chart.marker_x {
-                c.draw_series(std::iter::once(PathElement::new(
+            for (i, &(x, label)) in chart.markers_x.iter().enumerate() {
+                let line = c.draw_series(std::iter::once(PathElement::new(
                     vec![(x, ys.0), (x, ys.1)],
                     BLACK.stroke_width(2),
-                )))?
-                .label(label)
-                .legend(|(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 24, y)], BLACK.stroke_width(2))
-                });
+                )))?;
+                if i == 0 {
+                    line.label(label).legend(|(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 24, y)], BLACK.stroke_width(2))
+                    });
+                }
             }
             for s in series {
                 let style = s.color.stroke_width(3);

@@ -6,7 +6,9 @@
 //!   average's RGB RMSE against the frame number;
 //! - `error_vs_time.png` (still camera): the running average's RGB RMSE against measured
 //!   time, with the equal-time budget marked;
-//! - `pass_times.png`: median time of each pass, stacked per configuration.
+//! - `pass_times.png`: median time of each pass, stacked per configuration;
+//! - `lag.png` (a dynamic scene with events): per-frame luma RMSE of every configuration
+//!   against that frame's reference, linear, with a vertical line at each event frame.
 
 pub mod canvas;
 
@@ -41,12 +43,17 @@ pub fn write_all(
             error_per_frame(a, info, results)
         })?;
         written.push("error_per_frame.png".into());
-        if info.camera == CameraPath::Static {
+        // A running average needs one reference: a still camera on a still (or frozen) scene.
+        if info.camera == CameraPath::Static && info.reference_count == 1 {
             render_png(&out.join("error_vs_time.png"), (1200, 800), |a| {
                 error_vs_time(a, &note, info, results)
             })?;
             written.push("error_vs_time.png".into());
         }
+    }
+    if scored && results.iter().any(|r| !r.lag.is_empty()) {
+        render_png(&out.join("lag.png"), (1200, 800), |a| lag(a, info, results))?;
+        written.push("lag.png".into());
     }
     let height = 200 + 70 * results.len() as u32;
     render_png(&out.join("pass_times.png"), (1200, height), |a| {
@@ -211,11 +218,47 @@ fn error_per_frame(area: &Area, info: &BenchInfo, results: &[ConfigResult]) -> D
             y_desc,
             log_x: false,
             log_y: true,
-            marker_x: None,
+            markers_x: &[],
         };
         line_chart(&panel, &chart, &per_frame_series(results, value, false))?;
     }
     Ok(())
+}
+
+/// Error per frame around the events: a linear axis, so a lag's excess reads as area.
+fn lag(area: &Area, info: &BenchInfo, results: &[ConfigResult]) -> DrawResult {
+    area.fill(&WHITE)?;
+    let note = format!(
+        "{} · events from {} · lag metrics over {} seed(s), curves: seed {}",
+        subtitle(info),
+        info.event_source.unwrap_or("?"),
+        info.seeds,
+        info.seed
+    );
+    let area = with_footnote(area, &note)?;
+    // Frames are plotted 1-based (as in error_per_frame.png): event frame f is at f + 1.
+    let markers: Vec<(f64, &str)> = results
+        .iter()
+        .find(|r| !r.lag.is_empty())
+        .map(|r| {
+            r.lag
+                .iter()
+                .map(|e| (e.frame as f64 + 1.0, "light event"))
+                .collect()
+        })
+        .unwrap_or_default();
+    line_chart(
+        &area,
+        &LineChart {
+            title: "Lag: per-frame luma RMSE vs that frame's reference, events marked",
+            x_desc: "frame (after a clean history)",
+            y_desc: "luma RMSE",
+            log_x: false,
+            log_y: false,
+            markers_x: &markers,
+        },
+        &per_frame_series(results, |f| f.scores.luma_rmse, false),
+    )
 }
 
 fn error_vs_time(
@@ -240,7 +283,7 @@ fn error_vs_time(
             y_desc: "accumulated RGB RMSE (log)",
             log_x: true,
             log_y: true,
-            marker_x: budget,
+            markers_x: budget.as_slice(),
         },
         &per_frame_series(results, |f| f.scores.accumulated_rgb_rmse, true),
     )

@@ -4,4 +4,5 @@ pub mod camera_path;
 pub mod environment;
 pub mod params;
 pub mod render;
+mod render_stats;
 pub mod setup;

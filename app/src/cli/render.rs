@@ -7,13 +7,13 @@ use std::time::Instant;
 use anyhow::{Context, bail};
 use clap::Args;
 use restir_render::gpu_scene::SceneUpdateTimes;
-use restir_render::stats::{FrameReport, StatsSummary};
+use restir_render::stats::FrameReport;
 use restir_render::timeline::{AnimatedScene, Timeline};
 use restir_render::view::auto_exposure_ev;
 use restir_render::{DebugView, Gpu, LinearImage, Mode, Renderer, Settings, load_scene};
-use serde::Serialize;
 
 use super::camera_path::{cut_viewpoint, orbit};
+use super::render_stats::{CompareStats, Side, scene_time_stats, side_stats};
 use super::setup::{PipelineArgs, TimeArgs, parse_size};
 use crate::compare::{CompareTarget, divider_column, split_columns};
 
@@ -68,70 +68,6 @@ pub struct RenderArgs {
     /// Scene time (`--time`, `--fps`).
     #[command(flatten)]
     pub time: TimeArgs,
-}
-
-/// Scene time and the per-frame update cost of an animated scene (`--stats`).
-#[derive(Clone, Serialize)]
-struct SceneTimeStats {
-    /// Scene time of the first and the last frame, seconds.
-    first_time: f32,
-    last_time: f32,
-    fps: f32,
-    /// Median CPU cost per frame of the scene update (posing, BVH refit, light table,
-    /// upload), over frames that changed something.
-    median_pose_ms: f64,
-    median_bvh_ms: f64,
-    median_lights_ms: f64,
-    median_upload_ms: f64,
-    updated_frames: usize,
-    /// Refit against rebuild at the last frame: SAH cost of the refitted tree, of a tree
-    /// built from scratch over the same positions, and that build's time.
-    bvh_refit_sah_cost: f64,
-    bvh_rebuilt_sah_cost: f64,
-    bvh_rebuild_ms: f64,
-}
-
-/// The `--stats` JSON document.
-#[derive(Serialize)]
-struct StatsFile<'a> {
-    scene: &'a restir_render::gpu_scene::SceneInfo,
-    adapter: String,
-    /// "lavapipe timings are CPU timings": true when the adapter is a CPU implementation.
-    adapter_is_cpu: bool,
-    mode: Mode,
-    size: [u32; 2],
-    effects: String,
-    effect_reasons: Vec<(String, String)>,
-    passes: Vec<&'static str>,
-    settings: std::collections::BTreeMap<String, String>,
-    /// `spatial_radius` is set at 1080p; this is the radius used at this height.
-    effective_spatial_radius_px: f32,
-    mean_luminance: f64,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    scene_time: Option<SceneTimeStats>,
-    #[serde(flatten)]
-    summary: StatsSummary,
-    /// With `--compare`: a block per side (left = this configuration, right = B).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    compare: Option<Box<CompareStats<'a>>>,
-}
-
-#[derive(Serialize)]
-struct CompareStats<'a> {
-    /// First column of the right side.
-    divider_column: u32,
-    left: StatsFile<'a>,
-    right_config: String,
-    right: StatsFile<'a>,
-}
-
-/// One side's renderer and what it produced.
-struct Side {
-    renderer: Renderer,
-    reports: Vec<FrameReport>,
-    image: LinearImage,
-    /// Scene time and update costs, for an animated scene.
-    scene_time: Option<SceneTimeStats>,
 }
 
 pub fn run(args: RenderArgs) -> anyhow::Result<()> {
@@ -261,7 +197,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
 }
 
 /// One frame's scene update: posing time (ms) and the renderer's update cost.
-type FrameUpdate = (f64, SceneUpdateTimes);
+pub(super) type FrameUpdate = (f64, SceneUpdateTimes);
 
 fn render_frames(
     renderer: &mut Renderer,
@@ -319,43 +255,6 @@ fn render_frames(
     Ok((reports, updates))
 }
 
-fn median(mut values: Vec<f64>) -> f64 {
-    if values.is_empty() {
-        return 0.0;
-    }
-    values.sort_by(f64::total_cmp);
-    values[values.len() / 2]
-}
-
-fn scene_time_stats(
-    timeline: Timeline,
-    args: &RenderArgs,
-    updates: &[FrameUpdate],
-    renderer: &Renderer,
-    scene: &restir_render::Scene,
-) -> SceneTimeStats {
-    let of = |f: fn(&FrameUpdate) -> f64| median(updates.iter().map(f).collect());
-    let positions: Vec<_> = (0..scene.triangles.len())
-        .map(|t| scene.triangle_positions(t))
-        .collect();
-    let build = Instant::now();
-    let rebuilt = restir_render::scene::bvh::Bvh::build(&positions);
-    let bvh_rebuild_ms = build.elapsed().as_secs_f64() * 1e3;
-    SceneTimeStats {
-        first_time: timeline.time_of(0),
-        last_time: timeline.time_of(args.frames - 1),
-        fps: timeline.fps,
-        median_pose_ms: of(|u| u.0),
-        median_bvh_ms: of(|u| u.1.bvh_ms),
-        median_lights_ms: of(|u| u.1.lights_ms),
-        median_upload_ms: of(|u| u.1.upload_ms),
-        updated_frames: updates.len(),
-        bvh_refit_sah_cost: renderer.bvh_sah_cost(),
-        bvh_rebuilt_sah_cost: rebuilt.sah_cost(),
-        bvh_rebuild_ms,
-    }
-}
-
 #[derive(PartialEq)]
 enum Format {
     Exr,
@@ -400,45 +299,4 @@ fn display_rgba8(
     renderer.set_view(settings);
     renderer.redisplay()?;
     Ok(renderer.read_display_rgba8())
-}
-
-fn side_stats(side: &Side) -> StatsFile<'_> {
-    let renderer = &side.renderer;
-    let effects = renderer
-        .last_effects()
-        .cloned()
-        .unwrap_or_else(restir_render::effects::EffectSet::all);
-    let settings = renderer.effective_settings();
-    let (_, height) = renderer.size();
-    StatsFile {
-        scene: renderer.scene_info(),
-        adapter: renderer.gpu().adapter_name(),
-        adapter_is_cpu: renderer.gpu().is_cpu(),
-        mode: renderer.mode(),
-        size: [renderer.size().0, height],
-        effects: effects.to_string(),
-        effect_reasons: effects
-            .reasons
-            .iter()
-            .map(|(e, r)| (e.name().to_string(), r.clone()))
-            .collect(),
-        passes: renderer.last_passes().to_vec(),
-        settings: restir_render::settings::PARAMS
-            .iter()
-            .map(|p| {
-                (
-                    p.name.to_string(),
-                    settings
-                        .get(p.name)
-                        .map(|v| v.to_string())
-                        .unwrap_or_default(),
-                )
-            })
-            .collect(),
-        effective_spatial_radius_px: settings.effective_spatial_radius(height),
-        mean_luminance: side.image.mean_luminance(),
-        scene_time: side.scene_time.clone(),
-        summary: StatsSummary::from_reports(&side.reports, side.image.non_finite_count() as u64),
-        compare: None,
-    }
 }

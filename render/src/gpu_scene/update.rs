@@ -9,7 +9,8 @@ use std::time::Instant;
 
 use glam::Vec3;
 
-use super::{GpuScene, gpu_materials, light_areas, triangle_records};
+use super::GpuScene;
+use super::records::{gpu_materials, light_areas, triangle_records};
 use crate::gpu::Gpu;
 use crate::scene::Scene;
 use crate::scene::animation::SceneChange;

@@ -1,0 +1,162 @@
+//! The GPU records of a scene, built on upload and rebuilt by `update.rs`: triangles and
+//! their shading data in BVH order, materials, light-table slots and light geometry.
+
+use glam::Vec3;
+
+use crate::gpu_types::*;
+use crate::scene::lights::LightTable;
+use crate::scene::{AlphaMode, Scene, Wrap};
+
+/// Octahedral encoding into two snorm16, bit-identical to `oct_encode` in math.wgsl.
+pub fn oct_encode(n: Vec3) -> u32 {
+    let l1 = n.x.abs() + n.y.abs() + n.z.abs();
+    let mut p = glam::Vec2::new(n.x, n.y) / l1.max(1e-20);
+    if n.z < 0.0 {
+        let s = glam::Vec2::new(
+            if p.x >= 0.0 { 1.0 } else { -1.0 },
+            if p.y >= 0.0 { 1.0 } else { -1.0 },
+        );
+        p = (glam::Vec2::ONE - glam::Vec2::new(p.y.abs(), p.x.abs())) * s;
+    }
+    let snorm = |x: f32| ((x.clamp(-1.0, 1.0) * 32767.0).round() as i16) as u16 as u32;
+    snorm(p.x) | (snorm(p.y) << 16)
+}
+
+pub(super) fn wrap_code(w: Wrap) -> u32 {
+    match w {
+        Wrap::Repeat => 0,
+        Wrap::ClampToEdge => 1,
+        Wrap::MirroredRepeat => 2,
+    }
+}
+
+/// Which light-table slots a scene keeps at zero power: for a dynamic scene every material
+/// that emits now or is animated, and every punctual light; nothing for a static scene.
+pub(super) fn light_slots(scene: &Scene) -> (Vec<bool>, bool) {
+    let Some(anim) = &scene.animation else {
+        return (Vec::new(), false);
+    };
+    let mut kept: Vec<bool> = scene.materials.iter().map(|m| m.is_emissive()).collect();
+    for binding in &anim.materials {
+        if let Some(k) = kept.get_mut(binding.material) {
+            *k = true;
+        }
+    }
+    (kept, true)
+}
+
+/// Triangles and their shading data in BVH order.
+pub(super) fn triangle_records(
+    scene: &Scene,
+    order: &[u32],
+    positions: &[[Vec3; 3]],
+    triangle_light: &[u32],
+) -> (Vec<GpuTriangle>, Vec<GpuTriangleShading>) {
+    let mut triangles = Vec::with_capacity(order.len());
+    let mut shading = Vec::with_capacity(order.len());
+    for (bvh_index, &source) in order.iter().enumerate() {
+        let tri = &scene.triangles[source as usize];
+        let [p0, p1, p2] = positions[source as usize];
+        let verts = tri.indices.map(|i| scene.vertices[i as usize]);
+        let has_normals = verts.iter().all(|v| v.normal.length_squared() > 0.0);
+        triangles.push(GpuTriangle {
+            p0: p0.into(),
+            material: tri.material,
+            p1: p1.into(),
+            light: triangle_light[bvh_index],
+            p2: p2.into(),
+            source_index: source,
+        });
+        shading.push(GpuTriangleShading {
+            normals: verts.map(|v| {
+                if has_normals {
+                    oct_encode(v.normal.normalize())
+                } else {
+                    0
+                }
+            }),
+            has_normals: has_normals as u32,
+            uvs: verts.map(|v| v.uv.into()),
+        });
+    }
+    (triangles, shading)
+}
+
+pub(super) fn gpu_materials(scene: &Scene) -> Vec<GpuMaterial> {
+    let tex_index = |r: Option<crate::scene::TextureRef>| r.map_or(NO_TEXTURE, |r| r.texture);
+    scene
+        .materials
+        .iter()
+        .map(|m| {
+            let mut flags = 0;
+            if m.double_sided {
+                flags |= MATERIAL_DOUBLE_SIDED;
+            }
+            let mut alpha_cutoff = 0.0;
+            if let AlphaMode::Mask(cutoff) = m.alpha_mode {
+                flags |= MATERIAL_ALPHA_MASK;
+                alpha_cutoff = cutoff;
+            }
+            GpuMaterial {
+                base_color: m.base_color.into(),
+                emission: m.emission.into(),
+                metallic: m.metallic,
+                roughness: m.roughness,
+                specular: m.specular,
+                alpha_cutoff,
+                flags,
+                base_color_texture: tex_index(m.base_color_texture),
+                metallic_roughness_texture: tex_index(m.metallic_roughness_texture),
+                emissive_texture: tex_index(m.emissive_texture),
+                _pad: 0,
+            }
+        })
+        .collect()
+}
+
+/// (source triangle, area) of every triangle entry of `table`.
+pub(super) fn light_areas(scene: &Scene, order: &[u32], table: &LightTable) -> Vec<(u32, f32)> {
+    table
+        .lights
+        .iter()
+        .filter(|l| l.kind_prim >> LIGHT_KIND_SHIFT == LIGHT_KIND_TRIANGLE)
+        .map(|l| {
+            let source = order[(l.kind_prim & LIGHT_PRIM_MASK) as usize];
+            let [a, b, c] = scene.triangle_positions(source as usize);
+            (source, 0.5 * (b - a).cross(c - a).length())
+        })
+        .collect()
+}
+
+/// Per light entry: (is a triangle, BVH triangle or punctual index), `None` for the
+/// environment (a direction, no point).
+pub(super) fn geometry_kind(l: &GpuLight) -> Option<(bool, u32)> {
+    let index = l.kind_prim & LIGHT_PRIM_MASK;
+    match l.kind_prim >> LIGHT_KIND_SHIFT {
+        LIGHT_KIND_TRIANGLE => Some((true, index)),
+        LIGHT_KIND_PUNCTUAL => Some((false, index)),
+        _ => None,
+    }
+}
+
+/// Per light entry: its triangle's corners, a punctual light's position three times, or
+/// `None` for the environment.
+pub(super) fn light_geometry(
+    lights: &LightTable,
+    triangles: &[GpuTriangle],
+) -> Vec<Option<[Vec3; 3]>> {
+    lights
+        .lights
+        .iter()
+        .map(|l| {
+            geometry_kind(l).map(|(is_triangle, index)| {
+                if is_triangle {
+                    let t = &triangles[index as usize];
+                    [t.p0, t.p1, t.p2].map(Vec3::from)
+                } else {
+                    [Vec3::from(lights.punctual[index as usize].position); 3]
+                }
+            })
+        })
+        .collect()
+}

@@ -308,7 +308,7 @@ fn sweep_bias(plant: Plant) -> (f64, f64, f64) {
     static REFERENCE: std::sync::OnceLock<LinearImage> = std::sync::OnceLock::new();
     let reference = REFERENCE.get_or_init(|| sweep(Mode::Reference, 0, Plant::None).0);
     let all: Vec<usize> = (0..reference.pixels.len()).collect();
-    let ref_mean = mean_luma(&reference, &all);
+    let ref_mean = mean_luma(reference, &all);
     let (mut ratio, mut rel_rmse, mut merged) = (0.0, 0.0, 0.0);
     for seed in [1, 2] {
         let (img, m) = sweep(Mode::Restir, seed, plant);

@@ -13,11 +13,14 @@ pub struct EguiLayer {
     input: egui_winit::State,
     painter: egui_wgpu::Renderer,
     image: egui::TextureId,
-    /// Size and filter of the texture `image` was bound to.
-    bound: ((u32, u32), bool),
+    bound: Binding,
     /// The split screen's B image and what it was bound to, while there is a B.
-    compare: Option<(egui::TextureId, ((u32, u32), bool))>,
+    compare: Option<(egui::TextureId, Binding)>,
 }
+
+/// Size and filter (smooth or not) of the texture an egui image was bound to: when either
+/// changes, the image is re-bound.
+type Binding = ((u32, u32), bool);
 
 fn filter(smooth: bool) -> wgpu::FilterMode {
     if smooth {

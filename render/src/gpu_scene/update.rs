@@ -101,7 +101,7 @@ impl GpuScene {
                             let t = &triangles[index as usize];
                             [t.p0, t.p1, t.p2].map(Vec3::from)
                         } else {
-                            [Vec3::from(scene.punctual_lights[index as usize].position); 3]
+                            [scene.punctual_lights[index as usize].position; 3]
                         }
                     })
                 })

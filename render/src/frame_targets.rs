@@ -1,14 +1,19 @@
 //! Everything whose size follows the output size: the visibility and depth targets, the
-//! surface buffers (current / previous), the reservoir buffers that the stages hand around
-//! (notes §2.6: ping-pong), the debug records, radiance, accumulation and the display
-//! texture. Re-created on resize; history starts invalid.
+//! display texture, the surface buffers (current / previous), and every per-pixel buffer
+//! and reservoir chain the passes declare (`passes::resources`). Re-created on resize;
+//! history starts invalid.
 //!
-//! Without temporal reuse nothing needs last frame's data: one surface buffer and two
-//! reservoir buffers suffice. The second surface buffer and the third reservoir buffer
-//! (the history) are allocated the first time temporal reuse runs.
+//! Buffers exist when a frame needs them: the standard ones from the start (readbacks and
+//! uploads can come before any frame), others when a frame's plan first names them
+//! (`ensure`). Without temporal reuse nothing needs last frame's data: one surface buffer
+//! and two reservoir buffers suffice; the second surface buffer and the third reservoir
+//! buffer (the history) appear the first time temporal reuse runs.
+
+use std::collections::HashMap;
 
 use crate::gpu::{Gpu, texture_2d};
-use crate::gpu_types::{GpuPixelDebug, GpuReservoir, GpuSurface};
+use crate::gpu_types::GpuSurface;
+use crate::passes::resources::{Allocation, Chain, PixelBuffer, RESERVOIRS, STANDARD};
 use crate::passes::{display, gbuffer};
 
 pub struct FrameTargets {
@@ -16,18 +21,10 @@ pub struct FrameTargets {
     pub height: u32,
     pub visibility: wgpu::TextureView,
     pub depth: wgpu::TextureView,
-    /// One, or two once temporal reuse has run (current and previous).
+    /// One, or two once a pass has read the previous surfaces (current and previous).
     pub surfaces: Vec<wgpu::Buffer>,
-    /// Two, or three once temporal reuse has run (the third keeps the history).
-    pub reservoirs: Vec<wgpu::Buffer>,
-    pub debug: wgpu::Buffer,
-    pub radiance: wgpu::Buffer,
-    pub accumulation: wgpu::Buffer,
-    /// A reference image for the error view (zeros until one is uploaded).
-    pub reference: wgpu::Buffer,
-    /// The other side of a split-screen comparison for the difference view: a 16-byte
-    /// placeholder until one is set (`ensure_comparison`).
-    pub comparison: wgpu::Buffer,
+    pixels: HashMap<&'static str, wgpu::Buffer>,
+    chains: HashMap<&'static str, Vec<wgpu::Buffer>>,
     pub display: wgpu::Texture,
     pub display_view: wgpu::TextureView,
     /// The same texture seen as sRGB, for samplers (the viewer).
@@ -45,12 +42,17 @@ fn pixel_buffer(gpu: &Gpu, label: &str, pixels: u64, stride: usize) -> wgpu::Buf
     })
 }
 
+/// What a frame needs allocated: per chain the number of buffers, whether the previous
+/// surfaces are read, and the per-pixel buffers it names.
+#[derive(Default, Debug)]
+pub struct Needs {
+    pub chains: Vec<(&'static Chain, usize)>,
+    pub previous_surfaces: bool,
+    pub pixels: Vec<&'static PixelBuffer>,
+}
+
 impl FrameTargets {
     pub fn new(gpu: &Gpu, width: u32, height: u32) -> FrameTargets {
-        let pixels = width as u64 * height as u64;
-        let surface = std::mem::size_of::<GpuSurface>();
-        let reservoir = std::mem::size_of::<GpuReservoir>();
-        let color = std::mem::size_of::<[f32; 4]>();
         let visibility = texture_2d(
             gpu,
             "visibility",
@@ -88,70 +90,101 @@ impl FrameTargets {
             usage: Some(wgpu::TextureUsages::TEXTURE_BINDING),
             ..Default::default()
         });
-        FrameTargets {
+        let mut targets = FrameTargets {
             width,
             height,
             visibility: visibility.create_view(&Default::default()),
             depth: depth.create_view(&Default::default()),
-            surfaces: vec![pixel_buffer(gpu, "surfaces 0", pixels, surface)],
-            reservoirs: (0..2)
-                .map(|i| pixel_buffer(gpu, &format!("reservoirs {i}"), pixels, reservoir))
-                .collect(),
-            debug: pixel_buffer(
-                gpu,
-                "pixel debug",
-                pixels,
-                std::mem::size_of::<GpuPixelDebug>(),
-            ),
-            radiance: pixel_buffer(gpu, "radiance", pixels, color),
-            accumulation: pixel_buffer(gpu, "accumulation", pixels, color),
-            reference: pixel_buffer(gpu, "reference", pixels, color),
-            comparison: pixel_buffer(gpu, "comparison", 0, color),
+            surfaces: Vec::new(),
+            pixels: HashMap::new(),
+            chains: HashMap::new(),
             display,
             display_view,
             display_srgb_view,
-        }
+        };
+        targets.ensure(
+            gpu,
+            &Needs {
+                chains: vec![(&RESERVOIRS, 2)],
+                previous_surfaces: false,
+                pixels: STANDARD.to_vec(),
+            },
+        );
+        targets
     }
 
-    /// Allocates the previous-frame surfaces and the history reservoirs (first temporal frame).
-    pub fn ensure_history(&mut self, gpu: &Gpu) {
+    /// Allocates what `needs` names and is missing (nothing is ever re-created here, so
+    /// cached bind groups stay valid).
+    pub fn ensure(&mut self, gpu: &Gpu, needs: &Needs) {
         let pixels = self.pixel_count();
-        if self.surfaces.len() < 2 {
-            self.surfaces.push(pixel_buffer(
-                gpu,
-                "surfaces 1",
-                pixels,
-                std::mem::size_of::<GpuSurface>(),
-            ));
+        let surface_count = if needs.previous_surfaces { 2 } else { 1 };
+        while self.surfaces.len() < surface_count {
+            let label = format!("surfaces {}", self.surfaces.len());
+            let stride = std::mem::size_of::<GpuSurface>();
+            self.surfaces
+                .push(pixel_buffer(gpu, &label, pixels, stride));
         }
-        if self.reservoirs.len() < 3 {
-            self.reservoirs.push(pixel_buffer(
-                gpu,
-                "reservoirs 2",
-                pixels,
-                std::mem::size_of::<GpuReservoir>(),
-            ));
+        for &(chain, count) in &needs.chains {
+            let buffers = self.chains.entry(chain.name).or_default();
+            while buffers.len() < count {
+                let label = format!("{} {}", chain.name, buffers.len());
+                buffers.push(pixel_buffer(gpu, &label, pixels, chain.stride));
+            }
+        }
+        for &buffer in &needs.pixels {
+            self.pixels.entry(buffer.name).or_insert_with(|| {
+                let count = match buffer.allocation {
+                    Allocation::Full => pixels,
+                    Allocation::Placeholder => 0,
+                };
+                pixel_buffer(gpu, buffer.name, count, buffer.stride)
+            });
         }
     }
 
-    /// Allocates the comparison image at full size; true if it was re-created (bind
+    /// The buffer `buffer` (allocated: standard, or named by an earlier `ensure`).
+    pub fn pixels(&self, buffer: &PixelBuffer) -> &wgpu::Buffer {
+        self.pixels_named(buffer.name)
+    }
+
+    pub fn pixels_named(&self, name: &str) -> &wgpu::Buffer {
+        self.pixels
+            .get(name)
+            .unwrap_or_else(|| panic!("{name} was never allocated"))
+    }
+
+    /// Buffer `index` of `chain`.
+    pub fn chain(&self, chain: &Chain, index: usize) -> &wgpu::Buffer {
+        self.chain_named(chain.name, index)
+    }
+
+    pub fn chain_named(&self, name: &str, index: usize) -> &wgpu::Buffer {
+        &self.chains[name][index]
+    }
+
+    pub fn chain_len(&self, chain: &Chain) -> usize {
+        self.chains.get(chain.name).map_or(0, Vec::len)
+    }
+
+    /// Allocates a placeholder buffer at full size; true if it was re-created (bind
     /// groups that hold the placeholder must be rebuilt).
-    pub fn ensure_comparison(&mut self, gpu: &Gpu) -> bool {
-        let size = self.pixel_count() * std::mem::size_of::<[f32; 4]>() as u64;
-        if self.comparison.size() >= size {
+    pub fn ensure_full(&mut self, gpu: &Gpu, buffer: &'static PixelBuffer) -> bool {
+        let size = self.pixel_count() * buffer.stride as u64;
+        if self
+            .pixels
+            .get(buffer.name)
+            .is_some_and(|b| b.size() >= size)
+        {
             return false;
         }
-        self.comparison = pixel_buffer(
-            gpu,
-            "comparison",
-            self.pixel_count(),
-            std::mem::size_of::<[f32; 4]>(),
-        );
+        let full = pixel_buffer(gpu, buffer.name, self.pixel_count(), buffer.stride);
+        self.pixels.insert(buffer.name, full);
         true
     }
 
+    /// Whether the previous-frame surfaces and the history reservoirs exist.
     pub fn has_history(&self) -> bool {
-        self.surfaces.len() == 2 && self.reservoirs.len() == 3
+        self.surfaces.len() == 2 && self.chain_len(&RESERVOIRS) == 3
     }
 
     pub fn pixel_count(&self) -> u64 {

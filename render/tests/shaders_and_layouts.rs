@@ -1,5 +1,6 @@
 //! Every pass shader composes, parses and validates with naga for the general effect set,
-//! for no optional effect at all and for each effect alone; and every host struct in
+//! for no optional effect at all and for each effect alone; every pass declaration
+//! (`PassDef`) matches its shader's group-2 bindings; and every host struct in
 //! gpu_types.rs has the size and field offsets of its WGSL twin (checked with naga's
 //! layouter on the composed source). No GPU needed.
 
@@ -9,17 +10,8 @@ use restir_render::effects::{Effect, EffectSet};
 use restir_render::gpu_types::*;
 use restir_render::shader_source::compose;
 
-const PASSES: [&str; 9] = [
-    "presample_lights.wgsl",
-    "gbuffer_raster.wgsl",
-    "gbuffer_resolve.wgsl",
-    "initial.wgsl",
-    "temporal.wgsl",
-    "spatial.wgsl",
-    "shade.wgsl",
-    "reference.wgsl",
-    "display.wgsl",
-];
+use restir_render::passes::pass::Access;
+use restir_render::passes::resources::Resource;
 
 fn parse_and_validate(name: &str, defines: &BTreeSet<String>) -> naga::Module {
     let source = compose(name, defines).unwrap_or_else(|e| panic!("{name}: {e}"));
@@ -47,8 +39,8 @@ fn every_pass_validates_for_every_effect_set() {
         );
     }
     for defines in &sets {
-        for pass in PASSES {
-            parse_and_validate(pass, defines);
+        for pass in restir_render::passes::ALL {
+            parse_and_validate(pass.shader, defines);
         }
     }
 }
@@ -262,4 +254,75 @@ fn host_structs_match_wgsl_layouts() {
         GpuEnvironment,
         [size, light, strength, rotation]
     );
+}
+
+/// What the shader declares at a group-2 binding, as the declaration should name it.
+fn declared_kind(module: &naga::Module, var: &naga::GlobalVariable) -> String {
+    match var.space {
+        naga::AddressSpace::Uniform => "uniform".into(),
+        naga::AddressSpace::Storage { access } => {
+            let written = access.contains(naga::StorageAccess::STORE);
+            let stride = match module.types[var.ty].inner {
+                naga::TypeInner::Array { stride, .. } => format!(" stride {stride}"),
+                _ => String::new(),
+            };
+            format!(
+                "storage {}{stride}",
+                if written { "read_write" } else { "read" }
+            )
+        }
+        naga::AddressSpace::Handle => match module.types[var.ty].inner {
+            naga::TypeInner::Image {
+                class: naga::ImageClass::Storage { .. },
+                ..
+            } => "storage texture".into(),
+            naga::TypeInner::Image { .. } => "texture".into(),
+            ref other => format!("{other:?}"),
+        },
+        other => format!("{other:?}"),
+    }
+}
+
+/// What a `PassDef` binding implies the shader declares.
+fn expected_kind(binding: &restir_render::passes::pass::Binding) -> String {
+    let access = match binding.access {
+        Access::Read => "read",
+        Access::ReadWrite => "read_write",
+    };
+    let stride = |s: usize| format!("storage {access} stride {s}");
+    match binding.resource {
+        Resource::PassInfo | Resource::DisplayUniform => "uniform".into(),
+        Resource::Visibility => "texture".into(),
+        Resource::Output => "storage texture".into(),
+        Resource::Surfaces | Resource::PrevSurfaces => stride(std::mem::size_of::<GpuSurface>()),
+        Resource::Pixels(p) => stride(p.stride),
+        Resource::Chain(c, _) => stride(c.stride),
+        Resource::ShownImage => stride(16),
+        Resource::LightTiles => stride(std::mem::size_of::<GpuTileSample>()),
+        Resource::PrevTriangles => stride(std::mem::size_of::<GpuTriangle>()),
+    }
+}
+
+/// A pass's declaration is the only description of its bindings the host has (layouts and
+/// bind groups are derived from it), so it must say exactly what the shader declares:
+/// the same bindings, read or written as the shader does, with the element size of the
+/// buffer the renderer binds there.
+#[test]
+fn every_pass_declaration_matches_its_shader_bindings() {
+    let defines = EffectSet::all().defines();
+    for pass in restir_render::passes::ALL {
+        let module = parse_and_validate(pass.shader, &defines);
+        let mut declared: Vec<(u32, String)> = module
+            .global_variables
+            .iter()
+            .filter_map(|(_, var)| {
+                let binding = var.binding.as_ref()?;
+                (binding.group == 2).then(|| (binding.binding, declared_kind(&module, var)))
+            })
+            .collect();
+        declared.sort();
+        let expected: Vec<(u32, String)> =
+            (0..).zip(pass.group.iter().map(expected_kind)).collect();
+        assert_eq!(declared, expected, "{} ({})", pass.name, pass.shader);
+    }
 }

@@ -5,44 +5,43 @@
 
 use std::collections::BTreeSet;
 
-use super::{ComputePass, PassLayouts, shader_module, storage};
+use super::compile::{PassLayouts, shader_module};
+use super::pass::{Dispatch, PassDef, read, write};
+use super::resources::Resource::*;
 use crate::gpu::timing::FrameRecorder;
 use crate::gpu::{Gpu, GpuError};
 
 pub const VISIBILITY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
-/// Resolve pass group 2: 0 visibility texture, 1 surfaces out, 2 the previous frame's
-/// triangles (object motion; read only under ANIMATION).
-pub fn resolve_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
-    vec![
-        wgpu::BindGroupLayoutEntry {
-            binding: 0,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Uint,
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
-            },
-            count: None,
-        },
-        storage(1, false),
-        storage(2, true),
-    ]
+/// Rasterises every triangle into the visibility and depth targets (groups 0 and 1 only).
+pub const RASTER: PassDef = PassDef {
+    name: "gbuffer raster",
+    shader: "gbuffer_raster.wgsl",
+    group: &[],
+    dispatch: Dispatch::Raster,
+};
+
+/// Turns the visibility buffer into `Surface` records; the previous frame's triangles
+/// give object motion (read only under ANIMATION).
+pub const RESOLVE: PassDef = PassDef {
+    name: "gbuffer resolve",
+    shader: "gbuffer_resolve.wgsl",
+    group: &[read(Visibility), write(Surfaces), read(PrevTriangles)],
+    dispatch: Dispatch::Pixels,
+};
+
+pub struct RasterPass {
+    pipeline: wgpu::RenderPipeline,
 }
 
-pub struct GBufferPass {
-    raster: wgpu::RenderPipeline,
-    pub resolve: ComputePass,
-}
-
-impl GBufferPass {
+impl RasterPass {
     pub fn new(
         gpu: &Gpu,
         layouts: &PassLayouts,
         defines: &BTreeSet<String>,
-    ) -> Result<GBufferPass, GpuError> {
-        let module = shader_module(gpu, "gbuffer_raster.wgsl", defines)?;
+    ) -> Result<RasterPass, GpuError> {
+        let module = shader_module(gpu, RASTER.shader, defines)?;
         let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let layout = gpu
             .device
@@ -93,19 +92,11 @@ impl GBufferPass {
         if let Some(e) = pollster::block_on(scope.pop()) {
             return Err(GpuError::Validation(format!("gbuffer raster: {e}")));
         }
-        let resolve = ComputePass::new(
-            gpu,
-            layouts,
-            "gbuffer resolve",
-            "gbuffer_resolve.wgsl",
-            defines,
-            &layouts.resolve,
-        )?;
-        Ok(GBufferPass { raster, resolve })
+        Ok(RasterPass { pipeline: raster })
     }
 
     /// Rasterises `triangle_count` triangles into the visibility and depth targets.
-    pub fn record_raster(
+    pub fn record(
         &self,
         rec: &mut FrameRecorder,
         groups: [&wgpu::BindGroup; 2],
@@ -113,9 +104,9 @@ impl GBufferPass {
         depth: &wgpu::TextureView,
         triangle_count: u32,
     ) {
-        rec.render_pass("gbuffer raster", |encoder, timestamp_writes| {
+        rec.render_pass(RASTER.name, |encoder, timestamp_writes| {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("gbuffer raster"),
+                label: Some(RASTER.name),
                 color_attachments: &[Some(wgpu::RenderPassColorAttachment {
                     view: visibility,
                     depth_slice: None,
@@ -137,7 +128,7 @@ impl GBufferPass {
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            pass.set_pipeline(&self.raster);
+            pass.set_pipeline(&self.pipeline);
             pass.set_bind_group(0, groups[0], &[]);
             pass.set_bind_group(1, groups[1], &[]);
             pass.draw(0..triangle_count * 3, 0..1);

@@ -1,15 +1,16 @@
 //! Initial RIS candidates (initial.wgsl): surfaces → reservoir (M = 1) + debug record.
 
-use super::storage;
+use super::pass::{Dispatch, PassDef, read, write};
+use super::resources::{DEBUG, RESERVOIRS, Resource::*, Role};
 
-pub const SHADER: &str = "initial.wgsl";
-
-/// 0 surfaces, 1 reservoirs out, 2 debug, 3 light tiles.
-pub fn entries() -> Vec<wgpu::BindGroupLayoutEntry> {
-    vec![
-        storage(0, true),
-        storage(1, false),
-        storage(2, false),
-        storage(3, true),
-    ]
-}
+pub const PASS: PassDef = PassDef {
+    name: "initial",
+    shader: "initial.wgsl",
+    group: &[
+        read(Surfaces),
+        write(Chain(&RESERVOIRS, Role::Out)),
+        write(Pixels(&DEBUG)),
+        read(LightTiles),
+    ],
+    dispatch: Dispatch::Pixels,
+};

@@ -1,13 +1,17 @@
 //! Light tiles (presample_lights.wgsl): power-sampled lights packed into tiles once per
 //! frame, before the initial pass reads them.
 
-use super::storage;
+use super::pass::{Dispatch, PassDef, write};
+use super::resources::Resource::*;
+use crate::shader_constants::{LIGHT_TILE_COUNT, LIGHT_TILE_SIZE};
 
-pub const SHADER: &str = "presample_lights.wgsl";
-/// Invocations per workgroup of the 1-D dispatch.
-pub const WORKGROUP_SIZE: u32 = 64;
-
-/// 0 light tiles (written).
-pub fn entries() -> Vec<wgpu::BindGroupLayoutEntry> {
-    vec![storage(0, false)]
-}
+pub const PASS: PassDef = PassDef {
+    name: "presample lights",
+    shader: "presample_lights.wgsl",
+    group: &[write(LightTiles)],
+    dispatch: Dispatch::Threads {
+        invocations: LIGHT_TILE_COUNT * LIGHT_TILE_SIZE,
+        // The shader's @workgroup_size.
+        workgroup: 64,
+    },
+};

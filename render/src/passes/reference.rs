@@ -1,18 +1,19 @@
 //! The reference renderer (reference.wgsl): ray-traced camera rays, light and BSDF
 //! sampling with MIS; writes radiance and adds it to the accumulation. With jitter off it
 //! shades the rasterised G-buffer's surfaces instead of tracing its own camera rays.
+//! One dispatch per chunk of samples, the chunk picked by its `PassInfo` slot.
 
-use super::{pass_info_entry, storage};
+use super::pass::{Dispatch, PassDef, read, write};
+use super::resources::{ACCUMULATION, RADIANCE, Resource::*};
 
-pub const SHADER: &str = "reference.wgsl";
-
-/// 0 radiance, 1 accumulation, 2 pass info (which chunk of samples this dispatch takes),
-/// 3 surfaces (the primary hits when jitter is off).
-pub fn entries() -> Vec<wgpu::BindGroupLayoutEntry> {
-    vec![
-        storage(0, false),
-        storage(1, false),
-        pass_info_entry(2),
-        storage(3, true),
-    ]
-}
+pub const PASS: PassDef = PassDef {
+    name: "reference",
+    shader: "reference.wgsl",
+    group: &[
+        write(Pixels(&RADIANCE)),
+        write(Pixels(&ACCUMULATION)),
+        read(PassInfo),
+        read(Surfaces),
+    ],
+    dispatch: Dispatch::Pixels,
+};

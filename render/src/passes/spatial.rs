@@ -1,17 +1,19 @@
-//! Spatial reuse (spatial.wgsl): one dispatch per pass, reading one reservoir buffer and
-//! writing another.
+//! Spatial reuse (spatial.wgsl): one dispatch per pass, reading the previous pass's
+//! reservoirs and writing new ones; the pass index (a `PassInfo` slot) decorrelates the
+//! passes' random numbers.
 
-use super::{pass_info_entry, storage};
+use super::pass::{Dispatch, PassDef, read, write};
+use super::resources::{DEBUG, RESERVOIRS, Resource::*, Role};
 
-pub const SHADER: &str = "spatial.wgsl";
-
-/// 0 surfaces, 1 reservoirs in, 2 reservoirs out, 3 debug, 4 pass info.
-pub fn entries() -> Vec<wgpu::BindGroupLayoutEntry> {
-    vec![
-        storage(0, true),
-        storage(1, true),
-        storage(2, false),
-        storage(3, false),
-        pass_info_entry(4),
-    ]
-}
+pub const PASS: PassDef = PassDef {
+    name: "spatial",
+    shader: "spatial.wgsl",
+    group: &[
+        read(Surfaces),
+        read(Chain(&RESERVOIRS, Role::In)),
+        write(Chain(&RESERVOIRS, Role::Out)),
+        write(Pixels(&DEBUG)),
+        read(PassInfo),
+    ],
+    dispatch: Dispatch::Pixels,
+};

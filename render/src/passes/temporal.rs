@@ -1,19 +1,19 @@
 //! Temporal reuse (temporal.wgsl): reprojection, validation with a rejection mask,
 //! target re-evaluation and the merge with the previous frame's reservoir.
 
-use super::storage;
+use super::pass::{Dispatch, PassDef, read, write};
+use super::resources::{DEBUG, RESERVOIRS, Resource::*, Role};
 
-pub const SHADER: &str = "temporal.wgsl";
-
-/// 0 surfaces, 1 previous surfaces, 2 reservoirs in, 3 previous reservoirs,
-/// 4 reservoirs out, 5 debug.
-pub fn entries() -> Vec<wgpu::BindGroupLayoutEntry> {
-    vec![
-        storage(0, true),
-        storage(1, true),
-        storage(2, true),
-        storage(3, true),
-        storage(4, false),
-        storage(5, false),
-    ]
-}
+pub const PASS: PassDef = PassDef {
+    name: "temporal",
+    shader: "temporal.wgsl",
+    group: &[
+        read(Surfaces),
+        read(PrevSurfaces),
+        read(Chain(&RESERVOIRS, Role::In)),
+        read(Chain(&RESERVOIRS, Role::History)),
+        write(Chain(&RESERVOIRS, Role::Out)),
+        write(Pixels(&DEBUG)),
+    ],
+    dispatch: Dispatch::Pixels,
+};

@@ -1,50 +1,14 @@
-//! Group-2 bind groups for every buffer arrangement the ping-pong produces, created on
-//! first use and kept until the targets are re-created (resize).
+//! Group-2 bind groups, one per pass and arrangement of resolved resources (the
+//! ping-pong produces a few), created on first use and kept until a bound buffer is
+//! re-created (resize, scene change, a placeholder grown to full size).
 
 use std::collections::HashMap;
 
+use super::resolve::Bound;
 use crate::frame_targets::FrameTargets;
 use crate::gpu::Gpu;
 use crate::gpu_types::GpuPassInfo;
-use crate::passes::{PassLayouts, buffer_bind_group, buffer_entries};
-
-/// A pass and the indices of the surface / reservoir buffers it reads and writes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Key {
-    Resolve {
-        surfaces: usize,
-    },
-    Initial {
-        surfaces: usize,
-        out: usize,
-        /// Whether `light_tiles` is the full tile buffer (it is re-created once).
-        tiles: bool,
-    },
-    Temporal {
-        surfaces: usize,
-        input: usize,
-        prev: usize,
-        out: usize,
-    },
-    Spatial {
-        surfaces: usize,
-        input: usize,
-        out: usize,
-    },
-    Shade {
-        surfaces: usize,
-        input: usize,
-    },
-    Presample,
-    Reference {
-        surfaces: usize,
-    },
-    Display {
-        surfaces: usize,
-        reservoirs: usize,
-        accumulated: bool,
-    },
-}
+use crate::passes::{PassDef, PassLayouts};
 
 /// Buffers some groups bind besides the size-dependent targets.
 pub struct Uniforms<'a> {
@@ -58,7 +22,7 @@ pub struct Uniforms<'a> {
 
 #[derive(Default)]
 pub struct BindGroupCache {
-    groups: HashMap<Key, wgpu::BindGroup>,
+    groups: HashMap<(&'static str, Vec<Bound>), wgpu::BindGroup>,
 }
 
 impl BindGroupCache {
@@ -72,12 +36,16 @@ impl BindGroupCache {
         layouts: &PassLayouts,
         t: &FrameTargets,
         u: &Uniforms,
-        key: Key,
+        pass: &'static PassDef,
+        bound: &[Bound],
     ) -> wgpu::BindGroup {
+        if let Some(group) = self.groups.get(&(pass.name, bound.to_vec())) {
+            return group.clone();
+        }
+        let group = create(gpu, layouts.group2(pass), pass.name, t, u, bound);
         self.groups
-            .entry(key)
-            .or_insert_with(|| create(gpu, layouts, t, u, key))
-            .clone()
+            .insert((pass.name, bound.to_vec()), group.clone());
+        group
     }
 }
 
@@ -92,162 +60,32 @@ fn pass_info_binding(buffer: &wgpu::Buffer) -> wgpu::BindingResource<'_> {
 
 fn create(
     gpu: &Gpu,
-    layouts: &PassLayouts,
+    layout: &wgpu::BindGroupLayout,
+    label: &str,
     t: &FrameTargets,
     u: &Uniforms,
-    key: Key,
+    bound: &[Bound],
 ) -> wgpu::BindGroup {
-    let prev_of = |s: usize| 1 - s;
-    match key {
-        Key::Resolve { surfaces } => gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("gbuffer resolve"),
-            layout: &layouts.resolve,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: wgpu::BindingResource::TextureView(&t.visibility),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: t.surfaces[surfaces].as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: u.prev_triangles.as_entire_binding(),
-                },
-            ],
-        }),
-        Key::Initial { surfaces, out, .. } => buffer_bind_group(
-            gpu,
-            "initial",
-            &layouts.initial,
-            &[
-                &t.surfaces[surfaces],
-                &t.reservoirs[out],
-                &t.debug,
-                u.light_tiles,
-            ],
-        ),
-        Key::Presample => buffer_bind_group(
-            gpu,
-            "presample lights",
-            &layouts.presample,
-            &[u.light_tiles],
-        ),
-        Key::Temporal {
-            surfaces,
-            input,
-            prev,
-            out,
-        } => buffer_bind_group(
-            gpu,
-            "temporal",
-            &layouts.temporal,
-            &[
-                &t.surfaces[surfaces],
-                &t.surfaces[prev_of(surfaces)],
-                &t.reservoirs[input],
-                &t.reservoirs[prev],
-                &t.reservoirs[out],
-                &t.debug,
-            ],
-        ),
-        Key::Spatial {
-            surfaces,
-            input,
-            out,
-        } => gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("spatial"),
-            layout: &layouts.spatial,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: t.surfaces[surfaces].as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: t.reservoirs[input].as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: t.reservoirs[out].as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: t.debug.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 4,
-                    resource: pass_info_binding(u.pass_info),
-                },
-            ],
-        }),
-        Key::Shade { surfaces, input } => buffer_bind_group(
-            gpu,
-            "shade",
-            &layouts.shade,
-            &[
-                &t.surfaces[surfaces],
-                &t.reservoirs[input],
-                &t.debug,
-                &t.radiance,
-                &t.accumulation,
-            ],
-        ),
-        Key::Reference { surfaces } => gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("reference"),
-            layout: &layouts.reference,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: t.radiance.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: t.accumulation.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: pass_info_binding(u.pass_info),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: t.surfaces[surfaces].as_entire_binding(),
-                },
-            ],
-        }),
-        Key::Display {
-            surfaces,
-            reservoirs,
-            accumulated,
-        } => {
-            let image = if accumulated {
-                &t.accumulation
-            } else {
-                &t.radiance
-            };
-            let buffers = [
-                image,
-                &t.surfaces[surfaces],
-                &t.debug,
-                &t.reservoirs[reservoirs],
-                &t.reference,
-                u.display,
-            ];
-            let mut entries = buffer_entries(&buffers);
-            entries.push(wgpu::BindGroupEntry {
-                binding: 6,
-                resource: wgpu::BindingResource::TextureView(&t.display_view),
-            });
-            entries.push(wgpu::BindGroupEntry {
-                binding: 7,
-                resource: t.comparison.as_entire_binding(),
-            });
-            gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("display"),
-                layout: &layouts.display,
-                entries: &entries,
-            })
-        }
-    }
+    let entries: Vec<_> = (0..)
+        .zip(bound)
+        .map(|(binding, b)| wgpu::BindGroupEntry {
+            binding,
+            resource: match *b {
+                Bound::Surfaces(i) => t.surfaces[i].as_entire_binding(),
+                Bound::Pixels(name) => t.pixels_named(name).as_entire_binding(),
+                Bound::Chain(name, i) => t.chain_named(name, i).as_entire_binding(),
+                Bound::PassInfo => pass_info_binding(u.pass_info),
+                Bound::DisplayUniform => u.display.as_entire_binding(),
+                Bound::LightTiles => u.light_tiles.as_entire_binding(),
+                Bound::PrevTriangles => u.prev_triangles.as_entire_binding(),
+                Bound::Visibility => wgpu::BindingResource::TextureView(&t.visibility),
+                Bound::Output => wgpu::BindingResource::TextureView(&t.display_view),
+            },
+        })
+        .collect();
+    gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout,
+        entries: &entries,
+    })
 }

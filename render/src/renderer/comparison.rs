@@ -4,6 +4,7 @@
 
 use super::Renderer;
 use crate::image::LinearImage;
+use crate::passes::resources::{ACCUMULATION, COMPARISON, RADIANCE};
 
 impl Renderer {
     /// Uploads B's linear image (same size) for the difference view.
@@ -19,7 +20,7 @@ impl Renderer {
         self.ensure_comparison();
         self.comparison_scale = 1.0;
         self.gpu.queue.write_buffer(
-            &self.targets.comparison,
+            self.targets.pixels(&COMPARISON),
             0,
             bytemuck::cast_slice(&image.pixels),
         );
@@ -44,19 +45,20 @@ impl Renderer {
         self.ensure_comparison();
         let (source, scale) = if other.shows_accumulation() {
             let n = other.accumulated_frames.max(1);
-            (&other.targets.accumulation, 1.0 / n as f32)
+            (other.targets.pixels(&ACCUMULATION), 1.0 / n as f32)
         } else {
-            (&other.targets.radiance, 1.0)
+            (other.targets.pixels(&RADIANCE), 1.0)
         };
         self.comparison_scale = scale;
         let mut encoder = self.gpu.device.create_command_encoder(&Default::default());
-        encoder.copy_buffer_to_buffer(source, 0, &self.targets.comparison, 0, source.size());
+        let target = self.targets.pixels(&COMPARISON);
+        encoder.copy_buffer_to_buffer(source, 0, target, 0, source.size());
         self.gpu.queue.submit([encoder.finish()]);
         Ok(())
     }
 
     fn ensure_comparison(&mut self) {
-        if self.targets.ensure_comparison(&self.gpu) {
+        if self.targets.ensure_full(&self.gpu, &COMPARISON) {
             self.bind_groups.clear();
         }
     }

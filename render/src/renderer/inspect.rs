@@ -2,7 +2,6 @@
 //! reservoir after each stage, its surface and its debug record into a small buffer that
 //! comes back asynchronously with the frame's report.
 
-use crate::frame_targets::FrameTargets;
 use crate::gpu::readback::ReadbackRing;
 use crate::gpu_types::{GpuPixelDebug, GpuReservoir, GpuSurface, NO_LIGHT};
 use crate::shader_constants::*;
@@ -103,12 +102,11 @@ impl InspectCapture {
         })
     }
 
-    /// Copies the pixel's reservoir from buffer `reservoirs` as the next stage.
+    /// Copies the pixel's reservoir from `reservoirs` as the next stage.
     pub fn copy_reservoir(
         &mut self,
         encoder: &mut wgpu::CommandEncoder,
-        t: &FrameTargets,
-        reservoirs: usize,
+        reservoirs: &wgpu::Buffer,
         stage: &str,
     ) {
         let slot = self.stages.len() as u64;
@@ -129,7 +127,7 @@ impl InspectCapture {
         };
         self.stages.push(name);
         encoder.copy_buffer_to_buffer(
-            &t.reservoirs[reservoirs],
+            reservoirs,
             self.index * RESERVOIR_BYTES,
             &self.staging,
             SURFACE_BYTES + DEBUG_BYTES + slot * RESERVOIR_BYTES,
@@ -141,19 +139,19 @@ impl InspectCapture {
     pub fn copy_pixel_records(
         &self,
         encoder: &mut wgpu::CommandEncoder,
-        t: &FrameTargets,
-        surfaces: usize,
+        surfaces: &wgpu::Buffer,
+        debug: &wgpu::Buffer,
     ) {
         let index = self.index;
         encoder.copy_buffer_to_buffer(
-            &t.surfaces[surfaces],
+            surfaces,
             index * SURFACE_BYTES,
             &self.staging,
             0,
             SURFACE_BYTES,
         );
         encoder.copy_buffer_to_buffer(
-            &t.debug,
+            debug,
             index * DEBUG_BYTES,
             &self.staging,
             SURFACE_BYTES,

@@ -1,16 +1,19 @@
 //! The renderer: owns the device resources of one scene at one size and renders frames.
-//! `setup.rs` creates it; `record.rs` records a frame's passes in order (reading it top to
-//! bottom is reading the algorithm); `uniforms.rs` fills the per-frame uniforms;
-//! `bind_groups.rs` caches the bind groups the ping-pong needs; `reports.rs` gathers each
+//! `setup.rs` creates it; `frame_plan.rs` lists a frame's passes in order (reading it top
+//! to bottom is reading the algorithm); `resolve.rs` maps each pass's bindings to buffers
+//! (the ping-pong); `record.rs` records the plan; `uniforms.rs` fills the per-frame
+//! uniforms; `bind_groups.rs` caches the bind groups; `reports.rs` gathers each
 //! frame's counters, times and inspected pixel; `readback.rs` brings images and per-pixel
 //! records back to the CPU; `inspect.rs` is the pixel inspector's capture.
 
 mod bind_groups;
 mod comparison;
+pub mod frame_plan;
 mod inspect;
 mod readback;
 mod record;
 mod reports;
+pub mod resolve;
 mod setup;
 mod uniforms;
 
@@ -28,7 +31,8 @@ use crate::gpu::timing::{PassTimer, TimingMode};
 use crate::gpu::{Gpu, GpuError};
 use crate::gpu_scene::{GpuScene, SceneInfo, SceneUpdateTimes};
 use crate::gpu_types::*;
-use crate::passes::{ComputePass, PassLayouts, gbuffer::GBufferPass};
+use crate::passes::resources::{ACCUMULATION, REFERENCE, RESERVOIRS};
+use crate::passes::{ComputePass, PassLayouts, gbuffer::RasterPass};
 use crate::scene::animation::SceneChange;
 use crate::scene::{Camera, Scene};
 use crate::settings::Settings;
@@ -43,17 +47,8 @@ pub const MAX_SIZE: u32 = 8192;
 /// Pipelines compiled for one set of defines, built on first use.
 #[derive(Default)]
 struct PipelineVariant {
-    gbuffer: Option<GBufferPass>,
+    raster: Option<RasterPass>,
     passes: HashMap<&'static str, ComputePass>,
-}
-
-/// Where the reservoirs of the last frame ended up, and which surfaces are current.
-#[derive(Clone, Copy, Debug, Default)]
-struct PingPong {
-    /// Index of the reservoir buffer holding the last frame's final reservoirs.
-    history: usize,
-    /// Index of the surface buffer written by the last frame.
-    surfaces: usize,
 }
 
 pub struct Renderer {
@@ -95,7 +90,8 @@ pub struct Renderer {
     prev_jitter: glam::Vec2,
     frame_index: u64,
     seed: u32,
-    ping_pong: PingPong,
+    /// Where last frame's reservoirs and surfaces are (the ping-pong).
+    carried: resolve::Carried,
     history_valid: bool,
     cut_requested: bool,
     accumulated_frames: u32,
@@ -175,7 +171,7 @@ impl Renderer {
         self.targets = FrameTargets::new(&self.gpu, width, height);
         self.bind_groups.clear();
         // The new targets start without history buffers.
-        self.ping_pong = PingPong::default();
+        self.carried = resolve::Carried::default();
         self.invalidate_history();
         self.reset_accumulation();
         Ok(())
@@ -273,7 +269,8 @@ impl Renderer {
         };
         let data = vec![poisoned; self.targets.pixel_count() as usize];
         self.gpu.queue.write_buffer(
-            &self.targets.reservoirs[self.ping_pong.history],
+            self.targets
+                .chain(&RESERVOIRS, self.carried.history(&RESERVOIRS)),
             0,
             bytemuck::cast_slice(&data),
         );
@@ -283,7 +280,7 @@ impl Renderer {
     pub fn reset_accumulation(&mut self) {
         self.accumulated_frames = 0;
         let mut encoder = self.gpu.device.create_command_encoder(&Default::default());
-        encoder.clear_buffer(&self.targets.accumulation, 0, None);
+        encoder.clear_buffer(self.targets.pixels(&ACCUMULATION), 0, None);
         self.gpu.queue.submit([encoder.finish()]);
     }
 
@@ -320,7 +317,7 @@ impl Renderer {
             self.targets.height
         );
         self.gpu.queue.write_buffer(
-            &self.targets.reference,
+            self.targets.pixels(&REFERENCE),
             0,
             bytemuck::cast_slice(&image.pixels),
         );

@@ -4,6 +4,7 @@ use super::Renderer;
 use crate::gpu::readback::{read_buffer, read_rgba8_texture};
 use crate::gpu_types::{GpuPixelDebug, GpuReservoir, GpuSurface};
 use crate::image::LinearImage;
+use crate::passes::resources::{ACCUMULATION, DEBUG, RADIANCE, RESERVOIRS};
 
 impl Renderer {
     fn read_image(&self, buffer: &wgpu::Buffer, scale: f32) -> LinearImage {
@@ -27,13 +28,13 @@ impl Renderer {
 
     /// Linear radiance of the last frame.
     pub fn read_radiance(&self) -> LinearImage {
-        self.read_image(&self.targets.radiance, 1.0)
+        self.read_image(self.targets.pixels(&RADIANCE), 1.0)
     }
 
     /// The average of all frames since the last accumulation reset.
     pub fn read_accumulated(&self) -> LinearImage {
         self.read_image(
-            &self.targets.accumulation,
+            self.targets.pixels(&ACCUMULATION),
             1.0 / self.accumulated_frames.max(1) as f32,
         )
     }
@@ -54,19 +55,19 @@ impl Renderer {
 
     /// Per-pixel debug records of the last frame.
     pub fn read_debug(&self) -> Vec<GpuPixelDebug> {
-        self.pixel_records(&self.targets.debug)
+        self.pixel_records(self.targets.pixels(&DEBUG))
     }
 
     /// The reservoirs the last frame shaded with (empty after a reference frame).
     pub fn read_final_reservoirs(&self) -> Vec<GpuReservoir> {
         match self.last_final {
-            Some(i) => self.pixel_records(&self.targets.reservoirs[i]),
+            Some(i) => self.pixel_records(self.targets.chain(&RESERVOIRS, i)),
             None => Vec::new(),
         }
     }
 
     /// The last frame's G-buffer surfaces.
     pub fn read_surfaces(&self) -> Vec<GpuSurface> {
-        self.pixel_records(&self.targets.surfaces[self.ping_pong.surfaces])
+        self.pixel_records(&self.targets.surfaces[self.carried.surfaces])
     }
 }

@@ -1,31 +1,36 @@
-//! One frame, in order: uniforms → G-buffer → initial → temporal → spatial × P → shade →
-//! display (or reference → display). Passes the settings switch off are not dispatched.
+//! Records one frame: the uniforms, then the frame plan (`frame_plan.rs`) step by step,
+//! each step's bindings resolved to buffers (`resolve.rs`) and bound through the cache.
 
 use std::collections::BTreeSet;
 
-use super::bind_groups::{Key, Uniforms};
-use super::inspect::InspectCapture;
-use super::{PingPong, PipelineVariant, Renderer};
 use std::sync::Arc;
+
+use super::bind_groups::Uniforms;
+use super::frame_plan::{self, FrameSwitches, Step, frame_plan};
+use super::inspect::InspectCapture;
+use super::resolve::resolve;
+use super::{PipelineVariant, Renderer};
 
 use crate::effects::{Effect, EffectSet};
 use crate::gpu::timing::FrameRecorder;
 use crate::gpu::{Gpu, GpuError};
-use crate::passes::{
-    ComputePass, PASS_INFO_SLOTS, PASS_INFO_STRIDE, PassLayouts, display, gbuffer::GBufferPass,
-    initial, presample, reference, shade, spatial, temporal,
-};
+use crate::passes::gbuffer::RasterPass;
+use crate::passes::pass::Dispatch;
+use crate::passes::resources::{DEBUG, RESERVOIRS};
+use crate::passes::{ComputePass, PASS_INFO_SLOTS, PASS_INFO_STRIDE, PassDef, PassLayouts};
 use crate::settings::Settings;
-use crate::shader_constants::{
-    LIGHT_TILE_COUNT, LIGHT_TILE_SIZE, MAX_SPATIAL_PASSES, REFERENCE_SAMPLES_PER_DISPATCH,
-};
+use crate::shader_constants::{MAX_SPATIAL_PASSES, REFERENCE_SAMPLES_PER_DISPATCH};
 use crate::view::Mode;
 
-/// The first of `count` reservoir buffers that is neither `a` nor `b`.
-fn other(count: usize, a: usize, b: usize) -> usize {
-    (0..count)
-        .find(|&i| i != a && i != b)
-        .expect("enough reservoir buffers")
+/// The `PassInfo` dynamic offsets of a step's dispatches (slot 0 for a pass that reads
+/// `PassInfo` but names no slots).
+fn dynamic_offsets(step: &Step) -> Vec<u32> {
+    let slots = if step.slots.is_empty() && step.pass.reads_pass_info() {
+        0..1
+    } else {
+        step.slots.clone()
+    };
+    slots.map(|slot| slot * PASS_INFO_STRIDE).collect()
 }
 
 /// The effect set of a frame, its WGSL defines and the key of its pipeline variant,
@@ -68,28 +73,25 @@ impl Renderer {
     }
 }
 
-/// The compiled pass `name` of `variant`, compiling it on first use.
-fn pass<'a>(
-    variant: &'a mut PipelineVariant,
-    gpu: &Gpu,
-    layouts: &PassLayouts,
-    defines: &BTreeSet<String>,
-    name: &'static str,
-) -> Result<&'a ComputePass, GpuError> {
-    if !variant.passes.contains_key(name) {
-        let (shader, layout) = match name {
-            "initial" => (initial::SHADER, &layouts.initial),
-            "presample lights" => (presample::SHADER, &layouts.presample),
-            "temporal" => (temporal::SHADER, &layouts.temporal),
-            "spatial" => (spatial::SHADER, &layouts.spatial),
-            "shade" => (shade::SHADER, &layouts.shade),
-            "reference" => (reference::SHADER, &layouts.reference),
-            _ => (display::SHADER, &layouts.display),
-        };
-        let pass = ComputePass::new(gpu, layouts, name, shader, defines, layout)?;
-        variant.passes.insert(name, pass);
+impl PipelineVariant {
+    /// Compiles `pass` for this variant's defines on first use.
+    fn compile(
+        &mut self,
+        gpu: &Gpu,
+        layouts: &PassLayouts,
+        defines: &BTreeSet<String>,
+        pass: &'static PassDef,
+    ) -> Result<(), GpuError> {
+        if pass.dispatch == Dispatch::Raster {
+            if self.raster.is_none() {
+                self.raster = Some(RasterPass::new(gpu, layouts, defines)?);
+            }
+        } else if !self.passes.contains_key(pass.name) {
+            let compiled = ComputePass::new(gpu, layouts, pass, defines)?;
+            self.passes.insert(pass.name, compiled);
+        }
+        Ok(())
     }
-    Ok(&variant.passes[name])
 }
 
 impl Renderer {
@@ -141,51 +143,44 @@ impl Renderer {
         // Which passes run. The reference traces its own camera rays, except with jitter
         // off, where it shades the rasterised surfaces (see reference.wgsl).
         let realtime = self.mode != Mode::Reference;
-        let needs_gbuffer = realtime || !settings.jitter;
-        let temporal_on = realtime && settings.temporal;
         let spatial_on = realtime && settings.spatial && settings.spatial_neighbours > 0;
-        let tiles_on = realtime && effects.contains(Effect::LightTiles);
-        let mut names = vec!["display"];
-        if realtime {
-            names.extend(["initial", "shade"]);
-        } else {
-            names.push("reference");
-        }
-        if temporal_on {
-            names.push("temporal");
-        }
-        if spatial_on {
-            names.push("spatial");
-        }
-        if tiles_on {
-            names.push("presample lights");
-            super::setup::ensure_light_tiles(&self.gpu, &mut self.light_tiles);
+        let switches = FrameSwitches {
+            realtime,
+            gbuffer: realtime || !settings.jitter,
+            light_tiles: realtime && effects.contains(Effect::LightTiles),
+            temporal: realtime && settings.temporal,
+            spatial_passes: if spatial_on {
+                settings.spatial_passes.min(MAX_SPATIAL_PASSES)
+            } else {
+                0
+            },
+            // Samples in chunks, one dispatch each (see REFERENCE_SAMPLES_PER_DISPATCH).
+            reference_chunks: settings
+                .reference_spp
+                .max(1)
+                .div_ceil(REFERENCE_SAMPLES_PER_DISPATCH)
+                .min(PASS_INFO_SLOTS),
+        };
+        let plan = frame_plan(&switches);
+        if switches.light_tiles
+            && super::setup::ensure_light_tiles(&self.gpu, &mut self.light_tiles)
+        {
+            self.bind_groups.clear();
         }
         let variant = self.variants.entry(key.to_string()).or_default();
-        if variant.gbuffer.is_none() && needs_gbuffer {
-            variant.gbuffer = Some(GBufferPass::new(&self.gpu, &self.layouts, defines)?);
-        }
-        for name in &names {
-            pass(variant, &self.gpu, &self.layouts, defines, name)?;
+        for step in &plan {
+            variant.compile(&self.gpu, &self.layouts, defines, step.pass)?;
         }
         let variant = &self.variants[key];
 
         self.accumulated_frames += 1;
         let show_accumulation = self.shows_accumulation();
         self.write_display_uniform(&settings);
+        let resolved = resolve(&plan, &self.carried, true, show_accumulation);
+        self.targets.ensure(&self.gpu, &resolved.needs);
 
         let frame_group = self.frame_bind_group.clone();
         let scene_group = self.scene.bind_group.clone();
-        if temporal_on {
-            self.targets.ensure_history(&self.gpu);
-        }
-        // Surfaces alternate once there are two buffers (the previous one is the history).
-        let surfaces = if self.targets.surfaces.len() == 2 {
-            1 - self.ping_pong.surfaces
-        } else {
-            0
-        };
-        let buffers = self.targets.reservoirs.len();
         let size = self.size();
         let mut dispatched: Vec<&'static str> = Vec::new();
         let mut capture = self
@@ -199,134 +194,50 @@ impl Renderer {
             light_tiles: &self.light_tiles,
             prev_triangles: &self.scene.prev_triangles,
         };
-        let tiles =
-            self.light_tiles.size() > std::mem::size_of::<crate::gpu_types::GpuTileSample>() as u64;
-        let mut group = |key: Key| {
-            self.bind_groups
-                .get(&self.gpu, &self.layouts, &self.targets, &uniforms, key)
-        };
-        let mut final_reservoirs = self.ping_pong.history;
-
-        if needs_gbuffer {
-            let gb = variant.gbuffer.as_ref().expect("built above");
-            gb.record_raster(
-                &mut rec,
-                [&frame_group, &scene_group],
-                &self.targets.visibility,
-                &self.targets.depth,
-                self.scene.triangle_count,
-            );
-            gb.resolve.record(
-                &mut rec,
-                [
-                    &frame_group,
-                    &scene_group,
-                    &group(Key::Resolve { surfaces }),
-                ],
-                size,
-            );
-            dispatched.extend(["gbuffer raster", "gbuffer resolve"]);
-        }
-        if realtime {
-            // Reservoir buffers: `history` holds last frame's result until temporal reuse
-            // has read it; every stage writes a buffer its inputs do not occupy.
-            let history = self.ping_pong.history;
-            let mut current = other(buffers, history, history);
-            if tiles_on {
-                let workgroups =
-                    (LIGHT_TILE_COUNT * LIGHT_TILE_SIZE).div_ceil(presample::WORKGROUP_SIZE);
-                variant.passes["presample lights"].record_workgroups(
+        for (step, r) in plan.iter().zip(&resolved.steps) {
+            if step.pass.dispatch == Dispatch::Raster {
+                variant.raster.as_ref().expect("compiled above").record(
                     &mut rec,
-                    [&frame_group, &scene_group, &group(Key::Presample)],
-                    (workgroups, 1),
+                    [&frame_group, &scene_group],
+                    &self.targets.visibility,
+                    &self.targets.depth,
+                    self.scene.triangle_count,
                 );
-                dispatched.push("presample lights");
+            } else {
+                let group = self.bind_groups.get(
+                    &self.gpu,
+                    &self.layouts,
+                    &self.targets,
+                    &uniforms,
+                    step.pass,
+                    &r.bound,
+                );
+                let offsets = dynamic_offsets(step);
+                variant.passes[step.pass.name].record(
+                    &mut rec,
+                    [&frame_group, &scene_group, &group],
+                    &offsets,
+                    size,
+                );
             }
-            let g = group(Key::Initial {
-                surfaces,
-                out: current,
-                tiles,
-            });
-            variant.passes["initial"].record(&mut rec, [&frame_group, &scene_group, &g], size);
-            dispatched.push("initial");
-            if let Some(c) = &mut capture {
-                c.copy_reservoir(rec.encoder(), &self.targets, current, "initial");
+            // Repeated passes (spatial × P) are listed once.
+            if dispatched.last() != Some(&step.pass.name) {
+                dispatched.push(step.pass.name);
             }
-            if temporal_on {
-                let out = other(buffers, current, history);
-                let g = group(Key::Temporal {
-                    surfaces,
-                    input: current,
-                    prev: history,
-                    out,
-                });
-                variant.passes["temporal"].record(&mut rec, [&frame_group, &scene_group, &g], size);
-                dispatched.push("temporal");
-                current = out;
-                if let Some(c) = &mut capture {
-                    c.copy_reservoir(rec.encoder(), &self.targets, current, "temporal");
-                }
+            if let (Some(c), Some((stage, buffer))) = (&mut capture, r.inspect) {
+                c.copy_reservoir(
+                    rec.encoder(),
+                    self.targets.chain(&RESERVOIRS, buffer),
+                    stage,
+                );
             }
-            if spatial_on {
-                // Each pass reads the previous pass's output (its own bind group); the
-                // pass index picks its PassInfo slot for decorrelated random numbers.
-                for p in 0..settings.spatial_passes.min(MAX_SPATIAL_PASSES) {
-                    let out = other(buffers, current, current);
-                    let g = group(Key::Spatial {
-                        surfaces,
-                        input: current,
-                        out,
-                    });
-                    variant.passes["spatial"].record_repeated(
-                        &mut rec,
-                        [&frame_group, &scene_group, &g],
-                        &[p * PASS_INFO_STRIDE],
-                        size,
-                    );
-                    current = out;
-                    if let Some(c) = &mut capture {
-                        c.copy_reservoir(rec.encoder(), &self.targets, current, "spatial");
-                    }
-                }
-                dispatched.push("spatial");
-            }
-            let g = group(Key::Shade {
-                surfaces,
-                input: current,
-            });
-            variant.passes["shade"].record(&mut rec, [&frame_group, &scene_group, &g], size);
-            dispatched.push("shade");
-            final_reservoirs = current;
-        } else {
-            // Samples in chunks, one dispatch each (see REFERENCE_SAMPLES_PER_DISPATCH).
-            let chunks = settings
-                .reference_spp
-                .max(1)
-                .div_ceil(REFERENCE_SAMPLES_PER_DISPATCH)
-                .min(PASS_INFO_SLOTS);
-            let offsets: Vec<u32> = (0..chunks).map(|c| c * PASS_INFO_STRIDE).collect();
-            let g = group(Key::Reference { surfaces });
-            variant.passes["reference"].record_repeated(
-                &mut rec,
-                [&frame_group, &scene_group, &g],
-                &offsets,
-                size,
-            );
-            dispatched.push("reference");
         }
-        let display_group = group(Key::Display {
-            surfaces,
-            reservoirs: final_reservoirs,
-            accumulated: show_accumulation,
-        });
-        variant.passes["display"].record(
-            &mut rec,
-            [&frame_group, &scene_group, &display_group],
-            size,
-        );
-        dispatched.push("display");
         if let Some(c) = &mut capture {
-            c.copy_pixel_records(rec.encoder(), &self.targets, surfaces);
+            c.copy_pixel_records(
+                rec.encoder(),
+                &self.targets.surfaces[resolved.surfaces],
+                self.targets.pixels(&DEBUG),
+            );
         }
 
         let frame = self.frame_index;
@@ -351,12 +262,12 @@ impl Renderer {
         self.gpu.check()?;
 
         // Hand over to the next frame.
-        self.ping_pong = PingPong {
-            history: final_reservoirs,
-            surfaces,
-        };
+        let final_reservoirs = resolved.finals.get(RESERVOIRS.name).copied();
+        self.carried.history.extend(resolved.finals);
+        self.carried.surfaces = resolved.surfaces;
+        self.carried.surface_buffers = self.targets.surfaces.len();
         self.history_valid = realtime;
-        self.last_final = realtime.then_some(final_reservoirs);
+        self.last_final = if realtime { final_reservoirs } else { None };
         self.prev_camera = Some(camera);
         self.prev_view_proj = Some(view_proj);
         self.prev_jitter = jitter;
@@ -380,57 +291,38 @@ impl Renderer {
         let Some(active) = self.last_effects.clone() else {
             return Ok(());
         };
+        let shown_accumulation = self.shows_accumulation();
         let variant = self.variants.entry(active.key.clone()).or_default();
-        let display_pass = pass(
-            variant,
-            &self.gpu,
-            &self.layouts,
-            &active.defines,
-            "display",
-        )?;
+        let plan = frame_plan::display_only();
+        variant.compile(&self.gpu, &self.layouts, &active.defines, plan[0].pass)?;
+        let resolved = resolve(&plan, &self.carried, false, shown_accumulation);
         let uniforms = Uniforms {
             pass_info: &self.pass_info,
             display: &self.display_uniform,
             light_tiles: &self.light_tiles,
             prev_triangles: &self.scene.prev_triangles,
         };
-        let key = Key::Display {
-            surfaces: self.ping_pong.surfaces,
-            reservoirs: self.ping_pong.history,
-            accumulated: self.view.accumulate || self.mode == Mode::Reference,
-        };
-        let group = self
-            .bind_groups
-            .get(&self.gpu, &self.layouts, &self.targets, &uniforms, key);
+        let group = self.bind_groups.get(
+            &self.gpu,
+            &self.layouts,
+            &self.targets,
+            &uniforms,
+            plan[0].pass,
+            &resolved.steps[0].bound,
+        );
         let size = (self.targets.width, self.targets.height);
         let mut rec = FrameRecorder::new(
             &self.gpu,
             &mut self.timer,
             crate::gpu::timing::TimingMode::Off,
         );
-        display_pass.record(
+        variant.passes[plan[0].pass.name].record(
             &mut rec,
             [&self.frame_bind_group, &self.scene.bind_group, &group],
+            &[],
             size,
         );
         rec.submit(self.frame_index, |_| {});
         self.gpu.check()
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::other;
-
-    #[test]
-    fn stages_never_write_a_buffer_they_read() {
-        for history in 0..3 {
-            let initial = other(3, history, history);
-            assert_ne!(initial, history);
-            let temporal = other(3, initial, history);
-            assert!(temporal != initial && temporal != history);
-            let spatial = other(3, temporal, temporal);
-            assert_ne!(spatial, temporal);
-        }
     }
 }

@@ -5,7 +5,7 @@ use std::collections::HashMap;
 
 use wgpu::util::DeviceExt;
 
-use super::{MAX_SIZE, PingPong, Renderer};
+use super::{MAX_SIZE, Renderer};
 use crate::effects::SceneFeatures;
 use crate::frame_targets::FrameTargets;
 use crate::gpu::readback::ReadbackRing;
@@ -31,12 +31,15 @@ fn tile_buffer(gpu: &Gpu, entries: u64) -> wgpu::Buffer {
     })
 }
 
-/// Replaces the placeholder by the full light-tile buffer on first use.
-pub(super) fn ensure_light_tiles(gpu: &Gpu, tiles: &mut wgpu::Buffer) {
+/// Replaces the placeholder by the full light-tile buffer on first use; true if it did
+/// (bind groups holding the placeholder must be rebuilt).
+pub(super) fn ensure_light_tiles(gpu: &Gpu, tiles: &mut wgpu::Buffer) -> bool {
     let full = (LIGHT_TILE_COUNT * LIGHT_TILE_SIZE) as u64;
-    if tiles.size() < full * std::mem::size_of::<GpuTileSample>() as u64 {
+    let replace = tiles.size() < full * std::mem::size_of::<GpuTileSample>() as u64;
+    if replace {
         *tiles = tile_buffer(gpu, full);
     }
+    replace
 }
 
 /// Validated output size.
@@ -158,7 +161,7 @@ impl Renderer {
             prev_view_proj: None,
             frame_index: 0,
             seed: 0,
-            ping_pong: PingPong::default(),
+            carried: Default::default(),
             history_valid: false,
             cut_requested: false,
             accumulated_frames: 0,

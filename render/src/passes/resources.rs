@@ -1,0 +1,99 @@
+//! What a pass binds, by name. Per-pixel buffers and reservoir chains are declared as
+//! constants (the common ones here; a pass that adds its own declares them next to its
+//! shader), so a pass module names what it reads and writes and `FrameTargets` allocates
+//! whatever a frame's plan names.
+
+use crate::gpu_types::{GpuPixelDebug, GpuReservoir};
+
+/// How much of a per-pixel buffer exists before a frame asks for it at full size.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Allocation {
+    /// Full size from the start.
+    Full,
+    /// A 16-byte placeholder until `FrameTargets::ensure_full` (the comparison image:
+    /// 16 bytes per pixel that only a split screen needs).
+    Placeholder,
+}
+
+/// One buffer of `stride` bytes per pixel.
+#[derive(Debug)]
+pub struct PixelBuffer {
+    pub name: &'static str,
+    pub stride: usize,
+    pub allocation: Allocation,
+}
+
+/// Per-pixel buffers handed from stage to stage (notes §2.6: ping-pong). A stage reads
+/// the chain's current buffer (`Role::In`), last frame's final one (`Role::History`),
+/// and writes a buffer neither occupies (`Role::Out`), which becomes the current one.
+#[derive(Debug)]
+pub struct Chain {
+    pub name: &'static str,
+    pub stride: usize,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Role {
+    In,
+    Out,
+    History,
+}
+
+#[derive(Clone, Copy, Debug)]
+pub enum Resource {
+    /// This frame's G-buffer surfaces.
+    Surfaces,
+    /// Last frame's surfaces (a second buffer, allocated the first time one is read).
+    PrevSurfaces,
+    Pixels(&'static PixelBuffer),
+    Chain(&'static Chain, Role),
+    /// What the display shows: this frame's radiance or the running average.
+    ShownImage,
+    /// A `PassInfo` slot picked by dynamic offset (spatial pass index, reference chunk).
+    PassInfo,
+    DisplayUniform,
+    /// The presampled light tiles (owned by the renderer).
+    LightTiles,
+    /// The scene's previous-frame triangles (object motion).
+    PrevTriangles,
+    /// The rasterised visibility buffer (triangle id + barycentrics), sampled as a texture.
+    Visibility,
+    /// The display's RGBA8 output, a write-only storage texture.
+    Output,
+}
+
+pub const DEBUG: PixelBuffer = PixelBuffer {
+    name: "pixel debug",
+    stride: std::mem::size_of::<GpuPixelDebug>(),
+    allocation: Allocation::Full,
+};
+pub const RADIANCE: PixelBuffer = PixelBuffer {
+    name: "radiance",
+    stride: 16,
+    allocation: Allocation::Full,
+};
+pub const ACCUMULATION: PixelBuffer = PixelBuffer {
+    name: "accumulation",
+    stride: 16,
+    allocation: Allocation::Full,
+};
+/// A reference image for the error view (zeros until one is uploaded).
+pub const REFERENCE: PixelBuffer = PixelBuffer {
+    name: "reference",
+    stride: 16,
+    allocation: Allocation::Full,
+};
+/// The other side of a split-screen comparison, for the difference view.
+pub const COMPARISON: PixelBuffer = PixelBuffer {
+    name: "comparison",
+    stride: 16,
+    allocation: Allocation::Placeholder,
+};
+/// The buffers every frame has from the start (readbacks and uploads may come first).
+pub const STANDARD: [&PixelBuffer; 5] = [&DEBUG, &RADIANCE, &ACCUMULATION, &REFERENCE, &COMPARISON];
+
+/// ReSTIR DI reservoirs.
+pub const RESERVOIRS: Chain = Chain {
+    name: "reservoirs",
+    stride: std::mem::size_of::<GpuReservoir>(),
+};

@@ -30,8 +30,10 @@
 
 use glam::Vec3;
 
-use super::gi_jacobian::{jacobian_in_window, reconnection_jacobian};
-use super::{Reservoir, pairwise_mis_canonical, pairwise_mis_noncanonical, sanitize};
+use super::gi_jacobian::{jacobian_in_window, normalized, reconnection_jacobian};
+use super::{
+    Reservoir, clamp_unit, pairwise_mis_canonical_term, pairwise_mis_noncanonical, sanitize, share,
+};
 use crate::shader_constants::{GI_REJECT_JACOBIAN, GI_REJECT_OCCLUDED, GI_REJECT_RECONNECTION};
 
 /// One GI sample: the secondary hit and the radiance it sends toward the pixel that found it.
@@ -75,7 +77,7 @@ pub fn gi_target(f_r: Vec3, radiance: Vec3, cos_theta: f32) -> f32 {
 /// cos θ at `position` (normal `normal`, unit length) toward `sample_position`, clamped at 0;
 /// 0 when the two points coincide or anything is not finite.
 pub fn receiver_cosine(position: Vec3, normal: Vec3, sample_position: Vec3) -> f32 {
-    match (sample_position - position).try_normalize() {
+    match normalized(sample_position - position) {
         Some(w) => {
             let c = normal.dot(w);
             if c > 0.0 && c.is_finite() {
@@ -145,6 +147,36 @@ pub fn gi_merge_mis(
         sanitize(mis_weight) * sanitize(jacobian),
         u,
     )
+}
+
+/// Neighbour i's sample y, shifted here with `jacobian_i_to_here` = |J_{i→here}|: its
+/// pairwise MIS weight, with p̂_i(y) brought into this pixel's measure
+/// (p̂_i · |J_{here→i}| = p̂_i / |J_{i→here}|); 0 when the shift failed (jacobian 0).
+pub fn gi_pairwise_noncanonical(
+    c_total: f32,
+    c_canonical: f32,
+    c_i: f32,
+    p_hat_i_at_y: f32,
+    p_hat_here_at_y: f32,
+    jacobian_i_to_here: f32,
+) -> f32 {
+    let j = sanitize(jacobian_i_to_here);
+    let p_i = if j > 0.0 { p_hat_i_at_y / j } else { 0.0 };
+    pairwise_mis_noncanonical(c_total, c_canonical, c_i, p_i, p_hat_here_at_y)
+}
+
+/// Neighbour j's term of the canonical sample's pairwise weight (`c_c/c_total + Σ_j
+/// terms`), with p̂_j(y_c) · |J_{here→j}| (`jacobian_here_to_j` = 0 when that shift fails).
+pub fn gi_pairwise_canonical_term(
+    c_total: f32,
+    c_canonical: f32,
+    c_j: f32,
+    p_hat_here_at_yc: f32,
+    p_hat_j_at_yc: f32,
+    jacobian_here_to_j: f32,
+) -> f32 {
+    let p_j = p_hat_j_at_yc * sanitize(jacobian_here_to_j);
+    pairwise_mis_canonical_term(c_total, c_canonical, c_j, p_hat_here_at_yc, p_j)
 }
 
 /// A reservoir from another pixel (spatial) or the previous frame (temporal), with the
@@ -230,17 +262,17 @@ pub(crate) fn resample_with(
     if let Some(y) = canonical.sample {
         let p_c = here.target(&y);
         if reuse.pairwise {
-            // Each neighbour's target at y_c, in this pixel's measure (0 where it cannot
+            // Each neighbour's target at y_c in this pixel's measure (0 where it cannot
             // produce y_c: the reverse shift fails).
-            let at_yc: Vec<(f32, f32)> = neighbours
+            let terms: f32 = neighbours
                 .iter()
                 .map(|n| {
-                    let p = shift(&y, here.position, n.receiver.position)
-                        .map_or(0.0, |j| n.receiver.target(&y) * j);
-                    (n.confidence, p)
+                    let j = shift(&y, here.position, n.receiver.position).unwrap_or(0.0);
+                    let p_j = n.receiver.target(&y);
+                    gi_pairwise_canonical_term(c_total, c_c, n.confidence, p_c, p_j, j)
                 })
-                .collect();
-            let m_c = pairwise_mis_canonical(c_total, c_c, p_c, &at_yc);
+                .sum();
+            let m_c = clamp_unit(share(c_c, c_total) + terms);
             gi_merge_mis(&mut r, canonical, p_c, 1.0, m_c, u());
         } else {
             gi_merge(&mut r, canonical, p_c, 1.0, c_c, u());
@@ -265,13 +297,8 @@ pub(crate) fn resample_with(
         let j = usable.unwrap_or(0.0);
         let target_here = if j > 0.0 { here.target(&y) } else { 0.0 };
         if reuse.pairwise {
-            // p̂_n(y) in this pixel's measure: |J_{here→n}| = 1/|J_{n→here}|.
-            let p_n = if j > 0.0 {
-                n.receiver.target(&y) / j
-            } else {
-                0.0
-            };
-            let m_n = pairwise_mis_noncanonical(c_total, c_c, n.confidence, p_n, target_here);
+            let p_n = n.receiver.target(&y);
+            let m_n = gi_pairwise_noncanonical(c_total, c_c, n.confidence, p_n, target_here, j);
             gi_merge_mis(&mut r, n.reservoir, target_here, j, m_n, u());
         } else {
             gi_merge(&mut r, n.reservoir, target_here, j, n.confidence, u());

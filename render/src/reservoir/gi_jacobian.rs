@@ -26,19 +26,19 @@ use crate::shader_constants::{GI_REJECT_JACOBIAN, GI_REJECT_RECONNECTION};
 
 /// `|J_{from→to}|` of the reconnection of a sample at `sample_position` (surface normal
 /// `sample_normal`, either orientation, need not be unit length) from the receiving point
-/// `from` to the receiving point `to`; `None` where the shift is undefined (module docs):
-/// degenerate or non-finite input, a distance outside [`GI_MIN_DISTANCE_SQ`,
-/// `GI_MAX_DISTANCE_SQ`], |cos φ| below [`GI_MIN_COS`] at either end, or `to` on the other
-/// side of the sample's surface than `from`. Never NaN or infinite.
+/// `seen_from` (where it was found) to the receiving point `reused_at`; `None` where the
+/// shift is undefined (module docs): degenerate or non-finite input, a distance outside [`GI_MIN_DISTANCE_SQ`,
+/// `GI_MAX_DISTANCE_SQ`], |cos φ| below [`GI_MIN_COS`] at either end, or `reused_at` on the
+/// other side of the sample's surface than `seen_from`. Never NaN or infinite.
 pub fn reconnection_jacobian(
     sample_position: Vec3,
     sample_normal: Vec3,
-    from: Vec3,
-    to: Vec3,
+    seen_from: Vec3,
+    reused_at: Vec3,
 ) -> Option<f32> {
-    let n = sample_normal.try_normalize()?;
-    let to_from = from - sample_position;
-    let to_to = to - sample_position;
+    let n = normalized(sample_normal)?;
+    let to_from = seen_from - sample_position;
+    let to_to = reused_at - sample_position;
     let d2_from = to_from.length_squared();
     let d2_to = to_to.length_squared();
     if !(distance_in_range(d2_from) && distance_in_range(d2_to)) {
@@ -57,6 +57,12 @@ pub fn reconnection_jacobian(
     (j.is_finite() && j > 0.0).then_some(j)
 }
 
+/// `v / |v|`, or `None` for |v|² not in (1e-30, f32::MAX] (the WGSL twin's test).
+pub(super) fn normalized(v: Vec3) -> Option<Vec3> {
+    let len2 = v.length_squared();
+    (len2 > 1e-30 && len2 <= f32::MAX).then(|| v / len2.sqrt())
+}
+
 fn distance_in_range(d2: f32) -> bool {
     (GI_MIN_DISTANCE_SQ..=GI_MAX_DISTANCE_SQ).contains(&d2)
 }
@@ -71,17 +77,17 @@ pub fn jacobian_in_window(j: f32, j_max: f32) -> bool {
     j.is_finite() && j > 0.0 && j >= 1.0 / j_max && j <= j_max
 }
 
-/// The reconnection from `from` to `to` as reuse sees it: `Ok(|J|)` when the shift is
-/// defined and its Jacobian inside the window, otherwise the GI rejection bit that says why
+/// The reconnection from `seen_from` to `reused_at` as reuse sees it: `Ok(|J|)` when the
+/// shift is defined and its Jacobian inside the window, otherwise the GI rejection bit that says why
 /// (`GI_REJECT_RECONNECTION`: undefined; `GI_REJECT_JACOBIAN`: outside the window).
 pub fn reconnection_shift(
     sample_position: Vec3,
     sample_normal: Vec3,
-    from: Vec3,
-    to: Vec3,
+    seen_from: Vec3,
+    reused_at: Vec3,
     j_max: f32,
 ) -> Result<f32, u32> {
-    let j = reconnection_jacobian(sample_position, sample_normal, from, to)
+    let j = reconnection_jacobian(sample_position, sample_normal, seen_from, reused_at)
         .ok_or(GI_REJECT_RECONNECTION)?;
     if jacobian_in_window(j, j_max) {
         Ok(j)

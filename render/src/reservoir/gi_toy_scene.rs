@@ -27,8 +27,9 @@ pub(super) fn receiver(position: [f32; 3], normal: [f32; 3], albedo: f32) -> GiR
 }
 
 /// The pixel whose estimate is checked, and four neighbours at different places (distances
-/// 0.6–0.95 against an emitter 1 above: Jacobians over the emitter from 0.25 to 4) with normals tilted by
-/// up to ~35°, so part of the receiver's integrand lies below some neighbours' horizons.
+/// 0.6–0.95 against an emitter 1 above: Jacobians over the emitter from 0.25 to 4) with
+/// normals tilted by up to ~35°, so part of the receiver's integrand lies below some
+/// neighbours' horizons.
 pub(super) fn scene() -> (GiReceiver, Vec<GiReceiver>) {
     let here = receiver([0.0, 0.0, 0.0], [0.0, 0.0, 1.0], 0.8);
     let neighbours = vec![

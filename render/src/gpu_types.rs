@@ -310,3 +310,53 @@ pub struct GpuEnvironment {
     pub rotation: [f32; 2],
     pub _pad: [u32; 2],
 }
+
+/// A ReSTIR GI reservoir (issue 12; the math is reservoir/gi.rs, the WGSL functions
+/// common/gi_reservoir.wgsl): the sample point, its normal and the radiance cached toward
+/// the pixel that drew it, and the reservoir's weights, in 48 bytes. The visible point it
+/// belongs to is the pixel's `GpuSurface`. The sample's source pdf is not stored: after
+/// initial resampling `weight` (W) stands for it.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuGiReservoir {
+    /// x_s, the secondary hit.
+    pub position: [f32; 3],
+    /// Octahedral n_s (`oct_encode`), either orientation.
+    pub normal: u32,
+    /// L_o(x_s → x_v), linear rgb (f32: emitters seen directly exceed half floats).
+    pub radiance: [f32; 3],
+    pub w_sum: f32,
+    /// W: 0 for the null sample.
+    pub weight: f32,
+    /// Confidence M (capped by `gi_m_cap`).
+    pub m: f32,
+    /// p̂ of the sample at the pixel that selected it (finalisation divides by it).
+    pub p_hat: f32,
+    /// `SOURCE_*` (bits 0..4) | GI rejection bits of the stage that wrote it (bits 4..16) |
+    /// age in frames (bits 16..32): see [`GpuGiReservoir::pack`].
+    pub packed: u32,
+}
+
+impl GpuGiReservoir {
+    /// `packed` from its parts; flags beyond 12 bits are dropped, the age saturates.
+    pub fn pack(source: u32, flags: u32, age: u32) -> u32 {
+        use crate::shader_constants::*;
+        (source & GI_SOURCE_MASK)
+            | ((flags & GI_FLAGS_MASK) << GI_FLAGS_SHIFT)
+            | (age.min(GI_AGE_MAX) << GI_AGE_SHIFT)
+    }
+
+    pub fn source(&self) -> u32 {
+        self.packed & crate::shader_constants::GI_SOURCE_MASK
+    }
+
+    /// The GI rejection bits (`REJECT_*` 0..5, `GI_REJECT_*`) of the stage that wrote it.
+    pub fn flags(&self) -> u32 {
+        use crate::shader_constants::*;
+        (self.packed >> GI_FLAGS_SHIFT) & GI_FLAGS_MASK
+    }
+
+    pub fn age(&self) -> u32 {
+        self.packed >> crate::shader_constants::GI_AGE_SHIFT
+    }
+}

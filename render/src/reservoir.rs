@@ -240,6 +240,11 @@ fn clamp_unit(x: f32) -> f32 {
 #[cfg(test)]
 mod tests;
 
+/// ReSTIR GI: the GI sample and reservoir, its target, merges and one reuse step.
+pub mod gi;
+/// ReSTIR GI's reconnection shift: the Jacobian, its singularities and its window.
+pub mod gi_jacobian;
+
 /// Deterministic randomness and goodness-of-fit checks shared by the crate's statistical
 /// tests (no rand crate: the seeds and streams must never change under us).
 #[cfg(test)]

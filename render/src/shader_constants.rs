@@ -139,6 +139,56 @@ pub const TONEMAP_ACES: u32 = 0;
 pub const TONEMAP_REINHARD: u32 = 1;
 pub const TONEMAP_CLAMP: u32 = 2;
 
+/// ReSTIR GI validation (issue 12): the GI rejection mask's bits 0..5 are the DI checks
+/// with the same bits and meaning (`REJECT_OFFSCREEN` .. `REJECT_RESERVOIR`, so a
+/// `surface_dissimilarity` mask is used as it is); these three are GI's own.
+/// The reconnection shift is undefined: the sample point is (nearly) on the receiver, seen
+/// at a grazing angle, or the receiver is behind the sample's surface (gi_jacobian.rs).
+pub const GI_REJECT_RECONNECTION: u32 = 1 << 6;
+/// The reconnection Jacobian is outside [1/gi_jacobian_max, gi_jacobian_max].
+pub const GI_REJECT_JACOBIAN: u32 = 1 << 7;
+/// The reconnection segment from the receiver to the sample point is occluded.
+pub const GI_REJECT_OCCLUDED: u32 = 1 << 8;
+pub const GI_REJECT_REASON_COUNT: usize = 9;
+/// Human names of the GI rejection bits, in bit order (the first six are DI's).
+pub const GI_REJECT_REASON_NAMES: [&str; GI_REJECT_REASON_COUNT] = [
+    "offscreen",
+    "surface_invalid",
+    "material",
+    "normal",
+    "depth",
+    "reservoir_null",
+    "reconnection",
+    "jacobian",
+    "occluded",
+];
+/// `GiReservoir.packed`: SOURCE_* in bits 0..4, the GI rejection mask of the stage that
+/// wrote it in bits 4..16, the sample's age in frames in bits 16..32 (saturating).
+pub const GI_SOURCE_MASK: u32 = 0xf;
+pub const GI_FLAGS_SHIFT: u32 = 4;
+pub const GI_FLAGS_MASK: u32 = 0xfff;
+pub const GI_AGE_SHIFT: u32 = 16;
+pub const GI_AGE_MAX: u32 = 0xffff;
+/// Thresholds of the reconnection Jacobian (reservoir/gi_jacobian.rs), the same on both sides.
+/// Shortest reconnection (world units, squared) with a usable direction. Positions are f32:
+/// at a scene scale of ~100 one ulp is ~7.6e-6, so below ~1e-5 the direction from x_s to the
+/// receiver is rounding noise, and the Jacobian's `1/d²` runs away.
+pub const GI_MIN_DISTANCE_SQ: f32 = 1e-10;
+/// Longest reconnection (squared; 1e10 units, far beyond any scene). With the two bounds and
+/// `GI_MIN_COS` every quotient below stays finite: J ≤ 1e6 · 1e20 / 1e-10 = 1e36 < f32::MAX,
+/// which matters on the GPU, where WGSL leaves an overflowing division indeterminate.
+pub const GI_MAX_DISTANCE_SQ: f32 = 1e20;
+/// Smallest |cos φ| at the sample point (from either receiver): below it the patch has no
+/// solid angle to speak of (J = 0 or ∞ up to rounding), and no window in the settings'
+/// range (j_max ≤ 1000) could accept the result anyway.
+pub const GI_MIN_COS: f32 = 1e-6;
+/// `Params.flags` bits of the Indirect stage.
+pub const PARAM_FLAG_GI: u32 = 1 << 4;
+pub const PARAM_FLAG_GI_TEMPORAL: u32 = 1 << 5;
+pub const PARAM_FLAG_GI_SPATIAL: u32 = 1 << 6;
+pub const PARAM_FLAG_GI_SPATIAL_VISIBILITY: u32 = 1 << 7;
+pub const PARAM_FLAG_GI_PAIRWISE: u32 = 1 << 8;
+
 /// The WGSL prelude: every constant above as a `const` declaration.
 pub fn wgsl_prelude() -> String {
     let u32s: &[(&str, u32)] = &[
@@ -233,11 +283,35 @@ pub fn wgsl_prelude() -> String {
         ("TONEMAP_ACES", TONEMAP_ACES),
         ("TONEMAP_REINHARD", TONEMAP_REINHARD),
         ("TONEMAP_CLAMP", TONEMAP_CLAMP),
+        ("GI_REJECT_RECONNECTION", GI_REJECT_RECONNECTION),
+        ("GI_REJECT_JACOBIAN", GI_REJECT_JACOBIAN),
+        ("GI_REJECT_OCCLUDED", GI_REJECT_OCCLUDED),
+        ("GI_REJECT_REASON_COUNT", GI_REJECT_REASON_COUNT as u32),
+        ("GI_SOURCE_MASK", GI_SOURCE_MASK),
+        ("GI_FLAGS_SHIFT", GI_FLAGS_SHIFT),
+        ("GI_FLAGS_MASK", GI_FLAGS_MASK),
+        ("GI_AGE_SHIFT", GI_AGE_SHIFT),
+        ("GI_AGE_MAX", GI_AGE_MAX),
+        ("PARAM_FLAG_GI", PARAM_FLAG_GI),
+        ("PARAM_FLAG_GI_TEMPORAL", PARAM_FLAG_GI_TEMPORAL),
+        ("PARAM_FLAG_GI_SPATIAL", PARAM_FLAG_GI_SPATIAL),
+        (
+            "PARAM_FLAG_GI_SPATIAL_VISIBILITY",
+            PARAM_FLAG_GI_SPATIAL_VISIBILITY,
+        ),
+        ("PARAM_FLAG_GI_PAIRWISE", PARAM_FLAG_GI_PAIRWISE),
     ];
     let mut out = String::from("// Generated from render/src/shader_constants.rs: edit there.\n");
     for (name, value) in u32s {
         out.push_str(&format!("const {name}: u32 = {value}u;\n"));
     }
     out.push_str(&format!("const NO_MOTION: f32 = {NO_MOTION:e};\n"));
+    for (name, value) in [
+        ("GI_MIN_DISTANCE_SQ", GI_MIN_DISTANCE_SQ),
+        ("GI_MAX_DISTANCE_SQ", GI_MAX_DISTANCE_SQ),
+        ("GI_MIN_COS", GI_MIN_COS),
+    ] {
+        out.push_str(&format!("const {name}: f32 = {value:e};\n"));
+    }
     out
 }

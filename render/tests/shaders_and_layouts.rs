@@ -45,6 +45,60 @@ fn every_pass_validates_for_every_effect_set() {
     }
 }
 
+/// Calls every function of the GI reservoir library (no pass uses it yet), so the library
+/// is checked the way a pass will use it: pointers to function-scope reservoirs, a storage
+/// array of `GiReservoir`, the generated constants.
+const GI_LIBRARY_ENTRY: &str = r#"
+@group(0) @binding(0) var<storage, read_write> gi_check: array<GiReservoir>;
+
+@compute @workgroup_size(64)
+fn gi_library_check(@builtin(global_invocation_id) id: vec3<u32>) {
+    let other = gi_check[id.x];
+    let here = vec3<f32>(0.0);
+    let n_here = vec3<f32>(0.0, 0.0, 1.0);
+    let j = gi_reconnection_jacobian(other.position, oct_decode(other.normal), vec3<f32>(1.0), here);
+    var flags = gi_shift_rejection(j, 10.0);
+    if !gi_jacobian_in_window(j, 10.0) || gi_reservoir_is_corrupt(other) {
+        flags |= GI_REJECT_JACOBIAN;
+    }
+    let p = gi_target(vec3<f32>(0.25), other.radiance, gi_receiver_cosine(here, n_here, other.position));
+    var r = gi_reservoir_empty();
+    gi_reservoir_update(&r, other.position, other.normal, other.radiance, gi_initial_weight(p, 0.5, 1.0), p, gi_pack(SOURCE_INITIAL, 0u, 0u), 0.5);
+    gi_reservoir_finalize(&r, 1.0);
+    r.m = 1.0;
+    var s = gi_reservoir_empty();
+    let m_i = gi_pairwise_noncanonical(3.0, 1.0, 2.0, p, p, j);
+    let m_c = confidence_share(1.0, 3.0) + gi_pairwise_canonical_term(3.0, 1.0, 2.0, p, p, j);
+    gi_reservoir_merge_mis(&s, r, p, 1.0, m_c, gi_pack(gi_source(r), 0u, gi_age(r)), 0.25);
+    gi_reservoir_merge_mis(&s, other, p, j, m_i, gi_pack(SOURCE_SPATIAL, 0u, gi_age(other)), 0.75);
+    gi_reservoir_merge(&s, other, p, j, min(other.m, 10.0), gi_pack(SOURCE_TEMPORAL, 0u, gi_age(other) + 1u), 0.5);
+    s.m = 3.0;
+    gi_reservoir_finalize(&s, 1.0);
+    gi_cap_confidence(&s, 10.0);
+    gi_set_flags(&s, flags | gi_flags(other));
+    if !gi_reservoir_is_null(s) {
+        gi_check[id.x] = s;
+    }
+}
+"#;
+
+#[test]
+fn gi_reservoir_library_validates_in_a_compute_entry_point() {
+    for defines in [BTreeSet::new(), EffectSet::all().defines()] {
+        let mut source = compose("common/gi_reservoir.wgsl", &defines).unwrap();
+        source.push_str(GI_LIBRARY_ENTRY);
+        let module = naga::front::wgsl::parse_str(&source)
+            .unwrap_or_else(|e| panic!("gi_reservoir.wgsl:\n{}", e.emit_to_string(&source)));
+        naga::valid::Validator::new(
+            naga::valid::ValidationFlags::all(),
+            naga::valid::Capabilities::default(),
+        )
+        .validate(&module)
+        .unwrap_or_else(|e| panic!("gi_reservoir.wgsl: {}", e.emit_to_string(&source)));
+        assert_eq!(module.entry_points.len(), 1);
+    }
+}
+
 /// (size, [(member name, offset)]) of a WGSL struct.
 fn wgsl_layout(module: &naga::Module, name: &str) -> (u32, Vec<(String, u32)>) {
     let mut layouter = naga::proc::Layouter::default();
@@ -253,6 +307,12 @@ fn host_structs_match_wgsl_layouts() {
         "Environment",
         GpuEnvironment,
         [size, light, strength, rotation]
+    );
+    check_struct!(
+        m,
+        "GiReservoir",
+        GpuGiReservoir,
+        [position, normal, radiance, w_sum, weight, m, p_hat, packed]
     );
 }
 

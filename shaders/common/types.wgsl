@@ -188,3 +188,16 @@ struct Environment {
     _pad0: u32,
     _pad1: u32,
 }
+
+// A ReSTIR GI reservoir (issue 12; functions in common/gi_reservoir.wgsl, math in
+// render/src/reservoir/gi.rs). The pixel's Surface is its visible point.
+struct GiReservoir {
+    position: vec3<f32>,  // x_s, the secondary hit
+    normal: u32,          // octahedral n_s, either orientation
+    radiance: vec3<f32>,  // L_o(x_s -> x_v), cached when drawn
+    w_sum: f32,
+    weight: f32,          // W; 0 for the null sample
+    m: f32,
+    p_hat: f32,           // p̂ at the pixel that selected it
+    packed: u32,          // SOURCE_* | GI flags << GI_FLAGS_SHIFT | age << GI_AGE_SHIFT
+}

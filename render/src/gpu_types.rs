@@ -249,6 +249,13 @@ pub struct GpuParams {
     /// Boiling filter threshold k (0 = off): a spatial survivor whose W·p̂ exceeds k × the
     /// neighbourhood mean is dropped.
     pub boiling_filter: f32,
+    // The Indirect stage (ReSTIR GI); its switches are `PARAM_FLAG_GI_*` bits of `flags`.
+    pub gi_m_cap: f32,
+    pub gi_spatial_neighbours: u32,
+    /// In pixels of this image (scaled from the 1080p value).
+    pub gi_spatial_radius: f32,
+    /// The Jacobian window [1/max, max], max ≥ 1.
+    pub gi_jacobian_max: f32,
 }
 
 /// What the display pass shows and how (view settings, not pipeline parameters).

@@ -17,6 +17,7 @@ pub enum Stage {
     Spatial,
     Resampling,
     Shading,
+    Indirect,
 }
 
 impl Stage {
@@ -27,6 +28,7 @@ impl Stage {
             Stage::Spatial => "Spatial reuse",
             Stage::Resampling => "Bias correction",
             Stage::Shading => "Shading and reference",
+            Stage::Indirect => "Indirect",
         }
     }
 }
@@ -275,6 +277,26 @@ parameter_table! {
         reference_spp: u32 = 4, ParamKind::Int { min: 1, max: 4096 }, "Reference spp",
             "Samples per pixel per frame of the reference renderer.";
     }
+    Indirect {
+        gi: bool = false, ParamKind::Bool, "ReSTIR GI",
+            "One-bounce indirect light with reservoir reuse (Ouyang et al. 2021; issue 12): one BSDF ray per pixel, its hit's outgoing direct radiance as the sample, reused over time and space through the reconnection Jacobian. The image is direct (ReSTIR DI) + indirect. Off: no GI code is compiled or run.";
+        gi_temporal: bool = true, ParamKind::Bool, "GI temporal reuse",
+            "Merge the reprojected previous-frame GI reservoir, its sample reconnected to this frame's visible point.";
+        gi_spatial: bool = true, ParamKind::Bool, "GI spatial reuse",
+            "Merge GI reservoirs of nearby pixels, each sample reconnected to this pixel's visible point.";
+        gi_m_cap: f32 = 10.0, ParamKind::Float { min: 0.0, max: 1e6 }, "GI M cap",
+            "Upper bound of a GI reservoir's confidence M (as M cap for direct light, separately). 10, half the direct light's: a GI sample's cached radiance is never re-evaluated, so it outlives a lighting change for about M cap frames (recovery took ~M cap frames for direct light, docs/bench.md \"Lag and ghosting\").";
+        gi_spatial_neighbours: u32 = 3, ParamKind::Int { min: 0, max: MAX_SPATIAL_NEIGHBOURS as i64 }, "GI neighbours",
+            "Neighbours tried per pixel in GI spatial reuse. 3, fewer than direct light's 5: each one costs a reconnection shadow ray when GI reconnection visibility is on.";
+        gi_spatial_radius: f32 = 30.0, ParamKind::Float { min: 1.0, max: 1024.0 }, "GI radius (px at 1080p)",
+            "Radius of the GI neighbour disk in pixels of a 1080-pixel-high image, scaled with the height like the direct light's radius (at least 2 px).";
+        gi_jacobian_max: f32 = 10.0, ParamKind::Float { min: 1.0, max: 1000.0 }, "GI Jacobian window",
+            "Reject a reconnected sample when its Jacobian |J| is outside [1/max, max]: a sample that the other pixel saw much larger or smaller than this one would (near geometry, grazing angles) carries a weight out of proportion, the source of GI fireflies. Symmetric, so pairwise MIS stays unbiased; 1 accepts only |J| = 1.";
+        gi_spatial_visibility: bool = true, ParamKind::Bool, "GI reconnection visibility",
+            "Trace a shadow ray from this pixel's visible point to each spatial neighbour's sample point and drop the sample when occluded. Off: one ray fewer per neighbour, biased (light leaks through occluders).";
+        gi_bias_correction: BiasCorrection = BiasCorrection::Pairwise, ParamKind::Choice(BIAS_CORRECTION_NAMES), "GI bias correction",
+            "pairwise (default): pairwise MIS with each target expressed in this pixel's measure through the Jacobian (unbiased). one-over-m: 1/M weights with rejection (biased: darker where a neighbour cannot see or reconnect part of this pixel's hemisphere).";
+    }
 }
 
 /// A problem with a parameter name or value (one line, names the parameter).
@@ -431,6 +453,7 @@ impl Settings {
         if self.initial_visibility {
             flags |= PARAM_FLAG_INITIAL_VISIBILITY;
         }
+        flags |= self.gi_flags();
         GpuParams {
             light_candidates: self.light_candidates,
             bsdf_candidates: self.bsdf_candidates,
@@ -448,7 +471,28 @@ impl Settings {
             spatial_radius: self.effective_spatial_radius(height),
             reference_spp: self.reference_spp.max(1),
             boiling_filter: self.boiling_filter,
+            gi_m_cap: self.gi_m_cap,
+            gi_spatial_neighbours: self.gi_spatial_neighbours.min(MAX_SPATIAL_NEIGHBOURS),
+            gi_spatial_radius: self.effective_gi_spatial_radius(height),
+            gi_jacobian_max: self.gi_jacobian_max.max(1.0),
         }
+    }
+
+    /// The Indirect stage's `PARAM_FLAG_GI_*` bits of `GpuParams::flags`.
+    fn gi_flags(&self) -> u32 {
+        [
+            (self.gi, PARAM_FLAG_GI),
+            (self.gi_temporal, PARAM_FLAG_GI_TEMPORAL),
+            (self.gi_spatial, PARAM_FLAG_GI_SPATIAL),
+            (self.gi_spatial_visibility, PARAM_FLAG_GI_SPATIAL_VISIBILITY),
+            (
+                self.gi_bias_correction == BiasCorrection::Pairwise,
+                PARAM_FLAG_GI_PAIRWISE,
+            ),
+        ]
+        .iter()
+        .filter(|(on, _)| *on)
+        .fold(0, |acc, (_, bit)| acc | bit)
     }
 }
 

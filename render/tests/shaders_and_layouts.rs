@@ -276,7 +276,11 @@ fn host_structs_match_wgsl_layouts() {
             spatial_neighbours,
             spatial_radius,
             reference_spp,
-            boiling_filter
+            boiling_filter,
+            gi_m_cap,
+            gi_spatial_neighbours,
+            gi_spatial_radius,
+            gi_jacobian_max
         ]
     );
     check_struct!(

@@ -149,6 +149,11 @@ struct Params {
     spatial_radius: f32,
     reference_spp: u32,
     boiling_filter: f32,          // 0 = off
+    // Indirect stage (ReSTIR GI); switches are PARAM_FLAG_GI_* bits of `flags`
+    gi_m_cap: f32,
+    gi_spatial_neighbours: u32,
+    gi_spatial_radius: f32,       // pixels of this image
+    gi_jacobian_max: f32,         // window [1/max, max]
 }
 
 struct Display {

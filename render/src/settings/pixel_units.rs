@@ -37,11 +37,17 @@ impl Settings {
         scale_to_height(self.spatial_radius, height, MIN_SPATIAL_RADIUS_PX)
     }
 
+    /// The GI spatial radius in pixels of an image `height` pixels high (same rule).
+    pub fn effective_gi_spatial_radius(&self, height: u32) -> f32 {
+        scale_to_height(self.gi_spatial_radius, height, MIN_SPATIAL_RADIUS_PX)
+    }
+
     /// For a pixel-unit parameter, the value used at `height`; `None` for the others.
     /// (The one list of such parameters: the UI and `params` ask here.)
     pub fn effective_pixels(&self, name: &str, height: u32) -> Option<f32> {
         match name {
             "spatial_radius" => Some(self.effective_spatial_radius(height)),
+            "gi_spatial_radius" => Some(self.effective_gi_spatial_radius(height)),
             _ => None,
         }
     }
@@ -79,6 +85,7 @@ mod tests {
     fn only_pixel_unit_parameters_have_an_effective_value() {
         let s = Settings::default();
         assert_eq!(s.effective_pixels("spatial_radius", 540), Some(15.0));
+        assert_eq!(s.effective_pixels("gi_spatial_radius", 540), Some(15.0));
         assert_eq!(s.effective_pixels("m_cap", 540), None);
     }
 
@@ -87,5 +94,11 @@ mod tests {
         let s = Settings::default();
         assert_eq!(s.gpu_params(180).spatial_radius, 5.0);
         assert_eq!(s.gpu_params(1080).spatial_radius, 30.0);
+        let gi = Settings {
+            gi_spatial_radius: 40.0,
+            ..Settings::default()
+        };
+        assert_eq!(gi.gpu_params(540).gi_spatial_radius, 20.0);
+        assert_eq!(gi.gpu_params(48).gi_spatial_radius, MIN_SPATIAL_RADIUS_PX);
     }
 }

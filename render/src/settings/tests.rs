@@ -89,3 +89,41 @@ fn gpu_params_reflect_checks_and_flags() {
     assert_eq!(p.target_ratio_clamp, 0.0);
     assert_eq!(p.flags & PARAM_FLAG_PERMUTATION, PARAM_FLAG_PERMUTATION);
 }
+
+#[test]
+fn indirect_defaults_and_flags() {
+    let s = Settings::default();
+    assert!(!s.gi && s.gi_temporal && s.gi_spatial && s.gi_spatial_visibility);
+    assert_eq!((s.gi_m_cap, s.gi_spatial_neighbours), (10.0, 3));
+    assert_eq!((s.gi_spatial_radius, s.gi_jacobian_max), (30.0, 10.0));
+    assert_eq!(s.gi_bias_correction, BiasCorrection::Pairwise);
+    assert!(
+        PARAMS
+            .iter()
+            .filter(|p| p.name.starts_with("gi"))
+            .all(|p| p.stage == Stage::Indirect)
+    );
+    // GI off by default: only the pairwise-mode bit of the stage is set, and the DI flags
+    // are what they were.
+    let p = s.gpu_params(1080);
+    let gi_bits = PARAM_FLAG_GI
+        | PARAM_FLAG_GI_TEMPORAL
+        | PARAM_FLAG_GI_SPATIAL
+        | PARAM_FLAG_GI_SPATIAL_VISIBILITY
+        | PARAM_FLAG_GI_PAIRWISE;
+    assert_eq!(p.flags & PARAM_FLAG_GI, 0);
+    assert_eq!(p.flags & gi_bits, gi_bits & !PARAM_FLAG_GI);
+    let mut t = s.clone();
+    t.set_from_str("gi", "on").unwrap();
+    t.set_from_str("gi_spatial_visibility", "off").unwrap();
+    t.set_from_str("gi_bias_correction", "one-over-m").unwrap();
+    let w = t.set_from_str("gi_jacobian_max", "0.5").unwrap();
+    assert!(w.unwrap().contains("gi_jacobian_max"));
+    let p = t.gpu_params(1080);
+    assert_eq!(
+        p.flags & gi_bits,
+        PARAM_FLAG_GI | PARAM_FLAG_GI_TEMPORAL | PARAM_FLAG_GI_SPATIAL
+    );
+    assert_eq!(p.gi_jacobian_max, 1.0);
+    assert_eq!(p.flags & !gi_bits, s.gpu_params(1080).flags & !gi_bits);
+}

@@ -89,11 +89,11 @@ fn stage_ui(ui: &mut Ui, settings: &mut Settings, stage: Stage, height: u32) {
     });
 }
 
-/// `temporal` and `spatial` switch their whole stage off (the pass is not dispatched).
+/// `temporal`, `spatial` and `gi` switch their whole stage off (no pass is dispatched).
 fn is_stage_switch(def: &ParamDef) -> bool {
     matches!(
         (def.stage, def.name),
-        (Stage::Temporal, "temporal") | (Stage::Spatial, "spatial")
+        (Stage::Temporal, "temporal") | (Stage::Spatial, "spatial") | (Stage::Indirect, "gi")
     )
 }
 

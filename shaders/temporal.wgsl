@@ -22,14 +22,6 @@ struct TemporalCandidate {
     prev_surface: Surface,
 }
 
-// Solari-style permutation: mirror the pixel inside a 4×4 block shifted by a per-frame
-// offset, so neighbouring pixels do not inherit correlated histories.
-fn permute_pixel(p: vec2<i32>) -> vec2<i32> {
-    let r = pcg_hash(frame.frame_index ^ frame.seed);
-    let offset = vec2<i32>(i32(r & 3u), i32((r >> 2u) & 3u));
-    return ((p + offset) ^ vec2<i32>(3)) - offset;
-}
-
 fn validate_previous(pixel: vec2<i32>, s: Surface, sp: ShadingPoint) -> TemporalCandidate {
     var c = TemporalCandidate(0u, reservoir_empty(), 0.0, Surface());
     let size = vec2<i32>(frame.size);

@@ -367,3 +367,19 @@ impl GpuGiReservoir {
         self.packed >> crate::shader_constants::GI_AGE_SHIFT
     }
 }
+
+/// Per-pixel ReSTIR GI debug record (the GI views and the stats): the stages' rejection
+/// masks (GI_REJECT_* bits), accepted spatial neighbours, the |J| of the survivor's last
+/// shift (1 for the pixel's own sample) and M after each stage.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuGiPixelDebug {
+    pub temporal_mask: u32,
+    pub spatial_mask: u32,
+    pub spatial_accepted: u32,
+    pub jacobian: f32,
+    pub m_initial: f32,
+    pub m_temporal: f32,
+    pub m_spatial: f32,
+    pub _pad: u32,
+}

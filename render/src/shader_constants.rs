@@ -91,7 +91,21 @@ pub const STAT_NONFINITE: u32 = 24;
 pub const STAT_SURFACE_PIXELS: u32 = 32;
 pub const STAT_TEMPORAL_ACCEPTED: u32 = 33;
 pub const STAT_BOILING_DROPPED: u32 = 34;
-pub const STAT_COUNT: u32 = STAT_SPATIAL_REJECT + REJECT_REASON_COUNT as u32;
+/// ReSTIR GI's counters follow DI's: non-finite values per GI pass, then the GI temporal
+/// and spatial rejections (GI_REJECT_REASON_COUNT each), then merged temporal candidates.
+pub const STAT_GI_NONFINITE: u32 = STAT_SPATIAL_REJECT + REJECT_REASON_COUNT as u32;
+pub const STAT_GI_TEMPORAL_REJECT: u32 = STAT_GI_NONFINITE + GI_GUARDED_PASS_NAMES.len() as u32;
+pub const STAT_GI_SPATIAL_REJECT: u32 = STAT_GI_TEMPORAL_REJECT + GI_REJECT_REASON_COUNT as u32;
+pub const STAT_GI_TEMPORAL_ACCEPTED: u32 = STAT_GI_SPATIAL_REJECT + GI_REJECT_REASON_COUNT as u32;
+pub const STAT_COUNT: u32 = STAT_GI_TEMPORAL_ACCEPTED + 1;
+
+/// The GI passes that count non-finite values (at STAT_GI_NONFINITE + id).
+pub const GI_PASS_INITIAL: u32 = 0;
+pub const GI_PASS_TEMPORAL: u32 = 1;
+pub const GI_PASS_SPATIAL: u32 = 2;
+pub const GI_PASS_SHADE: u32 = 3;
+pub const GI_GUARDED_PASS_NAMES: [&str; 4] =
+    ["gi initial", "gi temporal", "gi spatial", "gi shade"];
 
 /// Random-number streams, one per purpose (`rng_seed` in rng.wgsl).
 pub const STREAM_INITIAL: u32 = 0;
@@ -99,6 +113,10 @@ pub const STREAM_TEMPORAL: u32 = 1;
 pub const STREAM_REFERENCE: u32 = 2;
 pub const STREAM_LIGHT_TILES: u32 = 3;
 pub const STREAM_SPATIAL: u32 = 4;
+// Spatial passes use STREAM_SPATIAL + pass index (up to MAX_SPATIAL_PASSES).
+pub const STREAM_GI_INITIAL: u32 = 16;
+pub const STREAM_GI_TEMPORAL: u32 = 17;
+pub const STREAM_GI_SPATIAL: u32 = 18;
 
 /// The reference renders its samples per pixel in dispatches of at most this many.
 /// lavapipe (Mesa 22) bounds the total loop iterations of one shader invocation (one
@@ -134,6 +152,11 @@ pub const VIEW_MOTION: u32 = 8;
 pub const VIEW_ERROR: u32 = 9;
 pub const VIEW_DIFFERENCE: u32 = 10;
 pub const VIEW_AGE: u32 = 11;
+pub const VIEW_INDIRECT: u32 = 12;
+pub const VIEW_GI_SOURCE: u32 = 13;
+pub const VIEW_GI_M: u32 = 14;
+pub const VIEW_GI_REJECTION: u32 = 15;
+pub const VIEW_GI_JACOBIAN: u32 = 16;
 
 pub const TONEMAP_ACES: u32 = 0;
 pub const TONEMAP_REINHARD: u32 = 1;
@@ -255,6 +278,14 @@ pub fn wgsl_prelude() -> String {
         ("STAT_TEMPORAL_ACCEPTED", STAT_TEMPORAL_ACCEPTED),
         ("STAT_BOILING_DROPPED", STAT_BOILING_DROPPED),
         ("STAT_COUNT", STAT_COUNT),
+        ("STAT_GI_NONFINITE", STAT_GI_NONFINITE),
+        ("STAT_GI_TEMPORAL_REJECT", STAT_GI_TEMPORAL_REJECT),
+        ("STAT_GI_SPATIAL_REJECT", STAT_GI_SPATIAL_REJECT),
+        ("STAT_GI_TEMPORAL_ACCEPTED", STAT_GI_TEMPORAL_ACCEPTED),
+        ("GI_PASS_INITIAL", GI_PASS_INITIAL),
+        ("GI_PASS_TEMPORAL", GI_PASS_TEMPORAL),
+        ("GI_PASS_SPATIAL", GI_PASS_SPATIAL),
+        ("GI_PASS_SHADE", GI_PASS_SHADE),
         ("STREAM_INITIAL", STREAM_INITIAL),
         ("STREAM_TEMPORAL", STREAM_TEMPORAL),
         ("STREAM_REFERENCE", STREAM_REFERENCE),
@@ -263,6 +294,9 @@ pub fn wgsl_prelude() -> String {
         ("LIGHT_TILE_SIZE", LIGHT_TILE_SIZE),
         ("LIGHT_TILE_PIXELS", LIGHT_TILE_PIXELS),
         ("STREAM_SPATIAL", STREAM_SPATIAL),
+        ("STREAM_GI_INITIAL", STREAM_GI_INITIAL),
+        ("STREAM_GI_TEMPORAL", STREAM_GI_TEMPORAL),
+        ("STREAM_GI_SPATIAL", STREAM_GI_SPATIAL),
         ("MAX_SPATIAL_NEIGHBOURS", MAX_SPATIAL_NEIGHBOURS),
         (
             "REFERENCE_SAMPLES_PER_DISPATCH",
@@ -280,6 +314,11 @@ pub fn wgsl_prelude() -> String {
         ("VIEW_ERROR", VIEW_ERROR),
         ("VIEW_DIFFERENCE", VIEW_DIFFERENCE),
         ("VIEW_AGE", VIEW_AGE),
+        ("VIEW_INDIRECT", VIEW_INDIRECT),
+        ("VIEW_GI_SOURCE", VIEW_GI_SOURCE),
+        ("VIEW_GI_M", VIEW_GI_M),
+        ("VIEW_GI_REJECTION", VIEW_GI_REJECTION),
+        ("VIEW_GI_JACOBIAN", VIEW_GI_JACOBIAN),
         ("TONEMAP_ACES", TONEMAP_ACES),
         ("TONEMAP_REINHARD", TONEMAP_REINHARD),
         ("TONEMAP_CLAMP", TONEMAP_CLAMP),

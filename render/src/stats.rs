@@ -31,9 +31,13 @@ impl FrameCounters {
     }
 
     pub fn non_finite_total(&self) -> u64 {
-        (0..GUARDED_PASS_NAMES.len() as u32)
+        let di: u64 = (0..GUARDED_PASS_NAMES.len() as u32)
             .map(|p| self.get(STAT_NONFINITE + p))
-            .sum()
+            .sum();
+        let gi: u64 = (0..GI_GUARDED_PASS_NAMES.len() as u32)
+            .map(|p| self.get(STAT_GI_NONFINITE + p))
+            .sum();
+        di + gi
     }
 }
 
@@ -66,6 +70,11 @@ pub struct StatsSummary {
     pub non_finite_by_pass: BTreeMap<String, u64>,
     pub temporal_rejections: BTreeMap<String, u64>,
     pub spatial_rejections: BTreeMap<String, u64>,
+    /// ReSTIR GI's rejections by reason (zeros when GI is off).
+    pub gi_temporal_rejections: BTreeMap<String, u64>,
+    pub gi_spatial_rejections: BTreeMap<String, u64>,
+    /// Fraction of surface pixels whose GI temporal candidate was merged.
+    pub gi_temporal_accepted_fraction: f64,
     /// Fraction of surface pixels whose survivor came from each source.
     pub source_fractions: BTreeMap<String, f64>,
     /// Fraction of surface pixels where the temporal or spatial M cap fired.
@@ -126,6 +135,13 @@ impl StatsSummary {
                 .map(|(i, n)| (n.to_string(), total.get(base + i as u32)))
                 .collect()
         };
+        let gi_named = |base: u32| -> BTreeMap<String, u64> {
+            GI_REJECT_REASON_NAMES
+                .iter()
+                .enumerate()
+                .map(|(i, n)| (n.to_string(), total.get(base + i as u32)))
+                .collect()
+        };
         StatsSummary {
             frames: reports.len() as u64,
             pass_ms_median: per_pass
@@ -138,7 +154,16 @@ impl StatsSummary {
                 .iter()
                 .enumerate()
                 .map(|(i, n)| (n.to_string(), total.get(STAT_NONFINITE + i as u32)))
+                .chain(
+                    GI_GUARDED_PASS_NAMES
+                        .iter()
+                        .enumerate()
+                        .map(|(i, n)| (n.to_string(), total.get(STAT_GI_NONFINITE + i as u32))),
+                )
                 .collect(),
+            gi_temporal_rejections: gi_named(STAT_GI_TEMPORAL_REJECT),
+            gi_spatial_rejections: gi_named(STAT_GI_SPATIAL_REJECT),
+            gi_temporal_accepted_fraction: fraction(total.get(STAT_GI_TEMPORAL_ACCEPTED)),
             temporal_rejections: named(STAT_TEMPORAL_REJECT),
             spatial_rejections: named(STAT_SPATIAL_REJECT),
             source_fractions: SOURCE_NAMES

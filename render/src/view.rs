@@ -49,10 +49,16 @@ pub enum DebugView {
     /// |A − B| against the other side of a split-screen comparison.
     Difference,
     Age,
+    /// ReSTIR GI: the indirect radiance alone, and the GI reservoirs (drawn by gi_view).
+    Indirect,
+    GiSource,
+    GiM,
+    GiRejection,
+    GiJacobian,
 }
 
 impl DebugView {
-    pub const ALL: [DebugView; 12] = [
+    pub const ALL: [DebugView; 17] = [
         DebugView::Final,
         DebugView::Source,
         DebugView::M,
@@ -65,6 +71,11 @@ impl DebugView {
         DebugView::Error,
         DebugView::Difference,
         DebugView::Age,
+        DebugView::Indirect,
+        DebugView::GiSource,
+        DebugView::GiM,
+        DebugView::GiRejection,
+        DebugView::GiJacobian,
     ];
 
     pub fn name(self) -> &'static str {
@@ -81,6 +92,11 @@ impl DebugView {
             DebugView::Error => "error",
             DebugView::Difference => "difference",
             DebugView::Age => "age",
+            DebugView::Indirect => "indirect",
+            DebugView::GiSource => "gi-source",
+            DebugView::GiM => "gi-m",
+            DebugView::GiRejection => "gi-rejection",
+            DebugView::GiJacobian => "gi-jacobian",
         }
     }
 
@@ -102,7 +118,24 @@ impl DebugView {
             DebugView::Error => VIEW_ERROR,
             DebugView::Difference => VIEW_DIFFERENCE,
             DebugView::Age => VIEW_AGE,
+            DebugView::Indirect => VIEW_INDIRECT,
+            DebugView::GiSource => VIEW_GI_SOURCE,
+            DebugView::GiM => VIEW_GI_M,
+            DebugView::GiRejection => VIEW_GI_REJECTION,
+            DebugView::GiJacobian => VIEW_GI_JACOBIAN,
         }
+    }
+
+    /// Whether the view shows ReSTIR GI data (drawn by the gi_view pass, only when GI runs).
+    pub fn is_indirect(self) -> bool {
+        matches!(
+            self,
+            DebugView::Indirect
+                | DebugView::GiSource
+                | DebugView::GiM
+                | DebugView::GiRejection
+                | DebugView::GiJacobian
+        )
     }
 }
 

@@ -318,6 +318,20 @@ fn host_structs_match_wgsl_layouts() {
         GpuGiReservoir,
         [position, normal, radiance, w_sum, weight, m, p_hat, packed]
     );
+    check_struct!(
+        m,
+        "GiPixelDebug",
+        GpuGiPixelDebug,
+        [
+            temporal_mask,
+            spatial_mask,
+            spatial_accepted,
+            jacobian,
+            m_initial,
+            m_temporal,
+            m_spatial
+        ]
+    );
 }
 
 /// What the shader declares at a group-2 binding, as the declaration should name it.

@@ -46,3 +46,12 @@ fn count_rejections(mask: u32, base: u32) {
         m &= m - 1u;
     }
 }
+
+// Solari-style permutation: mirror the pixel inside a 4×4 block shifted by a per-frame
+// offset, so neighbouring pixels do not inherit correlated histories.
+// Temporal reuse of DI and GI use the same permutation.
+fn permute_pixel(p: vec2<i32>) -> vec2<i32> {
+    let r = pcg_hash(frame.frame_index ^ frame.seed);
+    let offset = vec2<i32>(i32(r & 3u), i32((r >> 2u) & 3u));
+    return ((p + offset) ^ vec2<i32>(3)) - offset;
+}

@@ -206,3 +206,15 @@ struct GiReservoir {
     p_hat: f32,           // p̂ at the pixel that selected it
     packed: u32,          // SOURCE_* | GI flags << GI_FLAGS_SHIFT | age << GI_AGE_SHIFT
 }
+
+// Per-pixel ReSTIR GI debug record (GpuGiPixelDebug).
+struct GiPixelDebug {
+    temporal_mask: u32,   // GI_REJECT_* bits
+    spatial_mask: u32,
+    spatial_accepted: u32,
+    jacobian: f32,        // |J| of the survivor's last shift, 1 for the pixel's own sample
+    m_initial: f32,
+    m_temporal: f32,
+    m_spatial: f32,
+    _pad: u32,
+}

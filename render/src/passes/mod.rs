@@ -10,6 +10,11 @@ pub mod resources;
 
 pub mod display;
 pub mod gbuffer;
+pub mod gi_initial;
+pub mod gi_shade;
+pub mod gi_spatial;
+pub mod gi_temporal;
+pub mod gi_view;
 pub mod initial;
 pub mod presample;
 pub mod reference;
@@ -24,7 +29,7 @@ pub use compile::{
 pub use pass::PassDef;
 
 /// Every pass, in pipeline order (a layout is created for each; tests validate each).
-pub const ALL: [&PassDef; 9] = [
+pub const ALL: [&PassDef; 14] = [
     &gbuffer::RASTER,
     &gbuffer::RESOLVE,
     &presample::PASS,
@@ -32,6 +37,11 @@ pub const ALL: [&PassDef; 9] = [
     &temporal::PASS,
     &spatial::PASS,
     &shade::PASS,
+    &gi_initial::PASS,
+    &gi_temporal::PASS,
+    &gi_spatial::PASS,
+    &gi_shade::PASS,
     &reference::PASS,
     &display::PASS,
+    &gi_view::PASS,
 ];

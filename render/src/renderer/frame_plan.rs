@@ -1,12 +1,14 @@
 //! The frame as an ordered list of passes, read top to bottom like the pipeline diagram
-//! (README): G-buffer → (light tiles) → initial → temporal → spatial × P → shade →
-//! display, or G-buffer (jitter off) → reference → display. A stage the settings switch
-//! off is not in the list, hence never dispatched or compiled.
+//! (README): G-buffer → (light tiles) → DI initial → temporal → spatial × P → shade →
+//! (GI initial → temporal → spatial → shade) → display (→ GI view), or G-buffer (jitter
+//! off) → reference → display. A stage the settings switch off is not in the list, hence
+//! never dispatched or compiled.
 
 use std::ops::Range;
 
 use crate::passes::{
-    PassDef, display, gbuffer, initial, presample, reference, shade, spatial, temporal,
+    PassDef, display, gbuffer, gi_initial, gi_shade, gi_spatial, gi_temporal, gi_view, initial,
+    presample, reference, shade, spatial, temporal,
 };
 
 /// One pass of the frame.
@@ -53,6 +55,12 @@ pub struct FrameSwitches {
     pub spatial_passes: u32,
     /// Dispatches of the reference (chunks of samples).
     pub reference_chunks: u32,
+    /// ReSTIR GI (real-time frames only) and its reuse stages.
+    pub gi: bool,
+    pub gi_temporal: bool,
+    pub gi_spatial: bool,
+    /// A GI debug view is shown (drawn over the display's output).
+    pub gi_view: bool,
 }
 
 pub fn frame_plan(f: &FrameSwitches) -> Vec<Step> {
@@ -73,14 +81,32 @@ pub fn frame_plan(f: &FrameSwitches) -> Vec<Step> {
             steps.push(Step::new(&spatial::PASS).slots(p..p + 1).inspect("spatial"));
         }
         steps.push(Step::new(&shade::PASS));
+        if f.gi {
+            steps.push(Step::new(&gi_initial::PASS));
+            if f.gi_temporal {
+                steps.push(Step::new(&gi_temporal::PASS));
+            }
+            if f.gi_spatial {
+                steps.push(Step::new(&gi_spatial::PASS));
+            }
+            steps.push(Step::new(&gi_shade::PASS));
+        }
     } else {
         steps.push(Step::new(&reference::PASS).slots(0..f.reference_chunks.max(1)));
     }
     steps.push(Step::new(&display::PASS));
+    if f.realtime && f.gi && f.gi_view {
+        steps.push(Step::new(&gi_view::PASS));
+    }
     steps
 }
 
-/// Only the display pass, on the last frame's buffers (`Renderer::redisplay`).
-pub fn display_only() -> Vec<Step> {
-    vec![Step::new(&display::PASS)]
+/// Only the display (and GI view) passes, on the last frame's buffers
+/// (`Renderer::redisplay`).
+pub fn display_only(gi_view: bool) -> Vec<Step> {
+    let mut steps = vec![Step::new(&display::PASS)];
+    if gi_view {
+        steps.push(Step::new(&gi_view::PASS));
+    }
+    steps
 }

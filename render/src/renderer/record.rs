@@ -105,10 +105,14 @@ impl Renderer {
                 s.bsdf_candidates = 0;
                 s.temporal = false;
                 s.spatial = false;
+                s.gi_temporal = false;
+                s.gi_spatial = false;
             }
             Mode::Ris => {
                 s.temporal = false;
                 s.spatial = false;
+                s.gi_temporal = false;
+                s.gi_spatial = false;
             }
             Mode::Restir | Mode::Reference => {}
         }
@@ -160,6 +164,10 @@ impl Renderer {
                 .max(1)
                 .div_ceil(REFERENCE_SAMPLES_PER_DISPATCH)
                 .min(PASS_INFO_SLOTS),
+            gi: realtime && settings.gi,
+            gi_temporal: settings.gi_temporal,
+            gi_spatial: settings.gi_spatial && settings.gi_spatial_neighbours > 0,
+            gi_view: self.view.view.is_indirect(),
         };
         let plan = frame_plan(&switches);
         if switches.light_tiles
@@ -293,35 +301,43 @@ impl Renderer {
         };
         let shown_accumulation = self.shows_accumulation();
         let variant = self.variants.entry(active.key.clone()).or_default();
-        let plan = frame_plan::display_only();
-        variant.compile(&self.gpu, &self.layouts, &active.defines, plan[0].pass)?;
+        let gi_view = settings.gi && self.mode != Mode::Reference && self.view.view.is_indirect();
+        let plan = frame_plan::display_only(gi_view);
+        for step in &plan {
+            variant.compile(&self.gpu, &self.layouts, &active.defines, step.pass)?;
+        }
         let resolved = resolve(&plan, &self.carried, false, shown_accumulation);
+        // Normally there already (a GI view right after GI was switched on shows zeros).
+        self.targets.ensure(&self.gpu, &resolved.needs);
+        let variant = &self.variants[&active.key];
         let uniforms = Uniforms {
             pass_info: &self.pass_info,
             display: &self.display_uniform,
             light_tiles: &self.light_tiles,
             prev_triangles: &self.scene.prev_triangles,
         };
-        let group = self.bind_groups.get(
-            &self.gpu,
-            &self.layouts,
-            &self.targets,
-            &uniforms,
-            plan[0].pass,
-            &resolved.steps[0].bound,
-        );
         let size = (self.targets.width, self.targets.height);
         let mut rec = FrameRecorder::new(
             &self.gpu,
             &mut self.timer,
             crate::gpu::timing::TimingMode::Off,
         );
-        variant.passes[plan[0].pass.name].record(
-            &mut rec,
-            [&self.frame_bind_group, &self.scene.bind_group, &group],
-            &[],
-            size,
-        );
+        for (step, r) in plan.iter().zip(&resolved.steps) {
+            let group = self.bind_groups.get(
+                &self.gpu,
+                &self.layouts,
+                &self.targets,
+                &uniforms,
+                step.pass,
+                &r.bound,
+            );
+            variant.passes[step.pass.name].record(
+                &mut rec,
+                [&self.frame_bind_group, &self.scene.bind_group, &group],
+                &[],
+                size,
+            );
+        }
         rec.submit(self.frame_index, |_| {});
         self.gpu.check()
     }

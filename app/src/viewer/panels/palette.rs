@@ -42,6 +42,32 @@ pub fn reason_color(bit: u32) -> Color32 {
     linear(PALETTE[(bit as usize).min(PALETTE.len() - 1)])
 }
 
+/// GI rejection reason `bit` (0..GI_REJECT_REASON_COUNT), as gi_view.wgsl draws it: DI's
+/// six checks in DI's colours, then reconnection, Jacobian, occluded.
+pub fn gi_reason_color(bit: u32) -> Color32 {
+    const PALETTE: [[f32; 3]; 9] = [
+        [1.0, 0.0, 0.0],
+        [1.0, 0.5, 0.0],
+        [1.0, 0.0, 1.0],
+        [0.0, 0.6, 1.0],
+        [0.0, 1.0, 1.0],
+        [1.0, 1.0, 0.0],
+        [0.55, 0.0, 1.0],
+        [1.0, 1.0, 1.0],
+        [0.1, 0.9, 0.2],
+    ];
+    linear(PALETTE[(bit as usize).min(PALETTE.len() - 1)])
+}
+
+/// The GI Jacobian view's three anchors: |J| at the window's low end, 1, the high end.
+pub fn jacobian_colors() -> [Color32; 3] {
+    [
+        linear([0.1, 0.3, 1.0]),
+        linear([1.0, 1.0, 1.0]),
+        linear([1.0, 0.1, 0.05]),
+    ]
+}
+
 /// The rejection view's spatial part: the fraction of neighbours rejected, black to grey.
 pub fn spatial_count_color(fraction: f32) -> Color32 {
     linear([0.45 * fraction.clamp(0.0, 1.0); 3])

@@ -3,11 +3,15 @@
 //! changes the estimate.
 
 use egui::Ui;
-use restir_render::shader_constants::{REJECT_REASON_NAMES, REJECT_TEMPORAL_REASONS};
+use restir_render::shader_constants::{
+    GI_REJECT_REASON_NAMES, REJECT_REASON_NAMES, REJECT_TEMPORAL_REASONS,
+};
 use restir_render::{DebugView, Settings, Tonemapper, ViewSettings};
 
 use super::accuracy;
-use super::palette::{ramp, reason_color, source_legend, spatial_count_ramp, swatch};
+use super::palette::{
+    gi_reason_color, jacobian_colors, ramp, reason_color, source_legend, spatial_count_ramp, swatch,
+};
 use crate::viewer::state::{Action, DisplayOptions, ViewerState};
 
 pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
@@ -88,6 +92,17 @@ fn describe(v: DebugView) -> &'static str {
         DebugView::Age => {
             "Frames since the surviving sample was first drawn, 0 to 2 × the M cap; null samples black"
         }
+        DebugView::Indirect => "ReSTIR GI: the indirect radiance alone, tonemapped like the image",
+        DebugView::GiSource => {
+            "ReSTIR GI: which stage's sample survived: initial, temporal or spatial"
+        }
+        DebugView::GiM => "ReSTIR GI: confidence M of the final GI reservoir, 0 to the GI M cap",
+        DebugView::GiRejection => {
+            "ReSTIR GI: why the temporal candidate was rejected (first reason); elsewhere, how many spatial neighbours were"
+        }
+        DebugView::GiJacobian => {
+            "ReSTIR GI: |J| of the surviving sample's last shift on a log scale: blue below 1, white at 1, red above, saturating at the Jacobian window"
+        }
     }
 }
 
@@ -113,8 +128,41 @@ fn legend(ui: &mut Ui, state: &mut ViewerState) {
                 ui.weak("Turn on Compare to choose B: until then the difference is to black.");
             }
         }
+        DebugView::GiSource => source_legend(ui, str::to_string),
+        DebugView::GiM => ramp(ui, "0", &format!("GI M cap ({})", state.settings.gi_m_cap)),
+        DebugView::GiRejection => gi_rejection_legend(ui),
+        DebugView::GiJacobian => {
+            let w = state.settings.gi_jacobian_max.max(1.0);
+            let [low, one, high] = jacobian_colors();
+            ui.horizontal(|ui| {
+                swatch(ui, low);
+                ui.label(format!("|J| ≤ 1/{w}"));
+                swatch(ui, one);
+                ui.label("1");
+                swatch(ui, high);
+                ui.label(format!("≥ {w}"));
+            });
+        }
         _ => {}
     }
+    if state.view.view.is_indirect() && !state.settings.gi {
+        ui.weak("ReSTIR GI is off (Indirect section): this view shows the last frame's image.");
+    }
+}
+
+/// The GI rejection reasons and their colours.
+fn gi_rejection_legend(ui: &mut Ui) {
+    ui.weak("temporal: first reason; black: nothing rejected");
+    egui::Grid::new("gi rejection legend")
+        .num_columns(2)
+        .show(ui, |ui| {
+            for (bit, name) in GI_REJECT_REASON_NAMES.iter().enumerate() {
+                ui.label(*name);
+                swatch(ui, gi_reason_color(bit as u32));
+                ui.end_row();
+            }
+        });
+    ui.weak("spatial (where temporal passed): grey = share of neighbours rejected");
 }
 
 /// Temporal: one row per reason, its colour, a toggle (shown in the view or not) and

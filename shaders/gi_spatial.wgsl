@@ -1,0 +1,134 @@
+// ReSTIR GI spatial reuse (Ouyang et al. 2021 §3.3): k neighbours in a disk of
+// gi_spatial_radius pixels; each is validated with DI's surface checks and bits, its
+// sample shifted from the neighbour's visible point to this one (reconnection Jacobian,
+// window) and, with gi_spatial_visibility, the reconnection segment traced (off is biased:
+// an occluded sample is counted as if visible). Merged with 1/M or pairwise MIS, the
+// canonical sample's targets at the neighbours taken through |J_here→neighbour|.
+#include "common/gi_reuse.wgsl"
+#include "common/reuse.wgsl"
+
+@group(2) @binding(0) var<storage, read> surfaces: array<Surface>;
+@group(2) @binding(1) var<storage, read> gi_in: array<GiReservoir>;
+@group(2) @binding(2) var<storage, read_write> gi_out: array<GiReservoir>;
+@group(2) @binding(3) var<storage, read_write> gi_debug: array<GiPixelDebug>;
+
+struct GiNeighbour {
+    index: u32,
+    jacobian: f32,     // |J| neighbour → here
+    target_here: f32,
+}
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if !pixel_in_frame(id) {
+        return;
+    }
+    let index = pixel_index(id.xy);
+    let s = surfaces[index];
+    let canonical = gi_checked(gi_in[index], GI_PASS_SPATIAL);
+    var d = gi_debug[index];
+    if !surface_is_valid(s) {
+        gi_out[index] = canonical;
+        return;
+    }
+    let sp = shading_point_from_surface(s, frame.camera_position);
+    var rng = rng_seed(id.xy, STREAM_GI_SPATIAL);
+    var accepted: array<GiNeighbour, MAX_SPATIAL_NEIGHBOURS>;
+    var n_accepted = 0u;
+    var pass_mask = 0u;
+    var c_total = canonical.m;
+    let size = vec2<i32>(frame.size);
+    let k = min(params.gi_spatial_neighbours, MAX_SPATIAL_NEIGHBOURS);
+    for (var i = 0u; i < k; i++) {
+        let u = rand_vec2(&rng);
+        let radius = params.gi_spatial_radius * sqrt(u.x);
+        let angle = 2.0 * PI * u.y;
+        var offset = vec2<i32>(round(radius * vec2<f32>(cos(angle), sin(angle))));
+        if all(offset == vec2<i32>(0)) {
+            offset = vec2<i32>(1, 0);
+        }
+        let q = vec2<i32>(id.xy) + offset;
+        var mask = 0u;
+        var n = GiNeighbour(0u, 0.0, 0.0);
+        if any(q < vec2<i32>(0)) || any(q >= size) {
+            mask |= REJECT_OFFSCREEN;
+        } else {
+            n.index = pixel_index(vec2<u32>(q));
+            let ns = surfaces[n.index];
+            if !surface_is_valid(ns) {
+                mask |= REJECT_SURFACE;
+            } else {
+                mask |= surface_dissimilarity(s, ns, false);
+                let nr = gi_checked(gi_in[n.index], GI_PASS_SPATIAL);
+                if gi_reservoir_is_null(nr) {
+                    mask |= REJECT_RESERVOIR;
+                } else {
+                    let shift = gi_shift(nr, ns.position, s.position);
+                    n.jacobian = shift.jacobian;
+                    mask |= shift.reject;
+                    n.target_here = gi_target_at(sp, nr.position, nr.radiance);
+                    if mask == 0u && n.target_here > 0.0 && gi_flag_on(PARAM_FLAG_GI_SPATIAL_VISIBILITY) && !gi_reconnection_visible(sp, nr) {
+                        mask |= GI_REJECT_OCCLUDED;
+                    }
+                }
+            }
+        }
+        if mask == 0u {
+            accepted[n_accepted] = n;
+            n_accepted++;
+            c_total += gi_in[n.index].m;
+        }
+        count_rejections(mask, STAT_GI_SPATIAL_REJECT);
+        pass_mask |= mask;
+    }
+
+    var r = gi_reservoir_empty();
+    var picked_jacobian = 1.0;
+    if gi_flag_on(PARAM_FLAG_GI_PAIRWISE) {
+        var m_canonical = confidence_share(canonical.m, c_total);
+        for (var i = 0u; i < n_accepted; i++) {
+            let n = accepted[i];
+            let nr = gi_in[n.index];
+            let ns = surfaces[n.index];
+            let m_i = gi_pairwise_noncanonical(c_total, canonical.m, nr.m, nr.p_hat, n.target_here, n.jacobian);
+            let packed = gi_pack(SOURCE_SPATIAL, 0u, gi_age(nr));
+            if gi_reservoir_merge_mis(&r, nr, n.target_here, n.jacobian, m_i, packed, rand_f32(&rng)) {
+                picked_jacobian = n.jacobian;
+            }
+            if !gi_reservoir_is_null(canonical) {
+                let neighbour_sp = shading_point_from_surface(ns, frame.camera_position);
+                let back = gi_shift(canonical, s.position, ns.position);
+                let j_back = select(0.0, back.jacobian, back.reject == 0u);
+                let at_neighbour = gi_target_at(neighbour_sp, canonical.position, canonical.radiance);
+                m_canonical += gi_pairwise_canonical_term(c_total, canonical.m, nr.m, canonical.p_hat, at_neighbour, j_back);
+            }
+        }
+        if gi_reservoir_merge_mis(&r, canonical, canonical.p_hat, 1.0, m_canonical, canonical.packed, rand_f32(&rng)) {
+            picked_jacobian = 1.0;
+        }
+        r.m = c_total;
+        gi_reservoir_finalize(&r, 1.0);
+    } else {
+        gi_reservoir_merge(&r, canonical, canonical.p_hat, 1.0, canonical.m, canonical.packed, rand_f32(&rng));
+        for (var i = 0u; i < n_accepted; i++) {
+            let n = accepted[i];
+            let nr = gi_in[n.index];
+            let packed = gi_pack(SOURCE_SPATIAL, 0u, gi_age(nr));
+            if gi_reservoir_merge(&r, nr, n.target_here, n.jacobian, nr.m, packed, rand_f32(&rng)) {
+                picked_jacobian = n.jacobian;
+            }
+        }
+        gi_reservoir_finalize(&r, r.m);
+    }
+    if gi_source(r) == SOURCE_SPATIAL {
+        d.jacobian = picked_jacobian;
+    }
+    gi_cap_confidence(&r, params.gi_m_cap);
+    gi_set_flags(&r, pass_mask);
+    r = gi_guarded(r, GI_PASS_SPATIAL);
+    gi_out[index] = r;
+    d.m_spatial = r.m;
+    d.spatial_mask = pass_mask;
+    d.spatial_accepted = n_accepted;
+    gi_debug[index] = d;
+}

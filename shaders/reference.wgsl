@@ -4,10 +4,13 @@
 // (which finds an emitter or escapes to the environment), combined with the balance
 // heuristic (both are unbiased on their own; MIS only lowers the variance on glossy
 // surfaces). Many samples per pixel, averaged over frames by the accumulation buffer.
+// With max_bounces ≥ 2 the BSDF ray continues the path and every vertex is shaded the
+// same way (common/path_trace.wgsl).
 #include "common/frame_bindings.wgsl"
 #include "common/stats_bindings.wgsl"
 #include "common/shading_point.wgsl"
 #include "common/camera_ray.wgsl"
+#include "common/path_trace.wgsl"
 
 @group(2) @binding(0) var<storage, read_write> radiance: array<vec4<f32>>;
 @group(2) @binding(1) var<storage, read_write> accumulation: array<vec4<f32>>;
@@ -96,6 +99,18 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             sp = shading_point_from_surface(s, frame.camera_position);
             sample_value = s.emission;
         }
+        if params.max_bounces > 1u {
+            // Indirect light too: a BSDF-sampled path (common/path_trace.wgsl).
+            sample_value += path_estimate(sp, min(params.max_bounces, MAX_BOUNCES), &rng);
+            if is_finite_vec3(sample_value) {
+                sum += sample_value;
+            } else {
+                count_stat(STAT_NONFINITE + PASS_REFERENCE);
+            }
+            continue;
+        }
+        // One bounce: the code as it was before paths, so max_bounces=1 renders the
+        // same image bit for bit (render/tests/one_bounce_unchanged.rs).
         if frame.light_count > 0u {
             sample_value += light_sample_estimate(sp, &rng);
         }

@@ -249,6 +249,9 @@ pub struct GpuParams {
     /// Boiling filter threshold k (0 = off): a spatial survivor whose W·p̂ exceeds k × the
     /// neighbourhood mean is dropped.
     pub boiling_filter: f32,
+    /// Path vertices the reference shades, 1..=MAX_BOUNCES (1 = direct light only).
+    pub max_bounces: u32,
+    pub _pad: [u32; 3],
 }
 
 /// What the display pass shows and how (view settings, not pipeline parameters).

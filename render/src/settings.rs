@@ -274,6 +274,8 @@ parameter_table! {
             "Jitter the G-buffer inside the pixel every frame, so accumulated frames converge to the pixel-area average (antialiased). Off: every pass, the reference included, sees the pixel centre, so comparisons measure lighting error alone.";
         reference_spp: u32 = 4, ParamKind::Int { min: 1, max: 4096 }, "Reference spp",
             "Samples per pixel per frame of the reference renderer.";
+        max_bounces: u32 = 1, ParamKind::Int { min: 1, max: MAX_BOUNCES as i64 }, "Max bounces",
+            "Path vertices the reference shades. 1: emission seen directly + direct light at the first hit (what nee, ris and restir estimate). N: the path continues along the BSDF-sampled ray, with direct light (light sampling + BSDF sampling, balance heuristic) at each of its first N hits, so 2 adds one bounce of indirect light. Every bounce costs two more rays per sample.";
     }
 }
 
@@ -448,6 +450,8 @@ impl Settings {
             spatial_radius: self.effective_spatial_radius(height),
             reference_spp: self.reference_spp.max(1),
             boiling_filter: self.boiling_filter,
+            max_bounces: self.max_bounces.clamp(1, MAX_BOUNCES),
+            _pad: [0; 3],
         }
     }
 }

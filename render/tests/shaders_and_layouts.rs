@@ -42,6 +42,7 @@ fn every_pass_validates_for_every_effect_set() {
             EffectSet {
                 enabled: [e].into_iter().collect(),
                 reasons: vec![],
+                planted: BTreeSet::new(),
             }
             .defines(),
         );
@@ -50,6 +51,15 @@ fn every_pass_validates_for_every_effect_set() {
         for pass in PASSES {
             parse_and_validate(pass, defines);
         }
+    }
+    // The furnace test's planted errors must keep compiling (render/tests/multi_bounce.rs).
+    for planted in ["PLANTED_NO_BSDF_MIS", "PLANTED_NO_THROUGHPUT_PDF"] {
+        let mut defines = EffectSet::all().defines();
+        defines.insert(planted.to_string());
+        parse_and_validate("reference.wgsl", &defines);
+        let mut bare = BTreeSet::new();
+        bare.insert(planted.to_string());
+        parse_and_validate("reference.wgsl", &bare);
     }
 }
 
@@ -230,7 +240,8 @@ fn host_structs_match_wgsl_layouts() {
             spatial_neighbours,
             spatial_radius,
             reference_spp,
-            boiling_filter
+            boiling_filter,
+            max_bounces
         ]
     );
     check_struct!(

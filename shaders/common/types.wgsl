@@ -149,6 +149,10 @@ struct Params {
     spatial_radius: f32,
     reference_spp: u32,
     boiling_filter: f32,          // 0 = off
+    max_bounces: u32,             // path vertices the reference shades (1 = direct only)
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 struct Display {

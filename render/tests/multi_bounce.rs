@@ -66,7 +66,11 @@ fn furnace_box() -> Scene {
 /// the tolerance would otherwise flag).
 fn furnace_expected(bounces: u32, jitter: bool) -> f64 {
     let a = ALBEDO as f64;
-    let a1 = if jitter { a } else { (a * 255.0).round() / 255.0 };
+    let a1 = if jitter {
+        a
+    } else {
+        (a * 255.0).round() / 255.0
+    };
     let later: f64 = (0..bounces).map(|k| a.powi(k as i32)).sum();
     (1.0 + a1 * later) * LE as f64
 }
@@ -109,11 +113,19 @@ fn furnace(bounces: u32, v: Variant, spp: u32) -> Measured {
     if v.shadows {
         effects.enabled.insert(Effect::Shadows);
     }
-    effects.planted = v.planted.map(str::to_string).into_iter().collect::<BTreeSet<_>>();
+    effects.planted = v
+        .planted
+        .map(str::to_string)
+        .into_iter()
+        .collect::<BTreeSet<_>>();
     let mut r = Renderer::new(common::gpu(), &scene, SIZE, SIZE, settings).unwrap();
     r.force_effects(Some(effects));
     // From the centre toward a corner region: every pixel sees a wall, some see an edge.
-    r.set_camera(Camera::look_at(Vec3::ZERO, Vec3::new(1.0, 0.3, 0.6), 70f32.to_radians()));
+    r.set_camera(Camera::look_at(
+        Vec3::ZERO,
+        Vec3::new(1.0, 0.3, 0.6),
+        70f32.to_radians(),
+    ));
     r.set_mode(Mode::Reference);
     let img = common::accumulate(&mut r, 1);
     let lum: Vec<f64> = (0..SIZE * SIZE)
@@ -231,8 +243,15 @@ fn cornell_with_a_second_bounce_is_brighter_and_finite() {
         ("2", &two, replaced_two),
         ("8", &eight, replaced_eight),
     ] {
-        assert_eq!(img.non_finite_count(), 0, "{name} bounces: non-finite pixels");
-        assert_eq!(replaced, 0, "{name} bounces: the pass replaced non-finite values");
+        assert_eq!(
+            img.non_finite_count(),
+            0,
+            "{name} bounces: non-finite pixels"
+        );
+        assert_eq!(
+            replaced, 0,
+            "{name} bounces: the pass replaced non-finite values"
+        );
     }
     let ratio = two.mean_luminance() / one.mean_luminance();
     let ratio_eight = eight.mean_luminance() / two.mean_luminance();
@@ -251,7 +270,10 @@ fn cornell_with_a_second_bounce_is_brighter_and_finite() {
             two.luminance_at(x, y) < 0.7 * one.luminance_at(x, y)
         })
         .count();
-    assert!(darker < 32 * 24 / 50, "{darker} pixels much darker with 2 bounces");
+    assert!(
+        darker < 32 * 24 / 50,
+        "{darker} pixels much darker with 2 bounces"
+    );
 }
 
 #[test]

@@ -54,9 +54,14 @@ fn one_bounce_reference_is_what_it_was_before_multi_bounce() {
     for (jitter, env, hash, mean) in RECORDED {
         let img = render(jitter, env, &["max_bounces=1"]);
         let (got_hash, got_mean) = (image_hash(&img), img.mean_luminance());
-        eprintln!("jitter={jitter} env={env}: hash {got_hash:016x} mean {got_mean:.9} on {adapter}");
+        eprintln!(
+            "jitter={jitter} env={env}: hash {got_hash:016x} mean {got_mean:.9} on {adapter}"
+        );
         if adapter == RECORDED_ON {
-            assert_eq!(got_hash, hash, "jitter={jitter} env={env}: the 1-bounce image changed");
+            assert_eq!(
+                got_hash, hash,
+                "jitter={jitter} env={env}: the 1-bounce image changed"
+            );
         } else {
             assert!(
                 (got_mean / mean - 1.0).abs() < 1e-3,
@@ -73,5 +78,9 @@ fn the_hash_check_has_power_two_bounces_differ() {
     let (_, _, hash, mean) = RECORDED[1];
     let img = render(false, false, &["max_bounces=2"]);
     assert_ne!(image_hash(&img), hash);
-    assert!(img.mean_luminance() > mean * 1.05, "{}", img.mean_luminance());
+    assert!(
+        img.mean_luminance() > mean * 1.05,
+        "{}",
+        img.mean_luminance()
+    );
 }

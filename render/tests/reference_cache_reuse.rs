@@ -104,7 +104,10 @@ fn reference_cache_second_request_loads_instead_of_rendering() {
     let two = req.clone().with_max_bounces(2);
     assert_ne!(two.key().unwrap(), req.key().unwrap());
     assert!(two.key().unwrap().description.contains("max_bounces=2"));
-    assert_eq!(req.clone().with_max_bounces(1).key().unwrap(), req.key().unwrap());
+    assert_eq!(
+        req.clone().with_max_bounces(1).key().unwrap(),
+        req.key().unwrap()
+    );
     assert!(cache.load(&two).unwrap().is_none());
     // ... and the render follows the request: indirect light makes the box brighter.
     let two_image = cache

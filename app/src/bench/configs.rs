@@ -183,7 +183,8 @@ mod tests {
         // Everything else is the base: jitter off with the bench's base assignments.
         let jitter_off = {
             let mut b = base.clone();
-            b.apply_assignments(BASE_ASSIGNMENTS.iter().copied()).unwrap();
+            b.apply_assignments(BASE_ASSIGNMENTS.iter().copied())
+                .unwrap();
             b
         };
         let path = &parse_configs("path-2b", &jitter_off).unwrap()[0];

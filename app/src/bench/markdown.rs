@@ -85,7 +85,10 @@ pub fn results(info: &BenchInfo, results: &[ConfigResult]) -> String {
         [] | [1] => String::new(),
         list => format!(
             ", max_bounces {} (each configuration against the reference of its own max_bounces)",
-            list.iter().map(u32::to_string).collect::<Vec<_>>().join(" and ")
+            list.iter()
+                .map(u32::to_string)
+                .collect::<Vec<_>>()
+                .join(" and ")
         ),
     };
     let _ = writeln!(

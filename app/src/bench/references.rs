@@ -211,14 +211,16 @@ pub fn obtain(
         refs.images.push(reference.image);
     }
     eprintln!(
-        "references ({} bounce{}): {} loaded from {}, {} rendered ({:.1} s), {} spp each",
+        "references ({} bounce{}): {} loaded from {}, {} rendered ({:.1} s), {} spp each, \
+         mean luma {:.5} (first)",
         plan.max_bounces,
         if plan.max_bounces == 1 { "" } else { "s" },
         refs.loaded,
         plan.cache.dir().display(),
         refs.rendered,
         refs.render_seconds,
-        plan.spp
+        plan.spp,
+        refs.images.first().map_or(0.0, LinearImage::mean_luminance),
     );
     Ok(refs)
 }
@@ -253,7 +255,10 @@ impl ReferenceSets {
             let refs = obtain(renderer, &plan, shot, first, count, clock.as_deref_mut())?;
             sets.push((b, refs));
         }
-        anyhow::ensure!(!sets.is_empty(), "no configuration to obtain references for");
+        anyhow::ensure!(
+            !sets.is_empty(),
+            "no configuration to obtain references for"
+        );
         Ok(ReferenceSets { sets })
     }
 

@@ -19,19 +19,12 @@
 @group(2) @binding(3) var<storage, read> surfaces: array<Surface>;
 
 fn light_sample_estimate(sp: ShadingPoint, rng: ptr<function, u32>) -> vec3<f32> {
-    let y = sample_light(rng);
-    let lp = light_point(y.light, y.uv);
-    let c = light_contribution(sp, lp);
-    if !(target_pdf(c) > 0.0) || !light_visible(sp, lp, c) {
-        return vec3<f32>(0.0);
-    }
-    var p_bsdf = 0.0;
+    // The BSDF strategy runs only with shadows (see main), so only then is it in the weight.
 #ifdef SHADOWS
-    if bsdf_can_hit(lp.kind) {
-        p_bsdf = brdf_pdf(sp.brdf, sp.normal, sp.wo, c.wi) * c.cos_light / c.dist2;
-    }
+    return light_sample_mis(sp, rng, true);
+#else
+    return light_sample_mis(sp, rng, false);
 #endif
-    return c.value / (lp.source_pdf + p_bsdf);
 }
 
 fn bsdf_sample_estimate(sp: ShadingPoint, rng: ptr<function, u32>) -> vec3<f32> {
@@ -40,18 +33,7 @@ fn bsdf_sample_estimate(sp: ShadingPoint, rng: ptr<function, u32>) -> vec3<f32> 
     if !(bs.pdf > 0.0) {
         return vec3<f32>(0.0);
     }
-    let found = bsdf_ray_light(sp, bs.wi);
-    if found.light == NO_LIGHT {
-        return vec3<f32>(0.0);
-    }
-    // The hit is the closest surface (or nothing: the environment), hence visible.
-    let lp = light_point(found.light, found.uv);
-    let c = light_contribution(sp, lp);
-    if !(target_pdf(c) > 0.0) {
-        return vec3<f32>(0.0);
-    }
-    let p_bsdf = bs.pdf * c.cos_light / c.dist2;
-    return c.value / (lp.source_pdf + p_bsdf);
+    return bsdf_found_emission(sp, bs.pdf, bsdf_ray_light(sp, bs.wi));
 }
 
 @compute @workgroup_size(8, 8)

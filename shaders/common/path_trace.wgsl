@@ -3,56 +3,18 @@
 // first max_bounces vertices with next-event estimation (one power-sampled light point and
 // a shadow ray) and continued along one BSDF-sampled direction; the emitter (or the
 // environment) that direction finds is the BSDF strategy's sample of that vertex's direct
-// light. The two strategies are combined with the balance heuristic (Veach 1997, §9.2),
-// p_light / (p_light + p_bsdf) and p_bsdf / (p_light + p_bsdf), both per unit area for
-// triangle lights and per steradian for the environment, so every emitter is counted
-// exactly once per vertex. Unbiased: no Russian roulette, a path ends only where its
-// throughput is exactly zero (no BSDF sample, a direction below the surface, a miss).
+// light, weighted against the light sample by the balance heuristic
+// (common/direct_light_mis.wgsl), so every emitter is counted exactly once per vertex.
+// Unbiased: no Russian roulette, a path ends only where its throughput is exactly zero
+// (no BSDF sample, a direction below the surface, a miss).
 //
 // max_bounces = N adds Le·(a + a² + … + a^N) to the emission seen directly in a closed
 // box of albedo a whose walls all emit Le (render/tests/multi_bounce.rs).
 //
-// PLANTED_* defines exist only for the furnace test's power checks (EffectSet::planted):
-// they break the estimator in the way the test must notice.
-#include "common/shading_point.wgsl"
-
-// Next-event estimation at a path vertex, MIS-weighted against the BSDF strategy: along a
-// path the BSDF ray is always traced (it continues the path), so unlike the one-bounce
-// code the BSDF pdf is in the weight whether or not shadows are compiled in. Without
-// SHADOWS the scene is convex and every segment between surface points is unoccluded.
-fn path_light_estimate(sp: ShadingPoint, rng: ptr<function, u32>) -> vec3<f32> {
-    let y = sample_light(rng);
-    let lp = light_point(y.light, y.uv);
-    let c = light_contribution(sp, lp);
-    if !(target_pdf(c) > 0.0) || !light_visible(sp, lp, c) {
-        return vec3<f32>(0.0);
-    }
-    var p_bsdf = 0.0;
-    if bsdf_can_hit(lp.kind) {
-        p_bsdf = brdf_pdf(sp.brdf, sp.normal, sp.wo, c.wi) * c.cos_light / c.dist2;
-    }
-    return c.value / (lp.source_pdf + p_bsdf);
-}
-
-// The emission a BSDF-sampled direction found (`found`: the emitter hit first, or the
-// environment), as the BSDF strategy's MIS-weighted estimate of sp's direct light:
-// Le·f·cos/p_bsdf · p_bsdf/(p_bsdf + p_light) = value / (p_light + p_bsdf) in area measure.
-fn path_found_emission(sp: ShadingPoint, bsdf_pdf: f32, found: LightSampleId) -> vec3<f32> {
-    if found.light == NO_LIGHT {
-        return vec3<f32>(0.0);
-    }
-    let lp = light_point(found.light, found.uv);
-    let c = light_contribution(sp, lp);
-    if !(target_pdf(c) > 0.0) {
-        return vec3<f32>(0.0);
-    }
-    let p_bsdf = bsdf_pdf * c.cos_light / c.dist2;
-#ifdef PLANTED_NO_BSDF_MIS
-    return c.value / p_bsdf;
-#else
-    return c.value / (lp.source_pdf + p_bsdf);
-#endif
-}
+// PLANTED_NO_THROUGHPUT_PDF (here) and PLANTED_NO_BSDF_MIS (direct_light_mis.wgsl) exist
+// only for the furnace test's power checks (EffectSet::planted): they break the estimator
+// in the way the test must notice.
+#include "common/direct_light_mis.wgsl"
 
 // Everything past the emission seen directly: direct light at each of the first
 // `bounces` vertices of a BSDF-sampled path starting at `first`.
@@ -62,7 +24,9 @@ fn path_estimate(first: ShadingPoint, bounces: u32, rng: ptr<function, u32>) -> 
     var sum = vec3<f32>(0.0);
     for (var bounce = 1u; bounce <= bounces; bounce++) {
         if frame.light_count > 0u {
-            sum += throughput * path_light_estimate(sp, rng);
+            // Along a path the BSDF ray is always traced (it continues the path), so its
+            // pdf is in the light sample's weight whether or not shadows are compiled in.
+            sum += throughput * light_sample_mis(sp, rng, true);
         }
         let u = vec3<f32>(rand_f32(rng), rand_f32(rng), rand_f32(rng));
         let bs = sample_brdf(sp.brdf, sp.normal, sp.wo, u);
@@ -92,7 +56,7 @@ fn path_estimate(first: ShadingPoint, bounces: u32, rng: ptr<function, u32>) -> 
         }
 #endif
         if frame.light_count > 0u {
-            sum += throughput * path_found_emission(sp, bs.pdf, found);
+            sum += throughput * bsdf_found_emission(sp, bs.pdf, found);
         }
         throughput *= weight;
         if hit.t <= 0.0 || bounce == bounces || !any(throughput > vec3<f32>(0.0)) {

@@ -4,10 +4,13 @@
 // (which finds an emitter or escapes to the environment), combined with the balance
 // heuristic (both are unbiased on their own; MIS only lowers the variance on glossy
 // surfaces). Many samples per pixel, averaged over frames by the accumulation buffer.
+// With max_bounces ≥ 2 the BSDF ray continues the path and every vertex is shaded the
+// same way (common/path_trace.wgsl).
 #include "common/frame_bindings.wgsl"
 #include "common/stats_bindings.wgsl"
 #include "common/shading_point.wgsl"
 #include "common/camera_ray.wgsl"
+#include "common/path_trace.wgsl"
 
 @group(2) @binding(0) var<storage, read_write> radiance: array<vec4<f32>>;
 @group(2) @binding(1) var<storage, read_write> accumulation: array<vec4<f32>>;
@@ -16,19 +19,12 @@
 @group(2) @binding(3) var<storage, read> surfaces: array<Surface>;
 
 fn light_sample_estimate(sp: ShadingPoint, rng: ptr<function, u32>) -> vec3<f32> {
-    let y = sample_light(rng);
-    let lp = light_point(y.light, y.uv);
-    let c = light_contribution(sp, lp);
-    if !(target_pdf(c) > 0.0) || !light_visible(sp, lp, c) {
-        return vec3<f32>(0.0);
-    }
-    var p_bsdf = 0.0;
+    // The BSDF strategy runs only with shadows (see main), so only then is it in the weight.
 #ifdef SHADOWS
-    if bsdf_can_hit(lp.kind) {
-        p_bsdf = brdf_pdf(sp.brdf, sp.normal, sp.wo, c.wi) * c.cos_light / c.dist2;
-    }
+    return light_sample_mis(sp, rng, true);
+#else
+    return light_sample_mis(sp, rng, false);
 #endif
-    return c.value / (lp.source_pdf + p_bsdf);
 }
 
 fn bsdf_sample_estimate(sp: ShadingPoint, rng: ptr<function, u32>) -> vec3<f32> {
@@ -37,18 +33,7 @@ fn bsdf_sample_estimate(sp: ShadingPoint, rng: ptr<function, u32>) -> vec3<f32> 
     if !(bs.pdf > 0.0) {
         return vec3<f32>(0.0);
     }
-    let found = bsdf_ray_light(sp, bs.wi);
-    if found.light == NO_LIGHT {
-        return vec3<f32>(0.0);
-    }
-    // The hit is the closest surface (or nothing: the environment), hence visible.
-    let lp = light_point(found.light, found.uv);
-    let c = light_contribution(sp, lp);
-    if !(target_pdf(c) > 0.0) {
-        return vec3<f32>(0.0);
-    }
-    let p_bsdf = bs.pdf * c.cos_light / c.dist2;
-    return c.value / (lp.source_pdf + p_bsdf);
+    return bsdf_found_emission(sp, bs.pdf, bsdf_ray_light(sp, bs.wi));
 }
 
 @compute @workgroup_size(8, 8)
@@ -96,6 +81,18 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             sp = shading_point_from_surface(s, frame.camera_position);
             sample_value = s.emission;
         }
+        if params.max_bounces > 1u {
+            // Indirect light too: a BSDF-sampled path (common/path_trace.wgsl).
+            sample_value += path_estimate(sp, min(params.max_bounces, MAX_BOUNCES), &rng);
+            if is_finite_vec3(sample_value) {
+                sum += sample_value;
+            } else {
+                count_stat(STAT_NONFINITE + PASS_REFERENCE);
+            }
+            continue;
+        }
+        // One bounce: the code as it was before paths, so max_bounces=1 renders the
+        // same image bit for bit (render/tests/one_bounce_unchanged.rs).
         if frame.light_count > 0u {
             sample_value += light_sample_estimate(sp, &rng);
         }

@@ -209,12 +209,19 @@ impl Effect {
 pub struct EffectSet {
     pub enabled: BTreeSet<Effect>,
     pub reasons: Vec<(Effect, String)>,
+    /// `PLANTED_*` defines that break an estimator on purpose, so a test can show that its
+    /// detector fires (render/tests/multi_bounce.rs). Empty everywhere else.
+    pub planted: BTreeSet<String>,
 }
 
 impl fmt::Display for EffectSet {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let names: Vec<_> = self.enabled.iter().map(|e| e.name()).collect();
-        write!(f, "{}", names.join(","))
+        write!(f, "{}", names.join(","))?;
+        for p in &self.planted {
+            write!(f, ",planted:{p}")?;
+        }
+        Ok(())
     }
 }
 
@@ -227,6 +234,7 @@ impl EffectSet {
                 .iter()
                 .map(|e| (*e, "forced (--effects all)".to_string()))
                 .collect(),
+            planted: BTreeSet::new(),
         }
     }
 
@@ -241,6 +249,7 @@ impl EffectSet {
             .iter()
             .map(|e| e.define().to_string())
             .collect();
+        d.extend(self.planted.iter().cloned());
         if self.contains(Effect::BaseColorTextures)
             || self.contains(Effect::MetallicRoughnessTextures)
             || self.contains(Effect::EmissiveTextures)
@@ -256,6 +265,7 @@ impl EffectSet {
         let mut set = EffectSet {
             enabled: BTreeSet::new(),
             reasons: Vec::new(),
+            planted: BTreeSet::new(),
         };
         let mut decide = |e: Effect, on: bool, yes: String, no: String| {
             if on {
@@ -425,6 +435,10 @@ impl EffectSet {
                 )
             })
             .collect();
-        Ok(EffectSet { enabled, reasons })
+        Ok(EffectSet {
+            enabled,
+            reasons,
+            planted: BTreeSet::new(),
+        })
     }
 }

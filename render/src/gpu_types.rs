@@ -256,6 +256,9 @@ pub struct GpuParams {
     pub gi_spatial_radius: f32,
     /// The Jacobian window [1/max, max], max ≥ 1.
     pub gi_jacobian_max: f32,
+    /// Path vertices the reference shades, 1..=MAX_BOUNCES (1 = direct light only).
+    pub max_bounces: u32,
+    pub _pad: [u32; 3],
 }
 
 /// What the display pass shows and how (view settings, not pipeline parameters).

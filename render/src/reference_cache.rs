@@ -67,6 +67,9 @@ pub struct ReferenceRequest {
     /// The scene time an animated scene was posed at (`None` for a static scene, whose
     /// keys stay what they were): references of different moments never share a file.
     pub scene_time: Option<f32>,
+    /// Path vertices shaded (`max_bounces`): 1 is direct light only, 2 adds one bounce of
+    /// indirect light. A reference is compared with frames that estimate the same integral.
+    pub max_bounces: u32,
 }
 
 impl ReferenceRequest {
@@ -80,7 +83,7 @@ impl ReferenceRequest {
         spp: u32,
         jitter: bool,
     ) -> ReferenceRequest {
-        let settings = reference_settings(jitter, 1);
+        let settings = reference_settings(jitter, 1, 1);
         ReferenceRequest {
             scene: scene_spec.to_string(),
             camera,
@@ -92,6 +95,15 @@ impl ReferenceRequest {
             seed: REFERENCE_SEED,
             environment: scene.environment.as_ref().map(|e| e.fingerprint()),
             scene_time: scene.animation.as_ref().map(|a| a.posed_at),
+            max_bounces: 1,
+        }
+    }
+
+    /// The same request with `max_bounces` path vertices (clamped to the parameter's range).
+    pub fn with_max_bounces(self, max_bounces: u32) -> ReferenceRequest {
+        ReferenceRequest {
+            max_bounces: max_bounces.clamp(1, crate::shader_constants::MAX_BOUNCES),
+            ..self
         }
     }
 

@@ -276,6 +276,8 @@ parameter_table! {
             "Jitter the G-buffer inside the pixel every frame, so accumulated frames converge to the pixel-area average (antialiased). Off: every pass, the reference included, sees the pixel centre, so comparisons measure lighting error alone.";
         reference_spp: u32 = 4, ParamKind::Int { min: 1, max: 4096 }, "Reference spp",
             "Samples per pixel per frame of the reference renderer.";
+        max_bounces: u32 = 1, ParamKind::Int { min: 1, max: MAX_BOUNCES as i64 }, "Max bounces",
+            "Path vertices the reference shades. 1: emission seen directly + direct light at the first hit (what nee, ris and restir estimate). N: the path continues along the BSDF-sampled ray, with direct light (light sampling + BSDF sampling, balance heuristic) at each of its first N hits, so 2 adds one bounce of indirect light. Every bounce costs two more rays per sample.";
     }
     Indirect {
         gi: bool = false, ParamKind::Bool, "ReSTIR GI",
@@ -475,6 +477,8 @@ impl Settings {
             gi_spatial_neighbours: self.gi_spatial_neighbours.min(MAX_SPATIAL_NEIGHBOURS),
             gi_spatial_radius: self.effective_gi_spatial_radius(height),
             gi_jacobian_max: self.gi_jacobian_max.max(1.0),
+            max_bounces: self.max_bounces.clamp(1, MAX_BOUNCES),
+            _pad: [0; 3],
         }
     }
 

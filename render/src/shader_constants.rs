@@ -124,6 +124,12 @@ pub const STREAM_GI_SPATIAL: u32 = 18;
 /// silently stops early. Small chunks keep every invocation far below that bound.
 pub const REFERENCE_SAMPLES_PER_DISPATCH: u32 = 8;
 
+/// The most path vertices the reference shades (the `max_bounces` range). Each bounce adds a
+/// shadow ray and a BSDF ray per sample: at 8 bounces and REFERENCE_SAMPLES_PER_DISPATCH
+/// samples an invocation traces 136 rays, still within lavapipe's loop bound on the
+/// built-in scenes.
+pub const MAX_BOUNCES: u32 = 8;
+
 /// Light tiles (notes §6; RTXDI): every frame LIGHT_TILE_COUNT tiles of LIGHT_TILE_SIZE
 /// power-sampled lights are drawn once; each LIGHT_TILE_PIXELS² block of pixels draws its
 /// initial candidates from one tile, so candidate reads hit a small, shared working set
@@ -302,6 +308,7 @@ pub fn wgsl_prelude() -> String {
             "REFERENCE_SAMPLES_PER_DISPATCH",
             REFERENCE_SAMPLES_PER_DISPATCH,
         ),
+        ("MAX_BOUNCES", MAX_BOUNCES),
         ("VIEW_FINAL", VIEW_FINAL),
         ("VIEW_SOURCE", VIEW_SOURCE),
         ("VIEW_M", VIEW_M),

@@ -99,6 +99,27 @@ fn reference_cache_second_request_loads_instead_of_rendering() {
     };
     assert_ne!(at(1.0).key().unwrap(), at(1.5).key().unwrap());
     assert_eq!(at(1.0).key().unwrap(), at(1.0).key().unwrap());
+    // 1- and 2-bounce references are different images; 1 is every older key's value.
+    assert_eq!(req.max_bounces, 1);
+    let two = req.clone().with_max_bounces(2);
+    assert_ne!(two.key().unwrap(), req.key().unwrap());
+    assert!(two.key().unwrap().description.contains("max_bounces=2"));
+    assert_eq!(
+        req.clone().with_max_bounces(1).key().unwrap(),
+        req.key().unwrap()
+    );
+    assert!(cache.load(&two).unwrap().is_none());
+    // ... and the render follows the request: indirect light makes the box brighter.
+    let two_image = cache
+        .get_or_render(&mut renderer, &two, &mut |_| true)
+        .unwrap_or_else(|e| panic!("{e:#}"));
+    assert!(!two_image.from_cache);
+    assert!(
+        two_image.image.mean_luminance() > 1.05 * first.image.mean_luminance(),
+        "2 bounces {} vs 1 bounce {}",
+        two_image.image.mean_luminance(),
+        first.image.mean_luminance()
+    );
     assert!(cache.load(&more).unwrap().is_none());
 }
 

@@ -34,6 +34,7 @@ fn every_pass_validates_for_every_effect_set() {
             EffectSet {
                 enabled: [e].into_iter().collect(),
                 reasons: vec![],
+                planted: BTreeSet::new(),
             }
             .defines(),
         );
@@ -42,6 +43,15 @@ fn every_pass_validates_for_every_effect_set() {
         for pass in restir_render::passes::ALL {
             parse_and_validate(pass.shader, defines);
         }
+    }
+    // The furnace test's planted errors must keep compiling (render/tests/multi_bounce.rs).
+    for planted in ["PLANTED_NO_BSDF_MIS", "PLANTED_NO_THROUGHPUT_PDF"] {
+        let mut defines = EffectSet::all().defines();
+        defines.insert(planted.to_string());
+        parse_and_validate("reference.wgsl", &defines);
+        let mut bare = BTreeSet::new();
+        bare.insert(planted.to_string());
+        parse_and_validate("reference.wgsl", &bare);
     }
 }
 
@@ -280,7 +290,8 @@ fn host_structs_match_wgsl_layouts() {
             gi_m_cap,
             gi_spatial_neighbours,
             gi_spatial_radius,
-            gi_jacobian_max
+            gi_jacobian_max,
+            max_bounces
         ]
     );
     check_struct!(

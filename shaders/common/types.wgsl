@@ -154,6 +154,10 @@ struct Params {
     gi_spatial_neighbours: u32,
     gi_spatial_radius: f32,       // pixels of this image
     gi_jacobian_max: f32,         // window [1/max, max]
+    max_bounces: u32,             // path vertices the reference shades (1 = direct only)
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 struct Display {

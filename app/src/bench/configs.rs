@@ -1,6 +1,7 @@
 //! The configurations a bench compares: built-in names (`nee`, `ris`, `ris+temporal`,
-//! `ris+spatial`, `restir`, `restir-pairwise`) and preset files, each a mode plus settings on
-//! top of the bench's base settings.
+//! `ris+spatial`, `restir`, `restir-pairwise`, `path-2b`, ...) and preset files, each a mode
+//! plus settings on top of the bench's base settings. A configuration is scored against the
+//! reference of its own `max_bounces` (references.rs).
 
 use std::path::Path;
 
@@ -48,6 +49,12 @@ const BUILTIN: &[(&str, Mode, &[&str], &str)] = &[
         Mode::Restir,
         &["temporal=true", "spatial=true", "bias_correction=pairwise"],
         "RIS + temporal + spatial, pairwise MIS (unbiased; the default)",
+    ),
+    (
+        "path-2b",
+        Mode::Reference,
+        &["reference_spp=1", "max_bounces=2"],
+        "one-sample brute-force path tracing, 2 bounces (the reference estimator at 1 spp, per frame; scored against a 2-bounce reference)",
     ),
     (
         "tiles-on",
@@ -161,5 +168,28 @@ mod tests {
             configs[5].settings.bias_correction,
             BiasCorrection::Pairwise
         );
+    }
+
+    #[test]
+    fn path_2b_is_the_one_sample_two_bounce_reference_estimator() {
+        let base = Settings::default();
+        let configs = parse_configs("ris,path-2b", &base).unwrap();
+        let path = &configs[1];
+        assert_eq!(path.mode, Mode::Reference);
+        assert_eq!(
+            (path.settings.reference_spp, path.settings.max_bounces),
+            (1, 2)
+        );
+        // Everything else is the base: jitter off with the bench's base assignments.
+        let jitter_off = {
+            let mut b = base.clone();
+            b.apply_assignments(BASE_ASSIGNMENTS.iter().copied())
+                .unwrap();
+            b
+        };
+        let path = &parse_configs("path-2b", &jitter_off).unwrap()[0];
+        assert!(!path.settings.jitter);
+        // `ris` stays direct-only, so it gets the 1-bounce reference.
+        assert_eq!(configs[0].settings.max_bounces, 1);
     }
 }

@@ -81,9 +81,19 @@ pub fn results(info: &BenchInfo, results: &[ConfigResult]) -> String {
     } else {
         String::new()
     };
+    let bounces = match info.reference_bounces.as_slice() {
+        [] | [1] => String::new(),
+        list => format!(
+            ", max_bounces {} (each configuration against the reference of its own max_bounces)",
+            list.iter()
+                .map(u32::to_string)
+                .collect::<Vec<_>>()
+                .join(" and ")
+        ),
+    };
     let _ = writeln!(
         md,
-        "- Reference: {} spp{per}, jitter {}, {noise}.",
+        "- Reference: {} spp{per}{bounces}, jitter {}, {noise}.",
         info.reference_spp,
         on_off(info.jitter)
     );

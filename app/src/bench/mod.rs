@@ -38,7 +38,7 @@ use crate::cli::setup::{PipelineArgs, parse_size};
 use configs::{BASE_ASSIGNMENTS, DEFAULT_CONFIGS, parse_configs};
 use equal_time::{Budget, mse_ratio};
 use events::{Events, LagProbe};
-use references::{CameraPath, ReferencePlan, References, Shot};
+use references::{CameraPath, ReferencePlan, ReferenceSets, References, Shot};
 use run_loop::{ConfigResult, ConfigRun, RunPlan, run_interleaved};
 use scoring::Scoring;
 
@@ -117,6 +117,9 @@ pub struct BenchInfo {
     pub reference_noise_luma: Option<f64>,
     pub reference_noise_rgb: Option<f64>,
     pub reference_count: usize,
+    /// The `max_bounces` of the references (one set each; configurations are scored
+    /// against the set of their own max_bounces).
+    pub reference_bounces: Vec<u32>,
     /// Seeds the lag metrics are averaged over, and where the events came from.
     pub seeds: u32,
     pub event_source: Option<&'static str>,
@@ -209,15 +212,17 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         spp: args.reference_spp,
         jitter: base.jitter,
         effects: effects.clone(),
+        max_bounces: 1,
     };
-    let refs = references::obtain(
+    let ref_sets = ReferenceSets::obtain(
         &mut first,
         &reference_plan,
         &shot,
-        args.warmup,
-        measured,
+        (args.warmup, measured),
         reference_clock.as_mut(),
+        configs.iter().map(|c| c.settings.max_bounces),
     )?;
+    let refs = ref_sets.primary();
     let plan = RunPlan {
         frames: measured,
         warmup: args.warmup,
@@ -230,6 +235,8 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         effects,
     };
     let events = Events::find(&scene, &shot, args.warmup, &refs.images);
+    // Light events are found on the first configuration's references; each configuration
+    // measures its lag against the references of its own max_bounces.
     let mut renderers: Vec<Renderer> = std::iter::once(first).chain(renderers).collect();
     let mut results: Vec<ConfigResult> = Vec::new();
     let mut per_seed: Vec<Vec<Vec<events::SeedEvent>>> = vec![Vec::new(); configs.len()];
@@ -250,10 +257,11 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
             .iter()
             .zip(renderers.drain(..))
             .map(|(c, r)| {
+                let own = ref_sets.for_bounces(c.settings.max_bounces);
                 let probe = events
                     .as_ref()
-                    .map(|e| LagProbe::new(e, &refs.images, k == 0));
-                let scoring = scoring_for(&refs, &shot);
+                    .map(|e| LagProbe::new(e, &own.images, k == 0));
+                let scoring = scoring_for(own, &shot);
                 let run = ConfigRun::start(r, c, &plan, scoring, clock(), probe)?;
                 Ok((c.name.clone(), run))
             })
@@ -272,12 +280,12 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         for (r, seeds) in results.iter_mut().zip(&per_seed) {
             r.lag = events::average(e, seeds);
         }
-        event_strip::write(&args.out.join("event_strip.png"), e, &results, &refs)?;
+        event_strip::write(&args.out.join("event_strip.png"), e, &results, refs)?;
     }
     compare_with_nee(&mut results);
     // One reference for every frame: a still camera on a still (or frozen) scene.
     if !shot.moves() && args.budget_ms.is_none() {
-        write_strip(&args.out, &results, &renderers, &refs)?;
+        write_strip(&args.out, &results, &renderers, &ref_sets)?;
     }
     let info = BenchInfo {
         scene: args.scene.clone(),
@@ -292,21 +300,27 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         radius,
         jitter: base.jitter,
         reference_spp: refs.spp,
-        reference_noise_luma: refs.noise_luma_rmse,
-        reference_noise_rgb: refs.noise_rgb_rmse,
+        reference_noise_luma: max_noise(&ref_sets, |r| r.noise_luma_rmse),
+        reference_noise_rgb: max_noise(&ref_sets, |r| r.noise_rgb_rmse),
         reference_count: refs.images.len(),
+        reference_bounces: ref_sets.bounces().map(|(b, _)| b).collect(),
         seeds,
         event_source: events.as_ref().map(|e| e.source),
     };
     write_outputs(&args.out, &info, &results)
 }
 
-/// `strip.png`: each configuration's last frame, then the reference.
+/// The largest estimated own noise among all references.
+fn max_noise(sets: &ReferenceSets, of: impl Fn(&References) -> Option<f64>) -> Option<f64> {
+    sets.bounces().filter_map(|(_, r)| of(r)).reduce(f64::max)
+}
+
+/// `strip.png`: each configuration's last frame, then the reference (one per bounce count).
 fn write_strip(
     out: &std::path::Path,
     results: &[ConfigResult],
     renderers: &[Renderer],
-    refs: &References,
+    sets: &ReferenceSets,
 ) -> anyhow::Result<()> {
     let frames: Vec<_> = renderers.iter().map(Renderer::read_radiance).collect();
     let mut panels: Vec<strip::Panel> = results
@@ -320,10 +334,16 @@ fn write_strip(
             image,
         })
         .collect();
-    panels.push(strip::Panel {
-        label: format!("reference · {} spp", refs.spp),
-        image: &refs.images[0],
-    });
+    for (bounces, refs) in sets.bounces() {
+        let label = match bounces {
+            1 => format!("reference · {} spp", refs.spp),
+            n => format!("reference · {n} bounces · {} spp", refs.spp),
+        };
+        panels.push(strip::Panel {
+            label,
+            image: &refs.images[0],
+        });
+    }
     strip::write(&out.join("strip.png"), &panels)
 }
 

@@ -111,6 +111,7 @@ pub struct References {
 }
 
 /// What the references are rendered with.
+#[derive(Clone)]
 pub struct ReferencePlan<'a> {
     pub cache: &'a ReferenceCache,
     pub scene_spec: &'a str,
@@ -119,6 +120,8 @@ pub struct ReferencePlan<'a> {
     pub jitter: bool,
     /// `--effects` when forced, else what a still camera derives.
     pub effects: Option<EffectSet>,
+    /// Path vertices the references shade (`max_bounces` of the configurations they serve).
+    pub max_bounces: u32,
 }
 
 /// Loads or renders the references of frames `first..first + count` of `shot` (one for a
@@ -163,7 +166,12 @@ pub fn obtain(
         if let Some(e) = &plan.effects {
             request.effects = e.clone();
         }
-        let label = format!("reference {}/{}", i + 1, frames.len());
+        let request = request.with_max_bounces(plan.max_bounces);
+        let bounces = match plan.max_bounces {
+            1 => String::new(),
+            n => format!(", {n} bounces"),
+        };
+        let label = format!("reference {}/{}{bounces}", i + 1, frames.len());
         let mut progress = |p: &Progress| {
             let eta = p
                 .eta()
@@ -203,14 +211,76 @@ pub fn obtain(
         refs.images.push(reference.image);
     }
     eprintln!(
-        "references: {} loaded from {}, {} rendered ({:.1} s), {} spp each",
+        "references ({} bounce{}): {} loaded from {}, {} rendered ({:.1} s), {} spp each, \
+         mean luma {:.5} (first)",
+        plan.max_bounces,
+        if plan.max_bounces == 1 { "" } else { "s" },
         refs.loaded,
         plan.cache.dir().display(),
         refs.rendered,
         refs.render_seconds,
-        plan.spp
+        plan.spp,
+        refs.images.first().map_or(0.0, LinearImage::mean_luminance),
     );
     Ok(refs)
+}
+
+/// The references of a bench: one set per `max_bounces` its configurations use, so each
+/// configuration is scored against the integral it estimates (`path-2b` against a
+/// 2-bounce reference, `ris` against the direct-light one).
+pub struct ReferenceSets {
+    /// (max_bounces, references), in the order the configurations first use them.
+    sets: Vec<(u32, References)>,
+}
+
+impl ReferenceSets {
+    /// [`obtain`] once per distinct value in `bounces` (the configurations' max_bounces).
+    pub fn obtain(
+        renderer: &mut Renderer,
+        plan: &ReferencePlan,
+        shot: &Shot,
+        (first, count): (u32, u32),
+        mut clock: Option<&mut AnimatedScene>,
+        bounces: impl IntoIterator<Item = u32>,
+    ) -> anyhow::Result<ReferenceSets> {
+        let mut sets: Vec<(u32, References)> = Vec::new();
+        for b in bounces {
+            if sets.iter().any(|(have, _)| *have == b) {
+                continue;
+            }
+            let plan = ReferencePlan {
+                max_bounces: b,
+                ..plan.clone()
+            };
+            let refs = obtain(renderer, &plan, shot, first, count, clock.as_deref_mut())?;
+            sets.push((b, refs));
+        }
+        anyhow::ensure!(
+            !sets.is_empty(),
+            "no configuration to obtain references for"
+        );
+        Ok(ReferenceSets { sets })
+    }
+
+    /// The references of configurations with `max_bounces` (obtained for every one).
+    pub fn for_bounces(&self, max_bounces: u32) -> &References {
+        self.sets
+            .iter()
+            .find(|(b, _)| *b == max_bounces)
+            .map(|(_, r)| r)
+            .expect("references are obtained for every configuration's max_bounces")
+    }
+
+    /// The first configuration's references: what the report's reference line, the
+    /// strip and the light events use.
+    pub fn primary(&self) -> &References {
+        &self.sets[0].1
+    }
+
+    /// The bounce counts with references, in order.
+    pub fn bounces(&self) -> impl Iterator<Item = (u32, &References)> {
+        self.sets.iter().map(|(b, r)| (*b, r))
+    }
 }
 
 #[cfg(test)]

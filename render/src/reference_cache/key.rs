@@ -1,6 +1,6 @@
 //! The cache key of a reference image: a canonical text naming everything the reference
-//! depends on (scene content, camera, size, spp, jitter, effect set, seed, and the shaders
-//! that render it), and a stable 64-bit hash of that text for the file name.
+//! depends on (scene content, camera, size, spp, jitter, effect set, seed, bounces, and
+//! the shaders that render it), and a stable 64-bit hash of that text for the file name.
 //!
 //! The text is stored beside the image and compared on load, so a hash collision can never
 //! hand back the wrong image.
@@ -109,6 +109,10 @@ pub fn key_of(request: &ReferenceRequest) -> anyhow::Result<ReferenceKey> {
     // Likewise only for an animated scene.
     if let Some(t) = request.scene_time {
         description.push_str(&format!("scene_time={:08x}\n", t.to_bits()));
+    }
+    // And only beyond direct light (1 bounce, what every reference was before).
+    if request.max_bounces != 1 {
+        description.push_str(&format!("max_bounces={}\n", request.max_bounces));
     }
     Ok(ReferenceKey {
         hash: Fnv64::of(description.as_bytes()),

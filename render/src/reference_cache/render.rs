@@ -17,11 +17,12 @@ const SAMPLES_PER_FRAME_TARGET: u64 = 1 << 20;
 /// The most samples per pixel one reference frame takes (the `reference_spp` range).
 const MAX_SPP_PER_FRAME: u32 = 256;
 
-/// The settings of a reference frame: defaults (the reference reads only these two).
-pub(super) fn reference_settings(jitter: bool, spp_per_frame: u32) -> Settings {
+/// The settings of a reference frame: defaults (the reference reads only these three).
+pub(super) fn reference_settings(jitter: bool, spp_per_frame: u32, max_bounces: u32) -> Settings {
     Settings {
         jitter,
         reference_spp: spp_per_frame,
+        max_bounces,
         ..Settings::default()
     }
 }
@@ -49,7 +50,11 @@ pub fn render_reference(
     let per_frame = spp_per_frame(spp, request.width as u64 * request.height as u64);
     let frames = spp / per_frame;
     renderer.resize(request.width, request.height)?;
-    renderer.set_settings(reference_settings(request.jitter, per_frame));
+    renderer.set_settings(reference_settings(
+        request.jitter,
+        per_frame,
+        request.max_bounces,
+    ));
     renderer.set_mode(Mode::Reference);
     renderer.set_camera(request.camera);
     renderer.set_seed(request.seed);

@@ -30,6 +30,8 @@ struct ViewKey {
     size: (u32, u32),
     jitter: bool,
     spp: u32,
+    /// The reference follows `max_bounces` (1: direct light only).
+    max_bounces: u32,
 }
 
 impl ViewKey {
@@ -120,6 +122,7 @@ impl AccuracyTracker {
             size: renderer.size(),
             jitter: renderer.settings().jitter,
             spp: state.reference_spp,
+            max_bounces: renderer.settings().max_bounces,
         };
         if self.view.as_ref() != Some(&key) {
             self.view_changed(renderer, state, key, now);
@@ -211,7 +214,7 @@ impl AccuracyTracker {
     }
 
     /// A new view: the job and reference go; curves of another image are dropped, those
-    /// of the same image (new spp or jitter) kept for comparison.
+    /// of the same image (new spp, jitter or bounces) kept for comparison.
     fn view_changed(
         &mut self,
         renderer: &mut Renderer,
@@ -247,7 +250,8 @@ impl AccuracyTracker {
             key.size,
             key.spp,
             key.jitter,
-        );
+        )
+        .with_max_bounces(key.max_bounces);
         let device = self
             .device
             .get_or_insert_with(|| {

@@ -175,14 +175,20 @@ mod tests {
         for realtime in [true, false] {
             for temporal in [false, true] {
                 for spatial_passes in [0, 1, 3] {
-                    out.push(FrameSwitches {
-                        realtime,
-                        gbuffer: true,
-                        light_tiles: true,
-                        temporal,
-                        spatial_passes,
-                        reference_chunks: 2,
-                    });
+                    for gi in [false, true] {
+                        out.push(FrameSwitches {
+                            realtime,
+                            gbuffer: true,
+                            light_tiles: true,
+                            temporal,
+                            spatial_passes,
+                            reference_chunks: 2,
+                            gi,
+                            gi_temporal: temporal,
+                            gi_spatial: spatial_passes > 0,
+                            gi_view: gi,
+                        });
+                    }
                 }
             }
         }
@@ -198,32 +204,36 @@ mod tests {
             let plan = frame_plan(&switches);
             for history in 0..3 {
                 let carried = Carried {
-                    history: [("reservoirs", history)].into_iter().collect(),
+                    history: [("reservoirs", history), ("gi reservoirs", history)]
+                        .into_iter()
+                        .collect(),
                     surfaces: 1,
                     surface_buffers: 2,
                 };
                 let resolved = resolve(&plan, &carried, true, false);
-                let mut history_read = false;
-                for (step, r) in plan.iter().zip(&resolved.steps) {
-                    for (binding, bound) in step.pass.group.iter().zip(&r.bound) {
-                        if binding.access == Access::ReadWrite {
+                for chain in ["reservoirs", "gi reservoirs"] {
+                    let reads_history = |step: &Step| {
+                        step.pass.group.iter().any(|b| {
+                            matches!(b.resource, Resource::Chain(c, Role::History) if c.name == chain)
+                        })
+                    };
+                    let history_reader = plan.iter().position(reads_history);
+                    for (i, (step, r)) in plan.iter().zip(&resolved.steps).enumerate() {
+                        for (binding, bound) in step.pass.group.iter().zip(&r.bound) {
+                            if binding.access != Access::ReadWrite {
+                                continue;
+                            }
                             let aliases = r.bound.iter().filter(|b| *b == bound).count();
                             assert_eq!(aliases, 1, "{} binds {bound:?} twice", step.pass.name);
-                        }
-                        if matches!(binding.resource, Resource::Chain(_, Role::History)) {
-                            history_read = true;
+                            let overwrites = *bound == Bound::Chain(chain, history)
+                                && history_reader.is_some_and(|reader| i < reader);
+                            assert!(
+                                !overwrites,
+                                "{} overwrites the {chain} history before it is read ({switches:?})",
+                                step.pass.name
+                            );
                         }
                     }
-                    let writes_history = step.pass.group.iter().zip(&r.bound).any(|(b, bound)| {
-                        b.access == Access::ReadWrite
-                            && *bound == Bound::Chain("reservoirs", history)
-                    });
-                    let temporal_later = plan.iter().any(|s| s.pass.name == "temporal");
-                    assert!(
-                        !(writes_history && temporal_later && !history_read),
-                        "{} overwrites the history before temporal reuse reads it ({switches:?})",
-                        step.pass.name
-                    );
                 }
             }
         }

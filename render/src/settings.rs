@@ -471,7 +471,12 @@ impl Settings {
             flags,
             spatial_neighbours: self.spatial_neighbours.min(MAX_SPATIAL_NEIGHBOURS),
             spatial_radius: self.effective_spatial_radius(height),
-            reference_spp: self.reference_spp.max(1),
+            // One frame renders at most PASS_INFO_SLOTS chunks of samples; the shader divides
+            // by this count, so it must be the count actually rendered (4096 used to render
+            // 2048 and halve the image).
+            reference_spp: self
+                .reference_spp
+                .clamp(1, REFERENCE_SAMPLES_PER_DISPATCH * crate::passes::PASS_INFO_SLOTS),
             boiling_filter: self.boiling_filter,
             gi_m_cap: self.gi_m_cap,
             gi_spatial_neighbours: self.gi_spatial_neighbours.min(MAX_SPATIAL_NEIGHBOURS),

@@ -25,39 +25,8 @@ const LE: f32 = 1.0;
 const ALBEDO: f32 = 0.5;
 const SIZE: u32 = 16;
 
-/// A 2 m cube around the origin, every face emitting LE inward (single-sided, so the
-/// front-face rule is exercised) with diffuse albedo ALBEDO.
 fn furnace_box() -> Scene {
-    let mut scene = Scene {
-        name: "furnace-box".into(),
-        materials: vec![Material {
-            emission: Vec3::splat(LE),
-            ..Material::diffuse("wall", Vec3::splat(ALBEDO))
-        }],
-        ..Scene::default()
-    };
-    // Each face: its inward normal n and two tangents with t1 × t2 = n (counter-clockwise
-    // seen from inside).
-    for n in [Vec3::X, -Vec3::X, Vec3::Y, -Vec3::Y, Vec3::Z, -Vec3::Z] {
-        let t1 = n.any_orthonormal_vector();
-        let t2 = n.cross(t1);
-        let centre = -n; // the face at distance 1 against the normal
-        let base = scene.vertices.len() as u32;
-        for (s, t) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
-            scene.vertices.push(Vertex {
-                position: centre + t1 * s + t2 * t,
-                normal: Vec3::ZERO,
-                uv: Vec2::ZERO,
-            });
-        }
-        for indices in [[base, base + 1, base + 2], [base, base + 2, base + 3]] {
-            scene.triangles.push(Triangle {
-                indices,
-                material: 0,
-            });
-        }
-    }
-    scene
+    common::furnace::furnace_box(LE, ALBEDO)
 }
 
 /// Le·(1 + a₁·(1 + a + … + a^(N−1))), where a₁ is the first vertex's albedo: a itself

@@ -127,3 +127,16 @@ fn indirect_defaults_and_flags() {
     assert_eq!(p.gi_jacobian_max, 1.0);
     assert_eq!(p.flags & !gi_bits, s.gpu_params(1080).flags & !gi_bits);
 }
+
+/// The reference divides by `reference_spp` and a frame renders at most
+/// PASS_INFO_SLOTS × REFERENCE_SAMPLES_PER_DISPATCH samples: a larger setting must reach the
+/// GPU as that count (4096 once rendered 2048 samples and halved the image).
+#[test]
+fn reference_spp_reaches_the_gpu_as_the_count_a_frame_renders() {
+    let most = REFERENCE_SAMPLES_PER_DISPATCH * crate::passes::PASS_INFO_SLOTS;
+    let mut s = Settings::default();
+    s.reference_spp = 4096;
+    assert_eq!(s.gpu_params(100).reference_spp, most);
+    s.reference_spp = 64;
+    assert_eq!(s.gpu_params(100).reference_spp, 64);
+}

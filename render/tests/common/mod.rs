@@ -2,6 +2,8 @@
 //! with a clear message when there is none; none of them skips silently.
 #![allow(dead_code)]
 
+pub mod furnace;
+
 use restir_render::{Gpu, LinearImage, Mode, Renderer, Settings, load_scene};
 
 pub fn gpu() -> Gpu {

@@ -199,6 +199,13 @@ pub struct GiReuse {
     /// Trace the reconnection x_here → x_s of each neighbour's sample (spatial reuse with
     /// `gi_spatial_visibility`; the temporal sample at the same surface is not traced).
     pub visibility: bool,
+    /// Pairwise only: also trace from each neighbour's visible point to the canonical
+    /// sample's point, and count the neighbour's target there as 0 when occluded (the
+    /// neighbour could not have found that sample). Without it the canonical sample's MIS
+    /// weight assumes every neighbour sees it, and reuse behind occluders darkens (measured
+    /// in gi_tests.rs: −5 % where a blocker hides 40 % of the light). One more ray per
+    /// neighbour.
+    pub mis_visibility: bool,
 }
 
 /// The outcome of one reuse step: the finalised reservoir and, per neighbour, the GI
@@ -267,7 +274,11 @@ pub(crate) fn resample_with(
             let terms: f32 = neighbours
                 .iter()
                 .map(|n| {
-                    let j = shift(&y, here.position, n.receiver.position).unwrap_or(0.0);
+                    let mut j = shift(&y, here.position, n.receiver.position).unwrap_or(0.0);
+                    if j > 0.0 && reuse.mis_visibility && !visible(n.receiver.position, y.position)
+                    {
+                        j = 0.0;
+                    }
                     let p_j = n.receiver.target(&y);
                     gi_pairwise_canonical_term(c_total, c_c, n.confidence, p_c, p_j, j)
                 })
@@ -328,3 +339,11 @@ mod toy_scene;
 #[cfg(test)]
 #[path = "gi_tests.rs"]
 mod tests;
+
+#[cfg(test)]
+#[path = "gi_visibility_tests.rs"]
+mod visibility_tests;
+
+#[cfg(test)]
+#[path = "gi_unit_tests.rs"]
+mod unit_tests;

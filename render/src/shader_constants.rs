@@ -188,6 +188,7 @@ pub const PARAM_FLAG_GI_TEMPORAL: u32 = 1 << 5;
 pub const PARAM_FLAG_GI_SPATIAL: u32 = 1 << 6;
 pub const PARAM_FLAG_GI_SPATIAL_VISIBILITY: u32 = 1 << 7;
 pub const PARAM_FLAG_GI_PAIRWISE: u32 = 1 << 8;
+pub const PARAM_FLAG_GI_MIS_VISIBILITY: u32 = 1 << 9;
 
 /// The WGSL prelude: every constant above as a `const` declaration.
 pub fn wgsl_prelude() -> String {
@@ -300,6 +301,7 @@ pub fn wgsl_prelude() -> String {
             PARAM_FLAG_GI_SPATIAL_VISIBILITY,
         ),
         ("PARAM_FLAG_GI_PAIRWISE", PARAM_FLAG_GI_PAIRWISE),
+        ("PARAM_FLAG_GI_MIS_VISIBILITY", PARAM_FLAG_GI_MIS_VISIBILITY),
     ];
     let mut out = String::from("// Generated from render/src/shader_constants.rs: edit there.\n");
     for (name, value) in u32s {

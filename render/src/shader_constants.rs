@@ -152,12 +152,12 @@ pub const GI_REJECT_OCCLUDED: u32 = 1 << 8;
 pub const GI_REJECT_REASON_COUNT: usize = 9;
 /// Human names of the GI rejection bits, in bit order (the first six are DI's).
 pub const GI_REJECT_REASON_NAMES: [&str; GI_REJECT_REASON_COUNT] = [
-    "offscreen",
-    "surface_invalid",
-    "material",
-    "normal",
-    "depth",
-    "reservoir_null",
+    REJECT_REASON_NAMES[0],
+    REJECT_REASON_NAMES[1],
+    REJECT_REASON_NAMES[2],
+    REJECT_REASON_NAMES[3],
+    REJECT_REASON_NAMES[4],
+    REJECT_REASON_NAMES[5],
     "reconnection",
     "jacobian",
     "occluded",

@@ -6,6 +6,7 @@ use proptest::prelude::*;
 
 use super::toy_scene::*;
 use super::*;
+use crate::reservoir::test_support::{wild_f32, wild_vec3};
 
 fn sample_at(z: f32) -> GiSample {
     GiSample {
@@ -91,25 +92,11 @@ fn rejected_samples_count_their_confidence_but_never_contribute() {
     }
 }
 
-fn wild() -> impl Strategy<Value = f32> {
-    prop_oneof![
-        proptest::num::f32::ANY,
-        Just(0.0f32),
-        Just(f32::MAX),
-        (1u32..0x0080_0000).prop_map(f32::from_bits),
-        -3.0f32..3.0,
-    ]
-}
-
-fn wild_vec() -> impl Strategy<Value = Vec3> {
-    (wild(), wild(), wild()).prop_map(|(x, y, z)| Vec3::new(x, y, z))
-}
-
 proptest! {
     #[test]
     fn reuse_stays_finite_whatever_it_is_fed(
-        samples in prop::collection::vec((wild_vec(), wild_vec(), wild_vec(), wild(), wild(), wild()), 1..5),
-        here_position in wild_vec(), j_max in wild(), pairwise in any::<bool>(),
+        samples in prop::collection::vec((wild_vec3(), wild_vec3(), wild_vec3(), wild_f32(), wild_f32(), wild_f32()), 1..5),
+        here_position in wild_vec3(), j_max in wild_f32(), pairwise in any::<bool>(),
     ) {
         let here = GiReceiver { position: here_position, normal: Vec3::Z, brdf: Vec3::splat(0.25) };
         let reservoirs: Vec<(GiReceiver, GiReservoir)> = samples

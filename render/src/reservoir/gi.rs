@@ -14,8 +14,8 @@
 //! `p̂ = luminance(f_r(x_v, ω_o, ω) · L_o · cos θ_v)`: the sample's whole contribution at the
 //! receiving pixel. The cheaper `luminance(L_o)` would keep samples the receiver sees at a
 //! grazing angle or below its horizon as often as head-on ones (zero contribution, full
-//! weight), and it is the same at every pixel, so it cannot tell neighbours apart in the
-//! MIS weights; the full contribution is 0 exactly where the pixel's integrand is and, for
+//! weight), and it ignores the receiver altogether (in the MIS weights only the Jacobian
+//! would tell neighbours apart); the full contribution is 0 exactly where the pixel's integrand is and, for
 //! the Lambertian receivers of the tests, proportional to it (the ideal RIS target). The
 //! notes do not ask for the simpler one, so it is not provided.
 //!
@@ -26,7 +26,9 @@
 //! reconnection occluded) is a candidate seen with target 0 here: in 1/M mode its M counts
 //! (the darkening bias of 1/M with rejection, measured in gi_tests.rs); in pairwise mode its
 //! confidence is part of `c_total` and its MIS weight is 0, which stays unbiased because the
-//! shift's validity is symmetric.
+//! shift's validity is symmetric, and, behind occluders, only when the canonical sample's
+//! MIS weight also knows which neighbours see its point (`GiReuse::mis_visibility`,
+//! measured in gi_visibility_tests.rs).
 
 use glam::Vec3;
 

@@ -324,6 +324,24 @@ pub(crate) mod test_support {
         );
     }
 
+    /// f32s from the whole range for robustness properties: zeros, subnormals, huge,
+    /// infinite, NaN, negative, and ordinary values (so that valid configurations occur).
+    pub fn wild_f32() -> impl proptest::strategy::Strategy<Value = f32> {
+        use proptest::prelude::*;
+        prop_oneof![
+            proptest::num::f32::ANY,
+            Just(0.0f32),
+            Just(f32::MAX),
+            (1u32..0x0080_0000).prop_map(f32::from_bits),
+            -10.0f32..10.0,
+        ]
+    }
+
+    pub fn wild_vec3() -> impl proptest::strategy::Strategy<Value = glam::Vec3> {
+        use proptest::prelude::*;
+        (wild_f32(), wild_f32(), wild_f32()).prop_map(|(x, y, z)| glam::Vec3::new(x, y, z))
+    }
+
     /// Mean and standard error of a sample.
     pub fn mean_and_se(values: &[f64]) -> (f64, f64) {
         let n = values.len() as f64;

@@ -181,12 +181,12 @@ pub const GI_REJECT_OCCLUDED: u32 = 1 << 8;
 pub const GI_REJECT_REASON_COUNT: usize = 9;
 /// Human names of the GI rejection bits, in bit order (the first six are DI's).
 pub const GI_REJECT_REASON_NAMES: [&str; GI_REJECT_REASON_COUNT] = [
-    "offscreen",
-    "surface_invalid",
-    "material",
-    "normal",
-    "depth",
-    "reservoir_null",
+    REJECT_REASON_NAMES[0],
+    REJECT_REASON_NAMES[1],
+    REJECT_REASON_NAMES[2],
+    REJECT_REASON_NAMES[3],
+    REJECT_REASON_NAMES[4],
+    REJECT_REASON_NAMES[5],
     "reconnection",
     "jacobian",
     "occluded",
@@ -217,6 +217,7 @@ pub const PARAM_FLAG_GI_TEMPORAL: u32 = 1 << 5;
 pub const PARAM_FLAG_GI_SPATIAL: u32 = 1 << 6;
 pub const PARAM_FLAG_GI_SPATIAL_VISIBILITY: u32 = 1 << 7;
 pub const PARAM_FLAG_GI_PAIRWISE: u32 = 1 << 8;
+pub const PARAM_FLAG_GI_MIS_VISIBILITY: u32 = 1 << 9;
 
 /// The WGSL prelude: every constant above as a `const` declaration.
 pub fn wgsl_prelude() -> String {
@@ -346,6 +347,7 @@ pub fn wgsl_prelude() -> String {
             PARAM_FLAG_GI_SPATIAL_VISIBILITY,
         ),
         ("PARAM_FLAG_GI_PAIRWISE", PARAM_FLAG_GI_PAIRWISE),
+        ("PARAM_FLAG_GI_MIS_VISIBILITY", PARAM_FLAG_GI_MIS_VISIBILITY),
     ];
     let mut out = String::from("// Generated from render/src/shader_constants.rs: edit there.\n");
     for (name, value) in u32s {

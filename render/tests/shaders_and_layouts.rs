@@ -15,14 +15,19 @@ use restir_render::passes::resources::Resource;
 
 fn parse_and_validate(name: &str, defines: &BTreeSet<String>) -> naga::Module {
     let source = compose(name, defines).unwrap_or_else(|e| panic!("{name}: {e}"));
-    let module = naga::front::wgsl::parse_str(&source)
-        .unwrap_or_else(|e| panic!("{name} with {defines:?}:\n{}", e.emit_to_string(&source)));
+    validate_source(&format!("{name} with {defines:?}"), &source)
+}
+
+/// Parses and validates composed WGSL; `what` names it in the panic message.
+fn validate_source(what: &str, source: &str) -> naga::Module {
+    let module = naga::front::wgsl::parse_str(source)
+        .unwrap_or_else(|e| panic!("{what}:\n{}", e.emit_to_string(source)));
     naga::valid::Validator::new(
         naga::valid::ValidationFlags::all(),
         naga::valid::Capabilities::default(),
     )
     .validate(&module)
-    .unwrap_or_else(|e| panic!("{name} with {defines:?}: {}", e.emit_to_string(&source)));
+    .unwrap_or_else(|e| panic!("{what}: {}", e.emit_to_string(source)));
     module
 }
 
@@ -97,14 +102,7 @@ fn gi_reservoir_library_validates_in_a_compute_entry_point() {
     for defines in [BTreeSet::new(), EffectSet::all().defines()] {
         let mut source = compose("common/gi_reservoir.wgsl", &defines).unwrap();
         source.push_str(GI_LIBRARY_ENTRY);
-        let module = naga::front::wgsl::parse_str(&source)
-            .unwrap_or_else(|e| panic!("gi_reservoir.wgsl:\n{}", e.emit_to_string(&source)));
-        naga::valid::Validator::new(
-            naga::valid::ValidationFlags::all(),
-            naga::valid::Capabilities::default(),
-        )
-        .validate(&module)
-        .unwrap_or_else(|e| panic!("gi_reservoir.wgsl: {}", e.emit_to_string(&source)));
+        let module = validate_source("gi_reservoir.wgsl in a compute entry point", &source);
         assert_eq!(module.entry_points.len(), 1);
     }
 }

@@ -194,7 +194,9 @@ fn gi_pairwise_noncanonical(c_total: f32, c_canonical: f32, c_i: f32, p_hat_i_at
 }
 
 // Neighbour j's term of the canonical sample's weight (c_c / c_total + Σ_j terms), with
-// p̂_j(y_c) · |J_{here→j}| (0 when that shift fails or is outside the window).
+// p̂_j(y_c) · |J_{here→j}|. Pass jacobian_here_to_j = 0 when that shift fails, is outside
+// the window, or (PARAM_FLAG_GI_MIS_VISIBILITY) x_j does not see y_c's point: then j could
+// not have found y_c, and counting it anyway darkens reuse behind occluders (gi.rs).
 fn gi_pairwise_canonical_term(c_total: f32, c_canonical: f32, c_j: f32, p_hat_here_at_yc: f32, p_hat_j_at_yc: f32, jacobian_here_to_j: f32) -> f32 {
     let p_j = p_hat_j_at_yc * sanitize(jacobian_here_to_j);
     return pairwise_mis_canonical_term(c_total, c_canonical, c_j, p_hat_here_at_yc, p_j);

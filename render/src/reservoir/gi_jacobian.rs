@@ -3,7 +3,9 @@
 //! sample point `x_s` and is reconnected to pixel r's visible point `x_r`. Its density is in
 //! solid angle at the receiver, so moving it changes measure by
 //!
-//!     |J_{q→r}| = dω_r/dω_q = (|cos φ_r| / |cos φ_q|) · (‖x_q − x_s‖² / ‖x_r − x_s‖²),
+//! ```text
+//! |J_{q→r}| = dω_r/dω_q = (|cos φ_r| / |cos φ_q|) · (‖x_q − x_s‖² / ‖x_r − x_s‖²),
+//! ```
 //!
 //! φ being the angle at `x_s` between `n_s` and the direction to the receiving point: the same
 //! patch dA around `x_s` subtends dω = |cos φ| dA / d² from either point, and the ratio of the
@@ -15,7 +17,7 @@
 //! cosine (the patch has no solid angle), or a receiver on the other side of the sample's
 //! surface (the cached radiance left the side q saw; the back face's is unknown). The
 //! conditions are symmetric in q and r, and so is the window `[1/j_max, j_max]`
-//! ([`jacobian_in_window`]) since `J_{r→q} = 1/J_{q→r}`: pairwise MIS relies on that (a shift
+//! (`jacobian_in_window`) since `J_{r→q} = 1/J_{q→r}`: pairwise MIS relies on that (a shift
 //! q→r is usable exactly when the shift r→q is). `shaders/common/gi_reservoir.wgsl` mirrors
 //! this file with the same thresholds.
 

@@ -6,7 +6,7 @@ use glam::{DVec3, Vec3};
 use proptest::prelude::*;
 
 use super::*;
-use crate::reservoir::test_support::Rng;
+use crate::reservoir::test_support::{Rng, wild_f32, wild_vec3};
 
 #[test]
 fn analytic_values() {
@@ -170,25 +170,10 @@ fn the_window_rejects_large_and_small_jacobians_symmetrically() {
     }
 }
 
-/// f32s from the whole range: zeros, subnormals, huge, infinite, NaN, negative.
-fn wild() -> impl Strategy<Value = f32> {
-    prop_oneof![
-        proptest::num::f32::ANY,
-        Just(0.0f32),
-        Just(f32::MAX),
-        (1u32..0x0080_0000).prop_map(f32::from_bits),
-        -10.0f32..10.0,
-    ]
-}
-
-fn wild_vec() -> impl Strategy<Value = Vec3> {
-    (wild(), wild(), wild()).prop_map(|(x, y, z)| Vec3::new(x, y, z))
-}
-
 proptest! {
     #[test]
     fn jacobian_is_none_or_finite_positive(
-        xs in wild_vec(), n in wild_vec(), q in wild_vec(), r in wild_vec(), j_max in wild(),
+        xs in wild_vec3(), n in wild_vec3(), q in wild_vec3(), r in wild_vec3(), j_max in wild_f32(),
     ) {
         if let Some(j) = reconnection_jacobian(xs, n, q, r) {
             prop_assert!(j.is_finite() && j > 0.0, "{}", j);

@@ -93,7 +93,8 @@ fn gpu_params_reflect_checks_and_flags() {
 #[test]
 fn indirect_defaults_and_flags() {
     let s = Settings::default();
-    assert!(!s.gi && s.gi_temporal && s.gi_spatial && s.gi_spatial_visibility);
+    assert!(!s.gi && s.gi_temporal && s.gi_spatial);
+    assert!(s.gi_spatial_visibility && s.gi_mis_visibility);
     assert_eq!((s.gi_m_cap, s.gi_spatial_neighbours), (10.0, 3));
     assert_eq!((s.gi_spatial_radius, s.gi_jacobian_max), (30.0, 10.0));
     assert_eq!(s.gi_bias_correction, BiasCorrection::Pairwise);
@@ -110,6 +111,7 @@ fn indirect_defaults_and_flags() {
         | PARAM_FLAG_GI_TEMPORAL
         | PARAM_FLAG_GI_SPATIAL
         | PARAM_FLAG_GI_SPATIAL_VISIBILITY
+        | PARAM_FLAG_GI_MIS_VISIBILITY
         | PARAM_FLAG_GI_PAIRWISE;
     assert_eq!(p.flags & PARAM_FLAG_GI, 0);
     assert_eq!(p.flags & gi_bits, gi_bits & !PARAM_FLAG_GI);
@@ -122,7 +124,10 @@ fn indirect_defaults_and_flags() {
     let p = t.gpu_params(1080);
     assert_eq!(
         p.flags & gi_bits,
-        PARAM_FLAG_GI | PARAM_FLAG_GI_TEMPORAL | PARAM_FLAG_GI_SPATIAL
+        PARAM_FLAG_GI
+            | PARAM_FLAG_GI_TEMPORAL
+            | PARAM_FLAG_GI_SPATIAL
+            | PARAM_FLAG_GI_MIS_VISIBILITY
     );
     assert_eq!(p.gi_jacobian_max, 1.0);
     assert_eq!(p.flags & !gi_bits, s.gpu_params(1080).flags & !gi_bits);

@@ -8,14 +8,16 @@ use crate::viewer::camera::CameraState;
 pub fn ui(ui: &mut Ui, camera: &mut CameraState) {
     ui.weak("WASD move · Q/E or Ctrl/Space down/up · right-drag look · wheel speed · Shift faster");
     ui.horizontal(|ui| {
-        ui.label("Position");
+        // The label names the three fields for screen readers (and the UI tests' checks).
+        let label = ui.label("Position").id;
         let step = (camera.scale * 0.002) as f64;
         for c in [
             &mut camera.camera.position.x,
             &mut camera.camera.position.y,
             &mut camera.camera.position.z,
         ] {
-            ui.add(egui::DragValue::new(c).speed(step).max_decimals(3));
+            ui.add(egui::DragValue::new(c).speed(step).max_decimals(3))
+                .labelled_by(label);
         }
     });
     let (yaw, pitch) = camera.yaw_pitch_degrees();

@@ -48,7 +48,12 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             offset = vec2<i32>(1, 0);
         }
         let q = vec2<i32>(id.xy) + offset;
+        // `mask`: surface checks, which drop the neighbour. `unusable`: its sample cannot
+        // reach this pixel (no reconnection, Jacobian outside the window, occluded): the
+        // neighbour stays in the MIS (its confidence counts) with weight 0 here, as the
+        // tested rules in reservoir/gi.rs do; dropping it would bias the weights.
         var mask = 0u;
+        var unusable = 0u;
         var n = GiNeighbour(0u, 0.0, 0.0);
         if any(q < vec2<i32>(0)) || any(q >= size) {
             mask |= REJECT_OFFSCREEN;
@@ -62,13 +67,16 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
                 let nr = gi_checked(gi_in[n.index], GI_PASS_SPATIAL);
                 // A null neighbour is a zero-contribution sample with its confidence M:
                 // merged, not rejected (rejecting it biased the indirect light +23 %).
-                if !gi_reservoir_is_null(nr) {
+                if mask == 0u && !gi_reservoir_is_null(nr) {
                     let shift = gi_shift(nr, ns.position, s.position);
-                    n.jacobian = shift.jacobian;
-                    mask |= shift.reject;
-                    n.target_here = gi_target_at(sp, nr.position, nr.radiance);
-                    if mask == 0u && n.target_here > 0.0 && gi_flag_on(PARAM_FLAG_GI_SPATIAL_VISIBILITY) && !gi_reconnection_visible(sp, nr) {
-                        mask |= GI_REJECT_OCCLUDED;
+                    unusable |= shift.reject;
+                    if unusable == 0u {
+                        n.jacobian = shift.jacobian;
+                        n.target_here = gi_target_at(sp, nr.position, nr.radiance);
+                        if n.target_here > 0.0 && gi_flag_on(PARAM_FLAG_GI_SPATIAL_VISIBILITY) && !gi_reconnection_visible(sp, nr) {
+                            unusable |= GI_REJECT_OCCLUDED;
+                            n.target_here = 0.0;
+                        }
                     }
                 }
             }
@@ -78,8 +86,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             n_accepted++;
             c_total += gi_in[n.index].m;
         }
-        count_rejections(mask, STAT_GI_SPATIAL_REJECT);
-        pass_mask |= mask;
+        count_rejections(mask | unusable, STAT_GI_SPATIAL_REJECT);
+        pass_mask |= mask | unusable;
     }
 
     var r = gi_reservoir_empty();
@@ -98,7 +106,13 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             if !gi_reservoir_is_null(canonical) {
                 let neighbour_sp = shading_point_from_surface(ns, frame.camera_position);
                 let back = gi_shift(canonical, s.position, ns.position);
-                let j_back = select(0.0, back.jacobian, back.reject == 0u);
+                var j_back = select(0.0, back.jacobian, back.reject == 0u);
+                // Whether the neighbour could have produced this pixel's sample: its point must
+                // be visible from there too (gi_mis_visibility; off leaves the canonical weight
+                // too small where neighbours are shadowed, see README "Indirect").
+                if j_back > 0.0 && gi_flag_on(PARAM_FLAG_GI_MIS_VISIBILITY) && !gi_reconnection_visible(neighbour_sp, canonical) {
+                    j_back = 0.0;
+                }
                 let at_neighbour = gi_target_at(neighbour_sp, canonical.position, canonical.radiance);
                 m_canonical += gi_pairwise_canonical_term(c_total, canonical.m, nr.m, canonical.p_hat, at_neighbour, j_back);
             }

@@ -15,7 +15,8 @@
 @group(2) @binding(5) var<storage, read_write> gi_debug: array<GiPixelDebug>;
 
 struct GiTemporalCandidate {
-    mask: u32,
+    mask: u32,          // surface checks: the history is not merged
+    unusable: u32,      // the shift failed: merged with weight 0
     reservoir: GiReservoir,
     target_here: f32,
     jacobian: f32,      // |J| of the shift previous visible point → here
@@ -23,7 +24,7 @@ struct GiTemporalCandidate {
 }
 
 fn gi_validate_previous(pixel: vec2<i32>, s: Surface, sp: ShadingPoint) -> GiTemporalCandidate {
-    var c = GiTemporalCandidate(0u, gi_reservoir_empty(), 0.0, 0.0, Surface());
+    var c = GiTemporalCandidate(0u, 0u, gi_reservoir_empty(), 0.0, 0.0, Surface());
     let size = vec2<i32>(frame.size);
     var p = pixel;
     if any(p < vec2<i32>(0)) || any(p >= size) || s.motion.x <= NO_MOTION {
@@ -51,10 +52,17 @@ fn gi_validate_previous(pixel: vec2<i32>, s: Surface, sp: ShadingPoint) -> GiTem
     if gi_reservoir_is_null(prev) {
         return c;
     }
+    if c.mask != 0u {
+        return c;
+    }
+    // A sample that cannot reach this point (no reconnection, Jacobian outside the window)
+    // still merges its confidence, with weight 0 (the rules tested in reservoir/gi.rs).
     let shift = gi_shift(prev, ps.position, s.position);
-    c.jacobian = shift.jacobian;
-    c.mask |= shift.reject;
-    c.target_here = gi_target_at(sp, prev.position, prev.radiance);
+    c.unusable = shift.reject;
+    if shift.reject == 0u {
+        c.jacobian = shift.jacobian;
+        c.target_here = gi_target_at(sp, prev.position, prev.radiance);
+    }
     return c;
 }
 
@@ -84,8 +92,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     } else {
         cand = gi_validate_previous(reprojected, s, sp);
     }
-    count_rejections(cand.mask, STAT_GI_TEMPORAL_REJECT);
-    d.temporal_mask = cand.mask;
+    count_rejections(cand.mask | cand.unusable, STAT_GI_TEMPORAL_REJECT);
+    d.temporal_mask = cand.mask | cand.unusable;
 
     var r = current;
     if cand.mask == 0u {
@@ -104,7 +112,11 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
                 // The canonical sample at the previous visible point, in this pixel's measure.
                 let prev_sp = shading_point_from_surface(cand.prev_surface, frame.prev_camera_position);
                 let back = gi_shift(current, s.position, cand.prev_surface.position);
-                let j_back = select(0.0, back.jacobian, back.reject == 0u);
+                var j_back = select(0.0, back.jacobian, back.reject == 0u);
+                // As in spatial reuse: could the previous visible point see this sample?
+                if j_back > 0.0 && gi_flag_on(PARAM_FLAG_GI_MIS_VISIBILITY) && !gi_reconnection_visible(prev_sp, current) {
+                    j_back = 0.0;
+                }
                 let prev_at_current = gi_target_at(prev_sp, current.position, current.radiance);
                 m_current += gi_pairwise_canonical_term(c_total, current.m, m_prev, current.p_hat, prev_at_current, j_back);
             }
@@ -121,7 +133,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         d.jacobian = select(1.0, cand.jacobian, picked_previous);
     }
     gi_cap_confidence(&r, params.gi_m_cap);
-    gi_set_flags(&r, cand.mask);
+    gi_set_flags(&r, cand.mask | cand.unusable);
     r = gi_guarded(r, GI_PASS_TEMPORAL);
     gi_out[index] = r;
     d.m_temporal = r.m;

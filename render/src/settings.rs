@@ -476,9 +476,10 @@ impl Settings {
             // One frame renders at most PASS_INFO_SLOTS chunks of samples; the shader divides
             // by this count, so it must be the count actually rendered (4096 used to render
             // 2048 and halve the image).
-            reference_spp: self
-                .reference_spp
-                .clamp(1, REFERENCE_SAMPLES_PER_DISPATCH * crate::passes::PASS_INFO_SLOTS),
+            reference_spp: self.reference_spp.clamp(
+                1,
+                REFERENCE_SAMPLES_PER_DISPATCH * crate::passes::PASS_INFO_SLOTS,
+            ),
             boiling_filter: self.boiling_filter,
             gi_m_cap: self.gi_m_cap,
             gi_spatial_neighbours: self.gi_spatial_neighbours.min(MAX_SPATIAL_NEIGHBOURS),

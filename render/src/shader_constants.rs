@@ -113,10 +113,13 @@ pub const STREAM_TEMPORAL: u32 = 1;
 pub const STREAM_REFERENCE: u32 = 2;
 pub const STREAM_LIGHT_TILES: u32 = 3;
 pub const STREAM_SPATIAL: u32 = 4;
-// Spatial passes use STREAM_SPATIAL + pass index (up to MAX_SPATIAL_PASSES).
-pub const STREAM_GI_INITIAL: u32 = 16;
-pub const STREAM_GI_TEMPORAL: u32 = 17;
-pub const STREAM_GI_SPATIAL: u32 = 18;
+// Spatial passes use STREAM_SPATIAL + pass index (4..4 + MAX_SPATIAL_PASSES).
+pub const STREAM_GI_INITIAL: u32 = 12;
+pub const STREAM_GI_TEMPORAL: u32 = 13;
+pub const STREAM_GI_SPATIAL: u32 = 14;
+/// `rng_seed` mixes frame_index × STREAM_COUNT + stream: a stream ≥ STREAM_COUNT would
+/// replay another stream of a later frame (GI once drew DI's next-frame numbers).
+pub const STREAM_COUNT: u32 = 16;
 
 /// The reference renders its samples per pixel in dispatches of at most this many.
 /// lavapipe (Mesa 22) bounds the total loop iterations of one shader invocation (one
@@ -304,6 +307,7 @@ pub fn wgsl_prelude() -> String {
         ("STREAM_GI_INITIAL", STREAM_GI_INITIAL),
         ("STREAM_GI_TEMPORAL", STREAM_GI_TEMPORAL),
         ("STREAM_GI_SPATIAL", STREAM_GI_SPATIAL),
+        ("STREAM_COUNT", STREAM_COUNT),
         ("MAX_SPATIAL_NEIGHBOURS", MAX_SPATIAL_NEIGHBOURS),
         (
             "REFERENCE_SAMPLES_PER_DISPATCH",
@@ -362,4 +366,28 @@ pub fn wgsl_prelude() -> String {
         out.push_str(&format!("const {name}: f32 = {value:e};\n"));
     }
     out
+}
+
+#[cfg(test)]
+mod stream_tests {
+    use super::*;
+
+    #[test]
+    fn every_random_stream_is_distinct_and_below_the_stride() {
+        let mut streams = vec![
+            STREAM_INITIAL,
+            STREAM_TEMPORAL,
+            STREAM_REFERENCE,
+            STREAM_LIGHT_TILES,
+            STREAM_GI_INITIAL,
+            STREAM_GI_TEMPORAL,
+            STREAM_GI_SPATIAL,
+        ];
+        streams.extend((0..MAX_SPATIAL_PASSES).map(|p| STREAM_SPATIAL + p));
+        let count = streams.len();
+        streams.sort();
+        streams.dedup();
+        assert_eq!(streams.len(), count, "two purposes share a stream");
+        assert!(streams.iter().all(|&s| s < STREAM_COUNT));
+    }
 }

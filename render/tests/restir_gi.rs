@@ -1,76 +1,180 @@
 //! ReSTIR GI (issue 12) against exact answers and the 2-bounce reference.
+//!
+//! The indirect part is measured alone: GI's passes draw their own random streams and
+//! never touch DI's buffers, so with the same seed the DI part of a `gi=true` frame is the
+//! `gi=false` frame exactly, and (gi on − gi off) is the indirect estimate, compared with
+//! (2-bounce reference − 1-bounce reference).
 
 mod common;
 
 use std::collections::BTreeSet;
 
+use glam::Vec3;
 use restir_render::effects::{EffectSet, SceneFeatures};
-use restir_render::metrics::luma_ratio;
-use restir_render::{LinearImage, Mode, Renderer, load_scene};
+use restir_render::{Camera, LinearImage, Mode, Renderer, Scene, load_scene};
 
-fn luma(p: &[f32; 4]) -> f64 {
-    0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64
-}
-
-/// Mean luma over 8×8-pixel blocks, for block-wise comparisons that average noise away.
-fn blocks(img: &LinearImage) -> Vec<f64> {
-    let (bw, bh) = (img.width / 8, img.height / 8);
-    let mut out = vec![0.0; (bw * bh) as usize];
-    for y in 0..bh * 8 {
-        for x in 0..bw * 8 {
-            out[((y / 8) * bw + x / 8) as usize] += luma(&img.pixels[(y * img.width + x) as usize]) / 64.0;
-        }
-    }
-    out
-}
-
-fn cornell_gi(assignments: &[&str], planted: Option<&str>, frames: u32) -> LinearImage {
-    let scene = load_scene("builtin:cornell").unwrap();
-    let mut all = vec!["jitter=false", "gi=true"];
-    all.extend_from_slice(assignments);
-    let settings = common::settings(&all);
-    let mut effects = EffectSet::detect(&SceneFeatures::of(&scene), &settings, false);
-    effects.planted = planted.map(str::to_string).into_iter().collect::<BTreeSet<_>>();
-    let mut r = Renderer::new(common::gpu(), &scene, 64, 48, settings).unwrap();
-    r.force_effects(Some(effects));
-    r.set_mode(Mode::Restir);
-    common::accumulate(&mut r, frames)
-}
-
-fn cornell_reference(bounces: u32, spp: u32) -> LinearImage {
-    let settings = common::settings(&["jitter=false", &format!("max_bounces={bounces}")]);
-    let mut r = common::renderer("builtin:cornell", 64, 48, Mode::Reference, settings);
-    common::reference(&mut r, 1, spp)
-}
+const W: u32 = 64;
+const H: u32 = 48;
+/// Frames averaged per configuration: the indirect ratio's noise is ~1 % there (block
+/// ratios spread 3-5 % over 36 blocks).
+const FRAMES: u32 = 256;
+/// Neighbours far enough apart (26 px at 48 px high) that the Jacobian matters.
+const WIDE: [&str; 3] = [
+    "gi_spatial_radius=600",
+    "gi_jacobian_max=1000",
+    "gi_spatial_neighbours=5",
+];
 
 fn mean_luma(img: &LinearImage) -> f64 {
-    img.pixels.iter().map(luma).sum::<f64>() / img.pixels.len() as f64
+    let n = img.pixels.len() as f64;
+    (0..img.height)
+        .flat_map(|y| (0..img.width).map(move |x| (x, y)))
+        .map(|(x, y)| img.luminance_at(x, y) as f64)
+        .sum::<f64>()
+        / n
 }
 
-#[test]
-fn explore() {
-    let ref2 = cornell_reference(2, 2048);
-    let ref1 = cornell_reference(1, 2048);
-    let indirect_ref = mean_luma(&ref2) - mean_luma(&ref1);
-    let frames = 256;
-    let di = cornell_gi(&["gi=false"], None, frames);
-    let di_wide = cornell_gi(&["gi=false"], None, frames);
-    assert_eq!(mean_luma(&di), mean_luma(&di_wide));
-    for (name, a, p) in [
-        ("pairwise", vec![], None),
-        ("1/M", vec!["gi_bias_correction=one-over-m"], None),
-        ("wide spatial pairwise", vec!["gi_temporal=false", "gi_spatial_radius=600", "gi_jacobian_max=1000", "gi_spatial_neighbours=5"], None),
-        ("wide spatial pairwise noJ", vec!["gi_temporal=false", "gi_spatial_radius=600", "gi_jacobian_max=1000", "gi_spatial_neighbours=5"], Some("PLANTED_GI_NO_JACOBIAN")),
-        ("wide spatial 1/M", vec!["gi_temporal=false", "gi_spatial_radius=600", "gi_jacobian_max=1000", "gi_spatial_neighbours=5", "gi_bias_correction=one-over-m"], None),
-        ("wide spatial 1/M noJ", vec!["gi_temporal=false", "gi_spatial_radius=600", "gi_jacobian_max=1000", "gi_spatial_neighbours=5", "gi_bias_correction=one-over-m"], Some("PLANTED_GI_NO_JACOBIAN")),
-    ] {
-        let img = cornell_gi(&a, p, frames);
-        let ind = mean_luma(&img) - mean_luma(&di);
-        let bi: Vec<f64> = blocks(&img).iter().zip(blocks(&di)).map(|(a, b)| a - b).collect();
-        let br: Vec<f64> = blocks(&ref2).iter().zip(blocks(&ref1)).map(|(a, b)| a - b).collect();
-        let rel: Vec<f64> = bi.iter().zip(&br).filter(|(_, b)| **b > 1e-4).map(|(a, b)| a / b).collect();
-        let mean_rel = rel.iter().sum::<f64>() / rel.len() as f64;
-        let sd = (rel.iter().map(|r| (r - mean_rel).powi(2)).sum::<f64>() / (rel.len() - 1) as f64).sqrt();
-        eprintln!("{name}: indirect ratio {:.4}; block ratios mean {:.4} sd {:.4} (n {})", ind / indirect_ref, mean_rel, sd, rel.len());
+fn render(scene: &Scene, assignments: &[&str], planted: Option<&str>, frames: u32) -> Renderer {
+    let mut all = vec!["jitter=false"];
+    all.extend_from_slice(assignments);
+    let settings = common::settings(&all);
+    let mut effects = EffectSet::detect(&SceneFeatures::of(scene), &settings, false);
+    effects.planted = planted
+        .map(str::to_string)
+        .into_iter()
+        .collect::<BTreeSet<_>>();
+    let mut r = Renderer::new(common::gpu(), scene, W, H, settings).unwrap();
+    r.force_effects(Some(effects));
+    r.set_mode(Mode::Restir);
+    r.reset_accumulation();
+    for _ in 0..frames {
+        r.render_frame().unwrap();
     }
+    r
+}
+
+/// (gi on − gi off) / (2-bounce − 1-bounce reference) in mean luma on builtin:cornell.
+struct Cornell {
+    scene: Scene,
+    direct: f64,
+    indirect_reference: f64,
+}
+
+impl Cornell {
+    fn new() -> Cornell {
+        let scene = load_scene("builtin:cornell").unwrap();
+        let reference = |bounces: u32| {
+            let settings = common::settings(&["jitter=false", &format!("max_bounces={bounces}")]);
+            let mut r = common::renderer("builtin:cornell", W, H, Mode::Reference, settings);
+            mean_luma(&common::reference(&mut r, 1, 2048))
+        };
+        let indirect_reference = reference(2) - reference(1);
+        let direct = mean_luma(&render(&scene, &["gi=false"], None, FRAMES).read_accumulated());
+        Cornell {
+            scene,
+            direct,
+            indirect_reference,
+        }
+    }
+
+    fn indirect_ratio(&self, assignments: &[&str], planted: Option<&str>) -> f64 {
+        let mut all = vec!["gi=true"];
+        all.extend_from_slice(assignments);
+        let mut r = render(&self.scene, &all, planted, FRAMES);
+        let guarded: u64 = r
+            .collect_reports(true)
+            .iter()
+            .map(|f| f.counters.non_finite_total())
+            .sum();
+        assert_eq!(guarded, 0, "non-finite values caught in a GI frame");
+        let image = r.read_accumulated();
+        assert_eq!(image.non_finite_count(), 0);
+        let ratio = (mean_luma(&image) - self.direct) / self.indirect_reference;
+        eprintln!("indirect ratio {ratio:.4} with {assignments:?} {planted:?}");
+        ratio
+    }
+}
+
+/// Pairwise ReSTIR GI converges to the 2-bounce reference's indirect light. Tolerance
+/// ±7 %: ~1 % noise (see FRAMES) plus the residual bias of temporal reuse, measured at
+/// +4 % (±1 %) on this scene and not explained yet (README "Indirect"); spatial reuse alone
+/// is unbiased to 0.2 % and is held to ±3 %. 1/M is measured and stated: it darkens
+/// (0.87 here), because samples that cannot reach a pixel still count their confidence.
+#[test]
+fn restir_gi_converges_to_the_two_bounce_reference_and_its_1_over_m_bias_is_stated() {
+    let c = Cornell::new();
+    let pairwise = c.indirect_ratio(&[], None);
+    assert!((0.93..=1.07).contains(&pairwise), "pairwise {pairwise:.4}");
+    let spatial = c.indirect_ratio(&["gi_temporal=false"], None);
+    assert!(
+        (0.97..=1.03).contains(&spatial),
+        "spatial only {spatial:.4}"
+    );
+    let wide = c.indirect_ratio(&[&["gi_temporal=false"][..], &WIDE].concat(), None);
+    assert!((0.97..=1.03).contains(&wide), "wide spatial {wide:.4}");
+    let one_over_m = c.indirect_ratio(&["gi_bias_correction=one-over-m"], None);
+    assert!(
+        one_over_m < 0.95,
+        "1/M {one_over_m:.4}: its darkening is what README states"
+    );
+    // Test power: the same check with the shift's Jacobian planted the wrong way round.
+    let inverted = c.indirect_ratio(&WIDE, Some("PLANTED_GI_INVERTED_JACOBIAN"));
+    assert!(
+        !(0.93..=1.07).contains(&inverted),
+        "an inverted Jacobian must fail the convergence check ({inverted:.4})"
+    );
+}
+
+/// Inside the furnace box (every wall emits 1 with albedo 0.5) one GI bounce adds exactly
+/// a·a·Le: DI + GI must come out at Le(1 + a₁ + a₁·a), a₁ the 8-bit G-buffer albedo.
+/// Tolerance 1.5 %: the 16×16 image's pixels are correlated by reuse, so the spread of
+/// pixels understates the error; the mean of 64 frames scatters by ~0.3 % here.
+#[test]
+fn restir_gi_in_the_furnace_adds_exactly_one_bounce() {
+    let scene = common::furnace::furnace_box(1.0, 0.5);
+    let a1 = (0.5f64 * 255.0).round() / 255.0;
+    let expected = 1.0 + a1 + a1 * 0.5;
+    for assignments in [
+        vec!["gi=true"],
+        vec!["gi=true", "gi_bias_correction=one-over-m"],
+    ] {
+        let settings = common::settings(&[&["jitter=false"][..], &assignments].concat());
+        let mut r = Renderer::new(common::gpu(), &scene, 16, 16, settings).unwrap();
+        r.set_camera(Camera::look_at(
+            Vec3::ZERO,
+            Vec3::new(1.0, 0.3, 0.6),
+            70f32.to_radians(),
+        ));
+        r.set_mode(Mode::Restir);
+        let img = common::accumulate(&mut r, 64);
+        let mean = mean_luma(&img);
+        eprintln!("furnace {assignments:?}: {mean:.4} (expected {expected:.4})");
+        assert!(
+            (mean / expected - 1.0).abs() < 0.015,
+            "{assignments:?}: {mean:.4} vs {expected:.4}"
+        );
+    }
+}
+
+/// GI is compiled and dispatched only when `gi` is on; `ris` keeps GI without reuse.
+#[test]
+fn gi_passes_run_only_when_gi_is_on() {
+    let scene = load_scene("builtin:cornell").unwrap();
+    let off = render(&scene, &[], None, 2);
+    assert!(off.last_passes().iter().all(|p| !p.starts_with("gi")));
+    let on = render(&scene, &["gi=true"], None, 2);
+    for pass in ["gi initial", "gi temporal", "gi spatial", "gi shade"] {
+        assert!(
+            on.last_passes().contains(&pass),
+            "{pass} in {:?}",
+            on.last_passes()
+        );
+    }
+    let mut ris = render(&scene, &["gi=true"], None, 0);
+    ris.set_mode(Mode::Ris);
+    ris.render_frame().unwrap();
+    assert!(ris.last_passes().contains(&"gi initial"));
+    assert!(
+        !ris.last_passes().contains(&"gi temporal") && !ris.last_passes().contains(&"gi spatial")
+    );
 }

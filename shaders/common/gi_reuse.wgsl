@@ -58,7 +58,12 @@ fn gi_shift(r: GiReservoir, seen_from: vec3<f32>, reused_at: vec3<f32>) -> GiShi
     // Test-only planted error (render/tests/restir_gi.rs): reuse as if |J| were 1.
     return GiShift(select(0.0, 1.0, j > 0.0), reject);
 #else
+#ifdef PLANTED_GI_INVERTED_JACOBIAN
+    // Test-only planted error: the shift's Jacobian the wrong way round.
+    return GiShift(select(0.0, 1.0 / j, j > 0.0), reject);
+#else
     return GiShift(j, reject);
+#endif
 #endif
 }
 

@@ -10,7 +10,7 @@ fn pcg_hash(v: u32) -> u32 {
 // A stream per (pixel, frame, seed, purpose) so passes never share random numbers.
 fn rng_seed(pixel: vec2<u32>, stream: u32) -> u32 {
     let p = pcg_hash(pixel.x + pcg_hash(pixel.y + pcg_hash(frame.seed)));
-    return pcg_hash(p ^ pcg_hash(frame.frame_index * 16u + stream));
+    return pcg_hash(p ^ pcg_hash(frame.frame_index * STREAM_COUNT + stream));
 }
 
 // Uniform in [0, 1): 24 random mantissa bits, never 1.0.

@@ -1,5 +1,6 @@
 //! Uploading a CPU `Scene`: BVH build, triangle reordering, light table, materials and
-//! textures, into the eight storage buffers of bind group 1 (scene_bindings.wgsl).
+//! textures, into the storage buffers of bind group 1 (scene_bindings.wgsl): eight for the
+//! current frame, three for the previous one (animated scenes), then the environment.
 //! `update.rs` rewrites them in place when an animated scene changes.
 
 mod records;
@@ -24,6 +25,11 @@ use crate::gpu_types::*;
 use crate::scene::bvh::Bvh;
 use crate::scene::lights::LightTable;
 use crate::scene::{Aabb, Scene};
+
+/// Storage bindings 0.. of the scene group (bind group 1): triangles, shading, materials,
+/// textures, texels, lights, punctual lights, BVH nodes, then last frame's triangles,
+/// materials and punctual lights. The environment's bindings follow.
+pub const SCENE_STORAGE_BINDINGS: u32 = 11;
 
 /// Facts about an uploaded scene (the viewer's Scene panel, `--stats`).
 #[derive(Clone, Debug, serde::Serialize)]
@@ -81,9 +87,13 @@ pub struct GpuScene {
     light_entries: Vec<(u32, f64)>,
     environment_share: f32,
     buffers: SceneBuffers,
-    /// Last frame's triangles (object motion vectors). For a static scene this is the
-    /// triangle buffer itself: previous = current, at no cost.
+    /// Last frame's triangles (object motion vectors, the pairwise MIS canonical term at
+    /// the previous pixel). For a static scene this is the triangle buffer itself:
+    /// previous = current, at no cost; so are the two below.
     pub prev_triangles: wgpu::Buffer,
+    /// Last frame's materials (their emission) and punctual lights, same slots.
+    prev_materials: wgpu::Buffer,
+    prev_punctual: wgpu::Buffer,
     /// Materials whose triangles keep a light-table slot at zero power (see
     /// `LightTable::build_with_slots`); empty for a static scene.
     kept_materials: Vec<bool>,
@@ -190,6 +200,19 @@ impl GpuScene {
             punctual: storage_buffer(gpu, "punctual lights", &lights.punctual),
             bvh_nodes: storage_buffer(gpu, "bvh nodes", &bvh.nodes),
         };
+        let (prev_triangles, prev_materials, prev_punctual) = if scene.animation.is_some() {
+            (
+                storage_buffer(gpu, "previous triangles", &triangles),
+                storage_buffer(gpu, "previous materials", &materials),
+                storage_buffer(gpu, "previous punctual lights", &lights.punctual),
+            )
+        } else {
+            (
+                buffers.triangles.clone(),
+                buffers.materials.clone(),
+                buffers.punctual.clone(),
+            )
+        };
         let refs = [
             &buffers.triangles,
             &buffers.shading,
@@ -199,24 +222,29 @@ impl GpuScene {
             &buffers.lights,
             &buffers.punctual,
             &buffers.bvh_nodes,
+            &prev_triangles,
+            &prev_materials,
+            &prev_punctual,
         ];
+        debug_assert_eq!(refs.len() as u32, SCENE_STORAGE_BINDINGS);
         let environment = EnvironmentResources::upload(
             gpu,
             scene.environment.as_deref(),
             lights.environment_light,
         );
         let mut entries = crate::passes::buffer_entries(&refs);
+        let first = crate::environment::upload::ENVIRONMENT_FIRST_BINDING;
         entries.extend([
             wgpu::BindGroupEntry {
-                binding: 8,
+                binding: first,
                 resource: environment.table.as_entire_binding(),
             },
             wgpu::BindGroupEntry {
-                binding: 9,
+                binding: first + 1,
                 resource: wgpu::BindingResource::TextureView(&environment.radiance),
             },
             wgpu::BindGroupEntry {
-                binding: 10,
+                binding: first + 2,
                 resource: environment.uniform.as_entire_binding(),
             },
         ]);
@@ -225,11 +253,6 @@ impl GpuScene {
             layout,
             entries: &entries,
         });
-        let prev_triangles = if scene.animation.is_some() {
-            storage_buffer(gpu, "previous triangles", &triangles)
-        } else {
-            buffers.triangles.clone()
-        };
         gpu.check()?;
 
         let bounds = scene.bounds();
@@ -288,6 +311,8 @@ impl GpuScene {
             environment_share: 0.0,
             buffers,
             prev_triangles,
+            prev_materials,
+            prev_punctual,
             kept_materials,
             keep_punctual,
             sampleable: lights.sampleable(),

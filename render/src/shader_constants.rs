@@ -61,6 +61,9 @@ pub const PARAM_FLAG_PERMUTATION: u32 = 1 << 0;
 pub const PARAM_FLAG_PAIRWISE: u32 = 1 << 1;
 pub const PARAM_FLAG_JITTER: u32 = 1 << 2;
 pub const PARAM_FLAG_INITIAL_VISIBILITY: u32 = 1 << 3;
+/// Pairwise MIS evaluates the canonical sample at the previous pixel with last frame's
+/// lights (`previous_lights`; only compiled in for animated scenes).
+pub const PARAM_FLAG_PREVIOUS_LIGHTS: u32 = 1 << 4;
 
 /// Passes that count non-finite values (issue "hard cases": a GPU-side guard).
 pub const PASS_GBUFFER: u32 = 0;
@@ -187,6 +190,7 @@ pub fn wgsl_prelude() -> String {
             "PARAM_FLAG_INITIAL_VISIBILITY",
             PARAM_FLAG_INITIAL_VISIBILITY,
         ),
+        ("PARAM_FLAG_PREVIOUS_LIGHTS", PARAM_FLAG_PREVIOUS_LIGHTS),
         ("PASS_GBUFFER", PASS_GBUFFER),
         ("PASS_INITIAL", PASS_INITIAL),
         ("PASS_TEMPORAL", PASS_TEMPORAL),

@@ -21,6 +21,9 @@ struct LightPoint {
     source_pdf: f32,      // area measure for triangles, discrete for punctual lights, solid angle for the environment
     double_sided: bool,
     punctual: u32,        // index into punctual_lights
+#ifdef ANIMATION
+    previous: bool,       // made from last frame's light data (previous_light_point)
+#endif
 }
 
 fn light_kind_of(light: Light) -> u32 {
@@ -89,6 +92,62 @@ fn light_point(light_id: u32, uv: vec2<f32>) -> LightPoint {
 #endif
     return lp;
 }
+
+#ifdef ANIMATION
+// `light_point` of the same light (same slot: its identity) as it was last frame: last
+// frame's triangle, emission and punctual record. Pairwise MIS needs it for the canonical
+// sample's target at the previous pixel (temporal.wgsl). Same arithmetic as light_point,
+// so a scene that did not change gives bit-identical values.
+fn previous_light_point(light_id: u32, uv: vec2<f32>) -> LightPoint {
+    let light = lights[light_id];
+    var lp: LightPoint;
+    lp.source_pdf = light.select_pdf;
+    lp.double_sided = false;
+    lp.punctual = 0u;
+    lp.previous = true;
+#ifdef AREA_LIGHTS
+    if light_kind_of(light) == LIGHT_KIND_TRIANGLE {
+        let tri_index = light_prim_of(light);
+        let tri = prev_triangles[tri_index];
+        lp.kind = LIGHT_POINT_AREA;
+        lp.position = tri.p0 * (1.0 - uv.x - uv.y) + tri.p1 * uv.x + tri.p2 * uv.y;
+        lp.normal = triangle_normal(tri);
+        lp.radiance = material_emission_of(prev_materials[tri.material], triangle_uv(tri_index, uv.x, uv.y));
+        lp.source_pdf = light.select_pdf / triangle_area(tri);
+        lp.double_sided = (prev_materials[tri.material].flags & MATERIAL_DOUBLE_SIDED) != 0u;
+        return lp;
+    }
+#endif
+#ifdef ENVIRONMENT
+    if light_kind_of(light) == LIGHT_KIND_ENVIRONMENT {
+        // The environment does not animate.
+        return light_point(light_id, uv);
+    }
+#endif
+#ifdef PUNCTUAL_LIGHTS
+    let p = prev_punctual_lights[light_prim_of(light)];
+    lp.punctual = light_prim_of(light);
+    lp.radiance = p.intensity;
+    lp.normal = vec3<f32>(0.0);
+    lp.position = p.position;
+    lp.kind = select(LIGHT_POINT_POSITION, LIGHT_POINT_DIRECTION, p.kind == PUNCTUAL_DIRECTIONAL);
+#endif
+    return lp;
+}
+#endif
+
+#ifdef PUNCTUAL_LIGHTS
+// The punctual record a light point came from: this frame's, or last frame's for a
+// `previous_light_point`.
+fn punctual_record(lp: LightPoint) -> PunctualLight {
+#ifdef ANIMATION
+    if lp.previous {
+        return prev_punctual_lights[lp.punctual];
+    }
+#endif
+    return punctual_lights[lp.punctual];
+}
+#endif
 
 struct LightSampleId {
     light: u32,

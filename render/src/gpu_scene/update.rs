@@ -43,6 +43,8 @@ impl GpuScene {
             return times;
         }
         let start = Instant::now();
+        // Before any write: last frame's data becomes the previous frame's.
+        self.keep_previous_frame(gpu);
         // Rigid emitter motion keeps every power: the table (alias probabilities) stays
         // valid, only the geometry it points at moved (the shader reads that from the
         // triangles). Rebuild only when emission changed or some emitter's area did.
@@ -63,7 +65,6 @@ impl GpuScene {
             None
         };
         if change.geometry {
-            self.keep_previous_triangles(gpu);
             let positions: Vec<[Vec3; 3]> = (0..scene.triangles.len())
                 .map(|t| scene.triangle_positions(t))
                 .collect();
@@ -168,40 +169,40 @@ impl GpuScene {
         })
     }
 
-    /// Called once per rendered frame: makes `prev_triangles` the triangles of the frame
-    /// just before this one. After an update it already is (copied before the write); a
-    /// frame without update copies current → previous, so a scene that stopped moving
-    /// stops having motion.
+    /// Called once per rendered frame: makes the previous-frame buffers (triangles,
+    /// materials, punctual lights) hold the frame just before this one. After an update
+    /// they already do (copied before the write); a frame without update copies current →
+    /// previous, so a scene that stopped changing stops having motion or light changes.
     pub fn begin_frame(&mut self, gpu: &Gpu) {
         if self.updated_since_frame {
             self.updated_since_frame = false;
             self.prev_differs = true;
         } else if self.prev_differs {
-            self.copy_triangles_to_previous(gpu);
+            self.copy_current_to_previous(gpu);
             self.prev_differs = false;
         }
     }
 
-    /// Before the first update since the last frame, last frame's triangles become the
-    /// previous ones (later updates before the next frame keep them).
-    fn keep_previous_triangles(&mut self, gpu: &Gpu) {
+    /// Before the first update since the last frame, last frame's data becomes the
+    /// previous frame's (later updates before the next frame keep it).
+    fn keep_previous_frame(&mut self, gpu: &Gpu) {
         if !self.updated_since_frame {
-            self.copy_triangles_to_previous(gpu);
+            self.copy_current_to_previous(gpu);
         }
     }
 
-    fn copy_triangles_to_previous(&self, gpu: &Gpu) {
+    fn copy_current_to_previous(&self, gpu: &Gpu) {
         if !self.dynamic {
-            return; // `prev_triangles` is the triangle buffer itself
+            return; // the previous-frame buffers are the current ones
         }
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        encoder.copy_buffer_to_buffer(
-            &self.buffers.triangles,
-            0,
-            &self.prev_triangles,
-            0,
-            self.buffers.triangles.size(),
-        );
+        for (current, previous) in [
+            (&self.buffers.triangles, &self.prev_triangles),
+            (&self.buffers.materials, &self.prev_materials),
+            (&self.buffers.punctual, &self.prev_punctual),
+        ] {
+            encoder.copy_buffer_to_buffer(current, 0, previous, 0, current.size());
+        }
         // Submitted now: queued writes land at the start of the *next* submission, so the
         // copy reads the old triangles and the frame sees the new ones.
         gpu.queue.submit([encoder.finish()]);

@@ -3,9 +3,13 @@
 //! current frame, three for the previous one (animated scenes), then the environment.
 //! `update.rs` rewrites them in place when an animated scene changes.
 
+mod rebuild;
+#[cfg(test)]
+mod rebuild_tests;
 mod records;
 mod update;
 
+pub use rebuild::BVH_REBUILD_FACTOR;
 pub use records::oct_encode;
 pub use update::SceneUpdateTimes;
 
@@ -119,6 +123,19 @@ pub struct GpuScene {
     light_geometry_kinds: Vec<Option<(bool, u32)>>,
     /// A directional light's power depends on the scene's size: any motion rebuilds.
     directional: bool,
+    /// Dynamic scenes (`rebuild.rs`): the BVH order light slots were assigned in at upload
+    /// (a slot is its triangle's identity for the animation, whatever the tree's order
+    /// now), the SAH cost of the tree when last built, and CPU mirrors of the current and
+    /// previous triangle records (a rebuild reorders the previous ones too).
+    slot_order: Vec<u32>,
+    built_sah: f64,
+    triangle_records: Vec<GpuTriangle>,
+    prev_triangle_records: Vec<GpuTriangle>,
+    /// Refitted SAH over built SAH above which the tree is rebuilt (`BVH_REBUILD_FACTOR`;
+    /// infinite: refit only).
+    pub bvh_rebuild_factor: f64,
+    /// Parts of a rebuild left out (tests only; `RebuildPlant::default()` otherwise).
+    rebuild_plant: rebuild::RebuildPlant,
 }
 
 /// The storage buffers an update rewrites (bind group 1 holds them all).
@@ -129,6 +146,19 @@ struct SceneBuffers {
     lights: wgpu::Buffer,
     punctual: wgpu::Buffer,
     bvh_nodes: wgpu::Buffer,
+}
+
+/// The BVH nodes to upload: for an animated scene padded to the most nodes any tree over
+/// its triangles can have (2n − 1: every leaf holds one or more), so a rebuilt tree
+/// (`rebuild.rs`) fits the buffer the bind group holds. Nodes past the tree are never
+/// reached from the root.
+fn node_capacity(scene: &Scene, bvh: &Bvh) -> Vec<GpuBvhNode> {
+    let mut nodes = bvh.nodes.clone();
+    if scene.animation.is_some() {
+        let most = (2 * scene.triangles.len()).saturating_sub(1);
+        nodes.resize(most.max(nodes.len()), GpuBvhNode::default());
+    }
+    nodes
 }
 
 /// A storage buffer with at least one element (WebGPU forbids empty bindings).
@@ -198,7 +228,7 @@ impl GpuScene {
             materials: storage_buffer(gpu, "materials", &materials),
             lights: storage_buffer(gpu, "lights", &lights.lights),
             punctual: storage_buffer(gpu, "punctual lights", &lights.punctual),
-            bvh_nodes: storage_buffer(gpu, "bvh nodes", &bvh.nodes),
+            bvh_nodes: storage_buffer(gpu, "bvh nodes", &node_capacity(scene, &bvh)),
         };
         let (prev_triangles, prev_materials, prev_punctual) = if scene.animation.is_some() {
             (
@@ -289,6 +319,7 @@ impl GpuScene {
             Vec::new()
         };
         let light_geometry_kinds = lights.lights.iter().map(geometry_kind).collect();
+        let dynamic = scene.animation.is_some();
         let directional = scene
             .punctual_lights
             .iter()
@@ -301,7 +332,6 @@ impl GpuScene {
             bounds,
             scale,
             info,
-            bvh,
             light_geometry,
             environment_light: lights.environment_light,
             environment_rotation: scene
@@ -329,6 +359,17 @@ impl GpuScene {
             light_geometry_kinds,
             directional,
             light_entries: lights.entries,
+            slot_order: bvh.triangle_order.clone(),
+            built_sah: bvh.sah_cost(),
+            triangle_records: if dynamic {
+                triangles.clone()
+            } else {
+                Vec::new()
+            },
+            prev_triangle_records: if dynamic { triangles } else { Vec::new() },
+            bvh_rebuild_factor: BVH_REBUILD_FACTOR,
+            rebuild_plant: Default::default(),
+            bvh,
         })
     }
 

@@ -116,12 +116,17 @@ fn switched_on_lights_are_not_dark_with_previous_lights() {
     // Pairwise MIS with previous-frame data is unbiased; what is left is noise: 2 seeds ×
     // 4 frames over the changed region, plus initial visibility reuse's own darkening
     // (README: 0.95–1.0). 10 % holds both; the planted twin is far outside it.
-    assert!((ratio - 1.0).abs() < 0.1, "after switch-on / reference {ratio:.3}");
+    assert!(
+        (ratio - 1.0).abs() < 0.1,
+        "after switch-on / reference {ratio:.3}"
+    );
 }
 
 #[test]
 fn planted_current_lights_at_the_previous_pixel_are_detected() {
     let ratio = after_switch_on(false);
-    eprintln!("planted (current lights): first {AFTER_FRAMES} frames after switch-on / reference {ratio:.3}");
+    eprintln!(
+        "planted (current lights): first {AFTER_FRAMES} frames after switch-on / reference {ratio:.3}"
+    );
     assert!(ratio < 0.9, "detector silent: {ratio:.3}");
 }

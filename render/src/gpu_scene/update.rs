@@ -1,5 +1,6 @@
 //! Per-frame scene update for animated scenes: triangles and the BVH when geometry moved
-//! (a refit: same tree, new boxes — measured against a rebuild in docs/bench.md), the light
+//! (a refit: same tree, new boxes; a rebuild once the refitted tree has degraded, see
+//! `rebuild.rs` and docs/bench.md), the light
 //! table, punctual lights and materials only when lights changed. Buffers are rewritten in
 //! place, so bind groups stay valid, and light-table indices stay the light's identity
 //! (fixed slots, see `LightTable::build_with_slots`): the previous → current light map is
@@ -10,6 +11,7 @@ use std::time::Instant;
 use glam::Vec3;
 
 use super::GpuScene;
+use super::rebuild::repoint_triangle_entries;
 use super::records::{gpu_materials, light_areas, triangle_records};
 use crate::gpu::Gpu;
 use crate::scene::Scene;
@@ -19,8 +21,10 @@ use crate::scene::lights::LightTable;
 /// What one update cost on the CPU (milliseconds), for `--stats` and docs/bench.md.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct SceneUpdateTimes {
-    /// Refitting the BVH to the new positions.
+    /// Refitting the BVH to the new positions (and rebuilding it when due).
     pub bvh_ms: f64,
+    /// Whether the refitted tree had degraded past `BVH_REBUILD_FACTOR` and was rebuilt.
+    pub bvh_rebuilt: bool,
     /// Rebuilding the light table (alias table included).
     pub lights_ms: f64,
     /// Building the GPU records and queueing their upload.
@@ -52,9 +56,11 @@ impl GpuScene {
             && (change.emission || self.directional || !self.light_areas_match(scene));
         let lights = if rebuild_table {
             let t = Instant::now();
+            // Over the slot order: slots stay where they were at upload, whatever the
+            // tree's order is now (rebuild.rs); entries are repointed before the write.
             let table = LightTable::build_with_slots(
                 scene,
-                &self.bvh.triangle_order,
+                &self.slot_order,
                 &self.kept_materials,
                 self.keep_punctual,
             );
@@ -76,6 +82,10 @@ impl GpuScene {
                 .map(|&i| positions[i as usize])
                 .collect();
             self.bvh.refit(&ordered);
+            if self.rebuild_due() {
+                self.rebuild_bvh(gpu, &positions, self.rebuild_plant);
+                times.bvh_rebuilt = true;
+            }
             times.bvh_ms = t.elapsed().as_secs_f64() * 1e3;
             // The light slots are fixed, so the per-triangle light index is too.
             let (triangles, shading) = triangle_records(
@@ -110,6 +120,7 @@ impl GpuScene {
             self.bounds = scene.bounds();
             self.info.bounds_min = self.bounds.min.into();
             self.info.bounds_max = self.bounds.max.into();
+            self.triangle_records = triangles;
         }
         if change.lights && !scene.punctual_lights.is_empty() {
             // Moved or changed punctual lights: their records, whether or not the table is.
@@ -145,8 +156,10 @@ impl GpuScene {
                 );
             } else {
                 self.sampleable = table.sampleable();
-                self.light_areas = light_areas(scene, &self.bvh.triangle_order, &table);
-                self.light_entries = table.entries;
+                self.light_areas = light_areas(scene, &self.slot_order, &table);
+                let mut entries = table.entries;
+                repoint_triangle_entries(&mut entries, &self.slot_order, &self.bvh.triangle_order);
+                self.light_entries = entries;
                 // Through the environment share, as at upload (it also sets light_pdfs).
                 self.write_light_table(gpu);
                 self.info.power_range = table.power_range;
@@ -191,10 +204,12 @@ impl GpuScene {
         }
     }
 
-    fn copy_current_to_previous(&self, gpu: &Gpu) {
+    fn copy_current_to_previous(&mut self, gpu: &Gpu) {
         if !self.dynamic {
             return; // the previous-frame buffers are the current ones
         }
+        self.prev_triangle_records
+            .clone_from(&self.triangle_records);
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         for (current, previous) in [
             (&self.buffers.triangles, &self.prev_triangles),

@@ -6,10 +6,9 @@
 
 @group(2) @binding(0) var visibility: texture_2d<u32>;
 @group(2) @binding(1) var<storage, read_write> surfaces: array<Surface>;
-#ifdef ANIMATION
-// Last frame's triangles, same BVH order: where this surface point was (object motion).
-@group(2) @binding(2) var<storage, read> prev_triangles: array<Triangle>;
-#endif
+// Last frame's triangles (where this surface point was: object motion) are the scene
+// group's `prev_triangles` (scene_bindings.wgsl). Group 2 binding 2 of this pass's layout
+// holds the same buffer and is no longer read.
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {

@@ -127,7 +127,20 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             // Pairwise MIS with the current (initial) reservoir as the canonical sample.
             let c_total = current.m + m_prev;
             let prev_sp = shading_point_from_surface(cand.prev_surface, frame.prev_camera_position);
-            let prev_at_current = target_at(prev_sp, current.light, current.uv);
+            // The previous pixel's target for the current sample: the previous surface
+            // and, under animation, last frame's lights (a light switched on since then has
+            // p̂ 0 there, so the canonical sample keeps its full weight). Current lights
+            // here (previous_lights off) under-weight newly lit samples: a dark lag.
+            var prev_at_current = 0.0;
+#ifdef ANIMATION
+            if (params.flags & PARAM_FLAG_PREVIOUS_LIGHTS) != 0u {
+                prev_at_current = previous_target_at(prev_sp, current.light, current.uv);
+            } else {
+                prev_at_current = target_at(prev_sp, current.light, current.uv);
+            }
+#else
+            prev_at_current = target_at(prev_sp, current.light, current.uv);
+#endif
             let m_current = confidence_share(current.m, c_total)
                 + pairwise_mis_canonical_term(c_total, current.m, m_prev, current.p_hat, prev_at_current);
             let m_temporal = pairwise_mis_noncanonical(c_total, current.m, m_prev, cand.reservoir.p_hat, cand.target_here);

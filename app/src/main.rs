@@ -41,6 +41,8 @@ enum Command {
     Scenes,
     /// Time building an environment's sampling distribution (default: a 4096×2048 sky).
     BenchEnv(bench::env_cost::EnvCostArgs),
+    /// Compare refit, rebuild and a two-level BVH on an animated scene over time.
+    BenchBvh(bench::bvh_cost::BvhCostArgs),
 }
 
 fn main() {
@@ -55,6 +57,7 @@ fn main() {
             Ok(())
         }
         Some(Command::BenchEnv(a)) => bench::env_cost::run(a),
+        Some(Command::BenchBvh(a)) => bench::bvh_cost::run(a),
         Some(Command::Scenes) => {
             cli::params::print_scenes();
             Ok(())

@@ -1,6 +1,6 @@
 //! `bench`'s lag metrics on `builtin:dynamic:blinking-lights` end to end (issue 10): the
 //! lag columns of `results.csv` are there and finite for the switch-off at 1 s, `events.csv`,
-//! `lag.png` and `event_strip.png` are written, and — test power — a configuration that
+//! `lag.png`, `lag_vs_noise.png` and `event_strip.png` are written, and — test power — a configuration that
 //! cannot let go of its history (M cap 10⁶, ratio clamp off) shows far more lag than one
 //! without history (M cap 1). GPU test (lavapipe in CI); ~15 s there.
 
@@ -66,6 +66,8 @@ fn bench_lag_metrics_see_the_switch_off_and_the_planted_lag() {
             ("1", "scene")
         );
         assert_eq!((r["event_frame"].as_str(), r["seeds"].as_str()), ("9", "2"));
+        // One row per configuration and event: this run has one event, event 0.
+        assert_eq!(r["event"], "0");
         assert_eq!(value(r, "event_time"), 1.0);
         for column in ["peak_error", "steady_error", "peak_over_steady", "lag_area"] {
             assert!(value(r, column) >= 0.0);
@@ -94,5 +96,6 @@ fn bench_lag_metrics_see_the_switch_off_and_the_planted_lag() {
     // No running average with a reference per frame.
     assert!(!out.join("error_vs_time.png").exists());
     assert_png(&out.join("lag.png"));
+    assert_png(&out.join("lag_vs_noise.png"));
     assert_png(&out.join("event_strip.png"));
 }

@@ -1,10 +1,15 @@
 //! Uploading a CPU `Scene`: BVH build, triangle reordering, light table, materials and
-//! textures, into the eight storage buffers of bind group 1 (scene_bindings.wgsl).
+//! textures, into the storage buffers of bind group 1 (scene_bindings.wgsl): eight for the
+//! current frame, three for the previous one (animated scenes), then the environment.
 //! `update.rs` rewrites them in place when an animated scene changes.
 
+mod rebuild;
+#[cfg(test)]
+mod rebuild_tests;
 mod records;
 mod update;
 
+pub use rebuild::BVH_REBUILD_FACTOR;
 pub use records::oct_encode;
 pub use update::SceneUpdateTimes;
 
@@ -24,6 +29,11 @@ use crate::gpu_types::*;
 use crate::scene::bvh::Bvh;
 use crate::scene::lights::LightTable;
 use crate::scene::{Aabb, Scene};
+
+/// Storage bindings 0.. of the scene group (bind group 1): triangles, shading, materials,
+/// textures, texels, lights, punctual lights, BVH nodes, then last frame's triangles,
+/// materials and punctual lights. The environment's bindings follow.
+pub const SCENE_STORAGE_BINDINGS: u32 = 11;
 
 /// Facts about an uploaded scene (the viewer's Scene panel, `--stats`).
 #[derive(Clone, Debug, serde::Serialize)]
@@ -81,9 +91,13 @@ pub struct GpuScene {
     light_entries: Vec<(u32, f64)>,
     environment_share: f32,
     buffers: SceneBuffers,
-    /// Last frame's triangles (object motion vectors). For a static scene this is the
-    /// triangle buffer itself: previous = current, at no cost.
+    /// Last frame's triangles (object motion vectors, the pairwise MIS canonical term at
+    /// the previous pixel). For a static scene this is the triangle buffer itself:
+    /// previous = current, at no cost; so are the two below.
     pub prev_triangles: wgpu::Buffer,
+    /// Last frame's materials (their emission) and punctual lights, same slots.
+    prev_materials: wgpu::Buffer,
+    prev_punctual: wgpu::Buffer,
     /// Materials whose triangles keep a light-table slot at zero power (see
     /// `LightTable::build_with_slots`); empty for a static scene.
     kept_materials: Vec<bool>,
@@ -109,6 +123,19 @@ pub struct GpuScene {
     light_geometry_kinds: Vec<Option<(bool, u32)>>,
     /// A directional light's power depends on the scene's size: any motion rebuilds.
     directional: bool,
+    /// Dynamic scenes (`rebuild.rs`): the BVH order light slots were assigned in at upload
+    /// (a slot is its triangle's identity for the animation, whatever the tree's order
+    /// now), the SAH cost of the tree when last built, and CPU mirrors of the current and
+    /// previous triangle records (a rebuild reorders the previous ones too).
+    slot_order: Vec<u32>,
+    built_sah: f64,
+    triangle_records: Vec<GpuTriangle>,
+    prev_triangle_records: Vec<GpuTriangle>,
+    /// Refitted SAH over built SAH above which the tree is rebuilt (`BVH_REBUILD_FACTOR`;
+    /// infinite: refit only).
+    pub bvh_rebuild_factor: f64,
+    /// Parts of a rebuild left out (tests only; `RebuildPlant::default()` otherwise).
+    rebuild_plant: rebuild::RebuildPlant,
 }
 
 /// The storage buffers an update rewrites (bind group 1 holds them all).
@@ -119,6 +146,19 @@ struct SceneBuffers {
     lights: wgpu::Buffer,
     punctual: wgpu::Buffer,
     bvh_nodes: wgpu::Buffer,
+}
+
+/// The BVH nodes to upload: for an animated scene padded to the most nodes any tree over
+/// its triangles can have (2n − 1: every leaf holds one or more), so a rebuilt tree
+/// (`rebuild.rs`) fits the buffer the bind group holds. Nodes past the tree are never
+/// reached from the root.
+fn node_capacity(scene: &Scene, bvh: &Bvh) -> Vec<GpuBvhNode> {
+    let mut nodes = bvh.nodes.clone();
+    if scene.animation.is_some() {
+        let most = (2 * scene.triangles.len()).saturating_sub(1);
+        nodes.resize(most.max(nodes.len()), GpuBvhNode::default());
+    }
+    nodes
 }
 
 /// A storage buffer with at least one element (WebGPU forbids empty bindings).
@@ -188,7 +228,20 @@ impl GpuScene {
             materials: storage_buffer(gpu, "materials", &materials),
             lights: storage_buffer(gpu, "lights", &lights.lights),
             punctual: storage_buffer(gpu, "punctual lights", &lights.punctual),
-            bvh_nodes: storage_buffer(gpu, "bvh nodes", &bvh.nodes),
+            bvh_nodes: storage_buffer(gpu, "bvh nodes", &node_capacity(scene, &bvh)),
+        };
+        let (prev_triangles, prev_materials, prev_punctual) = if scene.animation.is_some() {
+            (
+                storage_buffer(gpu, "previous triangles", &triangles),
+                storage_buffer(gpu, "previous materials", &materials),
+                storage_buffer(gpu, "previous punctual lights", &lights.punctual),
+            )
+        } else {
+            (
+                buffers.triangles.clone(),
+                buffers.materials.clone(),
+                buffers.punctual.clone(),
+            )
         };
         let refs = [
             &buffers.triangles,
@@ -199,24 +252,29 @@ impl GpuScene {
             &buffers.lights,
             &buffers.punctual,
             &buffers.bvh_nodes,
+            &prev_triangles,
+            &prev_materials,
+            &prev_punctual,
         ];
+        debug_assert_eq!(refs.len() as u32, SCENE_STORAGE_BINDINGS);
         let environment = EnvironmentResources::upload(
             gpu,
             scene.environment.as_deref(),
             lights.environment_light,
         );
         let mut entries = crate::passes::buffer_entries(&refs);
+        let first = crate::environment::upload::ENVIRONMENT_FIRST_BINDING;
         entries.extend([
             wgpu::BindGroupEntry {
-                binding: 8,
+                binding: first,
                 resource: environment.table.as_entire_binding(),
             },
             wgpu::BindGroupEntry {
-                binding: 9,
+                binding: first + 1,
                 resource: wgpu::BindingResource::TextureView(&environment.radiance),
             },
             wgpu::BindGroupEntry {
-                binding: 10,
+                binding: first + 2,
                 resource: environment.uniform.as_entire_binding(),
             },
         ]);
@@ -225,11 +283,6 @@ impl GpuScene {
             layout,
             entries: &entries,
         });
-        let prev_triangles = if scene.animation.is_some() {
-            storage_buffer(gpu, "previous triangles", &triangles)
-        } else {
-            buffers.triangles.clone()
-        };
         gpu.check()?;
 
         let bounds = scene.bounds();
@@ -266,6 +319,7 @@ impl GpuScene {
             Vec::new()
         };
         let light_geometry_kinds = lights.lights.iter().map(geometry_kind).collect();
+        let dynamic = scene.animation.is_some();
         let directional = scene
             .punctual_lights
             .iter()
@@ -278,7 +332,6 @@ impl GpuScene {
             bounds,
             scale,
             info,
-            bvh,
             light_geometry,
             environment_light: lights.environment_light,
             environment_rotation: scene
@@ -288,6 +341,8 @@ impl GpuScene {
             environment_share: 0.0,
             buffers,
             prev_triangles,
+            prev_materials,
+            prev_punctual,
             kept_materials,
             keep_punctual,
             sampleable: lights.sampleable(),
@@ -304,6 +359,17 @@ impl GpuScene {
             light_geometry_kinds,
             directional,
             light_entries: lights.entries,
+            slot_order: bvh.triangle_order.clone(),
+            built_sah: bvh.sah_cost(),
+            triangle_records: if dynamic {
+                triangles.clone()
+            } else {
+                Vec::new()
+            },
+            prev_triangle_records: if dynamic { triangles } else { Vec::new() },
+            bvh_rebuild_factor: BVH_REBUILD_FACTOR,
+            rebuild_plant: Default::default(),
+            bvh,
         })
     }
 

@@ -270,6 +270,8 @@ parameter_table! {
     Resampling {
         bias_correction: BiasCorrection = BiasCorrection::Pairwise, ParamKind::Choice(BIAS_CORRECTION_NAMES), "Bias correction",
             "pairwise (default): defensive pairwise MIS with the pixel's own reservoir as canonical (unbiased, one extra target evaluation per neighbour, ~3 % of the frame). one-over-m: 1/M weights with rejection (biased: darker where reused samples are occluded or outside a narrow lobe; fast).";
+        previous_lights: bool = true, ParamKind::Bool, "Previous-frame lights",
+            "Animated scenes, pairwise MIS: evaluate this pixel's own (canonical) sample at the previous pixel with last frame's lights — positions, emission, punctual records — as unbiasedness requires. Off: with the current lights, a common shortcut; then a light switched on stays too dark for a few frames (its new samples are weighted as if the history could have found them). Static scenes: no difference.";
     }
     Shading {
         jitter: bool = true, ParamKind::Bool, "Sub-pixel jitter",
@@ -458,6 +460,9 @@ impl Settings {
             flags |= PARAM_FLAG_INITIAL_VISIBILITY;
         }
         flags |= self.gi_flags();
+        if self.previous_lights {
+            flags |= PARAM_FLAG_PREVIOUS_LIGHTS;
+        }
         GpuParams {
             light_candidates: self.light_candidates,
             bsdf_candidates: self.bsdf_candidates,

@@ -61,6 +61,9 @@ pub const PARAM_FLAG_PERMUTATION: u32 = 1 << 0;
 pub const PARAM_FLAG_PAIRWISE: u32 = 1 << 1;
 pub const PARAM_FLAG_JITTER: u32 = 1 << 2;
 pub const PARAM_FLAG_INITIAL_VISIBILITY: u32 = 1 << 3;
+/// Pairwise MIS evaluates the canonical sample at the previous pixel with last frame's
+/// lights (`previous_lights`; only compiled in for animated scenes).
+pub const PARAM_FLAG_PREVIOUS_LIGHTS: u32 = 1 << 10;
 
 /// Passes that count non-finite values (issue "hard cases": a GPU-side guard).
 pub const PASS_GBUFFER: u32 = 0;
@@ -270,6 +273,7 @@ pub fn wgsl_prelude() -> String {
             "PARAM_FLAG_INITIAL_VISIBILITY",
             PARAM_FLAG_INITIAL_VISIBILITY,
         ),
+        ("PARAM_FLAG_PREVIOUS_LIGHTS", PARAM_FLAG_PREVIOUS_LIGHTS),
         ("PASS_GBUFFER", PASS_GBUFFER),
         ("PASS_INITIAL", PASS_INITIAL),
         ("PASS_TEMPORAL", PASS_TEMPORAL),
@@ -389,5 +393,30 @@ mod stream_tests {
         streams.dedup();
         assert_eq!(streams.len(), count, "two purposes share a stream");
         assert!(streams.iter().all(|&s| s < STREAM_COUNT));
+    }
+
+    /// Every `Params.flags` bit has one meaning (DI, GI and dynamic-scene switches were
+    /// added on different branches).
+    #[test]
+    fn every_param_flag_is_its_own_bit() {
+        let flags = [
+            PARAM_FLAG_PERMUTATION,
+            PARAM_FLAG_PAIRWISE,
+            PARAM_FLAG_JITTER,
+            PARAM_FLAG_INITIAL_VISIBILITY,
+            PARAM_FLAG_PREVIOUS_LIGHTS,
+            PARAM_FLAG_GI,
+            PARAM_FLAG_GI_TEMPORAL,
+            PARAM_FLAG_GI_SPATIAL,
+            PARAM_FLAG_GI_SPATIAL_VISIBILITY,
+            PARAM_FLAG_GI_PAIRWISE,
+            PARAM_FLAG_GI_MIS_VISIBILITY,
+        ];
+        let mut seen = 0u32;
+        for f in flags {
+            assert_eq!(f.count_ones(), 1);
+            assert_eq!(seen & f, 0, "flag {f:#x} used twice");
+            seen |= f;
+        }
     }
 }

@@ -21,6 +21,9 @@ struct LightPoint {
     source_pdf: f32,      // area measure for triangles, discrete for punctual lights, solid angle for the environment
     double_sided: bool,
     punctual: u32,        // index into punctual_lights
+#ifdef ANIMATION
+    previous: bool,       // made from last frame's light data (previous_light_point)
+#endif
 }
 
 fn light_kind_of(light: Light) -> u32 {
@@ -49,26 +52,75 @@ fn triangle_area(tri: Triangle) -> f32 {
     return 0.5 * length(cross(tri.p1 - tri.p0, tri.p2 - tri.p0));
 }
 
+// Records of the current frame, or with `previous` (animated scenes) of the last one: same
+// slots, so a light's records are found under the same index in both (scene_bindings.wgsl).
+fn frame_triangle(index: u32, previous: bool) -> Triangle {
+#ifdef ANIMATION
+    if previous {
+        return prev_triangles[index];
+    }
+#endif
+    return triangles[index];
+}
+
+fn frame_material(index: u32, previous: bool) -> Material {
+#ifdef ANIMATION
+    if previous {
+        return prev_materials[index];
+    }
+#endif
+    return materials[index];
+}
+
+#ifdef PUNCTUAL_LIGHTS
+fn frame_punctual(index: u32, previous: bool) -> PunctualLight {
+#ifdef ANIMATION
+    if previous {
+        return prev_punctual_lights[index];
+    }
+#endif
+    return punctual_lights[index];
+}
+#endif
+
 fn light_point(light_id: u32, uv: vec2<f32>) -> LightPoint {
+    return light_point_in_frame(light_id, uv, false);
+}
+
+#ifdef ANIMATION
+// `light_point` of the same light (same slot: its identity) as it was last frame: last
+// frame's triangle, emission and punctual record. Pairwise MIS needs it for the canonical
+// sample's target at the previous pixel (temporal.wgsl).
+fn previous_light_point(light_id: u32, uv: vec2<f32>) -> LightPoint {
+    return light_point_in_frame(light_id, uv, true);
+}
+#endif
+
+fn light_point_in_frame(light_id: u32, uv: vec2<f32>, previous: bool) -> LightPoint {
     let light = lights[light_id];
     var lp: LightPoint;
     lp.source_pdf = light.select_pdf;
     lp.double_sided = false;
     lp.punctual = 0u;
+#ifdef ANIMATION
+    lp.previous = previous;
+#endif
 #ifdef AREA_LIGHTS
     if light_kind_of(light) == LIGHT_KIND_TRIANGLE {
         let tri_index = light_prim_of(light);
-        let tri = triangles[tri_index];
+        let tri = frame_triangle(tri_index, previous);
+        let material = frame_material(tri.material, previous);
         lp.kind = LIGHT_POINT_AREA;
         lp.position = tri.p0 * (1.0 - uv.x - uv.y) + tri.p1 * uv.x + tri.p2 * uv.y;
         lp.normal = triangle_normal(tri);
-        lp.radiance = material_emission(tri.material, triangle_uv(tri_index, uv.x, uv.y));
+        lp.radiance = material_emission_of(material, triangle_uv(tri_index, uv.x, uv.y));
         lp.source_pdf = light.select_pdf / triangle_area(tri);
-        lp.double_sided = (materials[tri.material].flags & MATERIAL_DOUBLE_SIDED) != 0u;
+        lp.double_sided = (material.flags & MATERIAL_DOUBLE_SIDED) != 0u;
         return lp;
     }
 #endif
 #ifdef ENVIRONMENT
+    // The environment does not animate: one record for both frames.
     if light_kind_of(light) == LIGHT_KIND_ENVIRONMENT {
         lp.kind = LIGHT_POINT_ENVIRONMENT;
         lp.position = env_uv_to_direction(uv);
@@ -80,7 +132,7 @@ fn light_point(light_id: u32, uv: vec2<f32>) -> LightPoint {
     }
 #endif
 #ifdef PUNCTUAL_LIGHTS
-    let p = punctual_lights[light_prim_of(light)];
+    let p = frame_punctual(light_prim_of(light), previous);
     lp.punctual = light_prim_of(light);
     lp.radiance = p.intensity;
     lp.normal = vec3<f32>(0.0);
@@ -89,6 +141,18 @@ fn light_point(light_id: u32, uv: vec2<f32>) -> LightPoint {
 #endif
     return lp;
 }
+
+#ifdef PUNCTUAL_LIGHTS
+// The punctual record a light point came from: this frame's, or last frame's for a
+// `previous_light_point`.
+fn punctual_record(lp: LightPoint) -> PunctualLight {
+#ifdef ANIMATION
+    return frame_punctual(lp.punctual, lp.previous);
+#else
+    return punctual_lights[lp.punctual];
+#endif
+}
+#endif
 
 struct LightSampleId {
     light: u32,

@@ -97,7 +97,11 @@ fn eval_material(material_index: u32, uv: vec2<f32>) -> MaterialSample {
 
 // Emitted radiance of a material at uv, before the front-face rule.
 fn material_emission(material_index: u32, uv: vec2<f32>) -> vec3<f32> {
-    let m = materials[material_index];
+    return material_emission_of(materials[material_index], uv);
+}
+
+// The same for a material record (last frame's, for previous_light_point).
+fn material_emission_of(m: Material, uv: vec2<f32>) -> vec3<f32> {
     var e = m.emission;
 #ifdef EMISSIVE_TEXTURES
     if m.emissive_texture != NO_TEXTURE {

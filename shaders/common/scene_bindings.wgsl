@@ -9,9 +9,18 @@
 @group(1) @binding(5) var<storage, read> lights: array<Light>;
 @group(1) @binding(6) var<storage, read> punctual_lights: array<PunctualLight>;
 @group(1) @binding(7) var<storage, read> bvh_nodes: array<BvhNode>;
+#ifdef ANIMATION
+// Last frame's triangles, materials and punctual lights, same slots as the current ones
+// (render/src/gpu_scene/update.rs): object motion vectors (gbuffer_resolve.wgsl) and the
+// pairwise MIS canonical term at the previous pixel (temporal.wgsl). A static scene binds
+// the current buffers here.
+@group(1) @binding(8) var<storage, read> prev_triangles: array<Triangle>;
+@group(1) @binding(9) var<storage, read> prev_materials: array<Material>;
+@group(1) @binding(10) var<storage, read> prev_punctual_lights: array<PunctualLight>;
+#endif
 #ifdef ENVIRONMENT
 // The environment (render/src/environment/upload.rs): sampling table, radiance, uniform.
-@group(1) @binding(8) var<storage, read> env_table: array<EnvTexel>;
-@group(1) @binding(9) var env_radiance: texture_2d<f32>;
-@group(1) @binding(10) var<uniform> env: Environment;
+@group(1) @binding(11) var<storage, read> env_table: array<EnvTexel>;
+@group(1) @binding(12) var env_radiance: texture_2d<f32>;
+@group(1) @binding(13) var<uniform> env: Environment;
 #endif

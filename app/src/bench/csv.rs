@@ -1,4 +1,5 @@
-//! `results.csv` (one row per configuration), `frames.csv` (one row per measured frame) and
+//! `results.csv` (one row per configuration, or per configuration and event on a dynamic
+//! scene with events), `frames.csv` (one row per measured frame) and
 //! the sweep's `sweep.csv`. Times carry a `timing` column that says whether they are GPU
 //! timestamps or CPU wall-clock (lavapipe: ratios only).
 
@@ -183,16 +184,21 @@ pub fn write_results(
             info.device.clone(),
             info.timing_note().to_string(),
         ]);
-        cells.extend(lag_cells(info, r));
-        table.row(cells);
+        for lag in lag_rows(info.event_source, &r.lag) {
+            let mut row = cells.clone();
+            row.extend(lag);
+            table.row(row);
+        }
     }
     table.write(path)
 }
 
-/// The lag columns of `results.csv`: the first event's numbers averaged over the seeds
-/// (`events.csv` has every event). Empty without events (a static scene, frozen time).
-pub const LAG_COLUMNS: [&str; 11] = [
+/// The lag columns of `results.csv`: the number of events, which one this row is (0, 1,
+/// ...), and its numbers averaged over the seeds; empty without events (a static scene,
+/// frozen time), where a configuration keeps its single row.
+pub const LAG_COLUMNS: [&str; 12] = [
     "events",
+    "event",
     "event_source",
     "event_frame",
     "event_time",
@@ -205,16 +211,24 @@ pub const LAG_COLUMNS: [&str; 11] = [
     "signed_bias",
 ];
 
-fn lag_cells(info: &BenchInfo, r: &ConfigResult) -> Vec<String> {
-    let Some(e) = r.lag.first() else {
-        return vec![String::new(); LAG_COLUMNS.len()];
-    };
-    let mut cells = vec![
-        r.lag.len().to_string(),
-        info.event_source.unwrap_or_default().to_string(),
-    ];
-    cells.extend(event_cells(e));
-    cells
+/// The `LAG_COLUMNS` cells of one configuration's rows: one row per event, or a single
+/// empty row without events.
+fn lag_rows(event_source: Option<&str>, lag: &[EventLag]) -> Vec<Vec<String>> {
+    if lag.is_empty() {
+        return vec![vec![String::new(); LAG_COLUMNS.len()]];
+    }
+    lag.iter()
+        .enumerate()
+        .map(|(k, e)| {
+            let mut cells = vec![
+                lag.len().to_string(),
+                k.to_string(),
+                event_source.unwrap_or_default().to_string(),
+            ];
+            cells.extend(event_cells(e));
+            cells
+        })
+        .collect()
 }
 
 /// Frame, time, seeds and the metrics of one event.
@@ -235,7 +249,7 @@ fn event_cells(e: &EventLag) -> Vec<String> {
 /// `events.csv`: one row per configuration and event.
 pub fn write_events(path: &Path, results: &[ConfigResult]) -> anyhow::Result<()> {
     let mut header = vec!["config", "event"];
-    header.extend(&LAG_COLUMNS[2..]);
+    header.extend(&LAG_COLUMNS[3..]);
     let mut table = Table::new(&header);
     for r in results {
         for (k, e) in r.lag.iter().enumerate() {
@@ -287,5 +301,56 @@ mod tests {
         assert_eq!(without_noise(Some(0.5), Some(0.3)), Some(0.4));
         assert_eq!(without_noise(Some(0.1), Some(0.3)), Some(0.0));
         assert_eq!(without_noise(Some(0.1), None), None);
+    }
+
+    fn event(frame: usize, lag_area: f64, recovery: Option<Option<f64>>) -> EventLag {
+        EventLag {
+            frame,
+            time: frame as f32 / 30.0,
+            seeds: 2,
+            peak_error: Some(0.5),
+            steady_error: Some(0.1),
+            peak_over_steady: Some(5.0),
+            recovery_frames: recovery,
+            lag_area: Some(lag_area),
+            signed_bias: Some(-0.25),
+        }
+    }
+
+    #[test]
+    fn results_csv_has_a_row_per_event_with_that_events_numbers() {
+        let column = |name: &str| LAG_COLUMNS.iter().position(|c| *c == name).unwrap();
+        let rows = lag_rows(
+            Some("scene"),
+            &[event(9, 1.5, Some(Some(4.0))), event(39, 0.75, Some(None))],
+        );
+        assert_eq!(rows.len(), 2);
+        for (k, row) in rows.iter().enumerate() {
+            assert_eq!(row.len(), LAG_COLUMNS.len());
+            assert_eq!(row[column("events")], "2");
+            assert_eq!(row[column("event")], k.to_string());
+            assert_eq!(row[column("event_source")], "scene");
+            assert_eq!(row[column("signed_bias")], "-0.25");
+        }
+        // Each row carries its own event, not the first one's.
+        assert_eq!(
+            (
+                rows[0][column("event_frame")].as_str(),
+                rows[1][column("event_frame")].as_str()
+            ),
+            ("9", "39")
+        );
+        assert_eq!(rows[0][column("lag_area")], "1.5");
+        assert_eq!(rows[1][column("lag_area")], "0.75");
+        assert_eq!(rows[0][column("recovery_frames")], "4");
+        assert_eq!(rows[1][column("recovery_frames")], "never");
+        // Without events: one row of empty cells, so a static scene keeps one row per
+        // configuration.
+        assert_eq!(
+            lag_rows(None, &[]),
+            vec![vec![String::new(); LAG_COLUMNS.len()]]
+        );
+        // events.csv keeps its columns: config, event, then event_frame onwards.
+        assert_eq!(LAG_COLUMNS[3], "event_frame");
     }
 }

@@ -8,6 +8,7 @@
 //! `equal_time` holds the budget rule, `csv`, `markdown` and `plots` write the results and
 //! `sweep` is the light-count benchmark.
 
+pub mod bvh_cost;
 mod configs;
 mod csv;
 pub mod env_cost;

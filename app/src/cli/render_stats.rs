@@ -24,7 +24,13 @@ pub(super) struct SceneTimeStats {
     median_lights_ms: f64,
     median_upload_ms: f64,
     updated_frames: usize,
-    /// Refit against rebuild at the last frame: SAH cost of the refitted tree, of a tree
+    /// Frames whose update rebuilt the BVH (the refitted tree had degraded past
+    /// `BVH_REBUILD_FACTOR`; render/src/gpu_scene/rebuild.rs), and the median BVH time of
+    /// those frames and of the refit-only ones.
+    bvh_rebuilds: usize,
+    median_bvh_rebuild_frame_ms: f64,
+    median_bvh_refit_frame_ms: f64,
+    /// Refit against rebuild at the last frame: SAH cost of the renderer's tree, of a tree
     /// built from scratch over the same positions, and that build's time.
     bvh_refit_sah_cost: f64,
     bvh_rebuilt_sah_cost: f64,
@@ -105,6 +111,21 @@ pub(super) fn scene_time_stats(
         median_lights_ms: of(|u| u.1.lights_ms),
         median_upload_ms: of(|u| u.1.upload_ms),
         updated_frames: updates.len(),
+        bvh_rebuilds: updates.iter().filter(|u| u.1.bvh_rebuilt).count(),
+        median_bvh_rebuild_frame_ms: median(
+            updates
+                .iter()
+                .filter(|u| u.1.bvh_rebuilt)
+                .map(|u| u.1.bvh_ms)
+                .collect(),
+        ),
+        median_bvh_refit_frame_ms: median(
+            updates
+                .iter()
+                .filter(|u| !u.1.bvh_rebuilt)
+                .map(|u| u.1.bvh_ms)
+                .collect(),
+        ),
         bvh_refit_sah_cost: renderer.bvh_sah_cost(),
         bvh_rebuilt_sah_cost: rebuilt.sah_cost(),
         bvh_rebuild_ms,

@@ -1,6 +1,7 @@
-//! The environment on the GPU (scene group bindings 8–10, scene_bindings.wgsl): the
-//! sampling table as a storage buffer, the radiance as an unfilterable RGBA32F texture
-//! (a texture, not a fourth storage buffer: the temporal pass already binds 16) and the
+//! The environment on the GPU (scene group bindings 11–13 after the scene's storage
+//! buffers, scene_bindings.wgsl): the sampling table as a storage buffer, the radiance as an
+//! unfilterable RGBA32F texture (a texture, not another storage buffer: the temporal pass
+//! already binds 19, gpu/context.rs) and the
 //! uniform with size, strength, rotation and light index. Without an environment all
 //! three are one-texel placeholders the shaders never read (their code is not compiled).
 
@@ -16,15 +17,19 @@ pub struct EnvironmentResources {
     pub uniform: wgpu::Buffer,
 }
 
-/// The three layout entries, bindings 8, 9, 10.
+/// The first environment binding of the scene group (table, radiance, uniform follow).
+pub const ENVIRONMENT_FIRST_BINDING: u32 = crate::gpu_scene::SCENE_STORAGE_BINDINGS;
+
+/// The three layout entries: table, radiance, uniform from `ENVIRONMENT_FIRST_BINDING` on.
 pub fn layout_entries(visibility: wgpu::ShaderStages) -> [wgpu::BindGroupLayoutEntry; 3] {
+    let first = ENVIRONMENT_FIRST_BINDING;
     [
         wgpu::BindGroupLayoutEntry {
             visibility,
-            ..crate::passes::storage(8, true)
+            ..crate::passes::storage(first, true)
         },
         wgpu::BindGroupLayoutEntry {
-            binding: 9,
+            binding: first + 1,
             visibility,
             ty: wgpu::BindingType::Texture {
                 sample_type: wgpu::TextureSampleType::Float { filterable: false },
@@ -33,7 +38,7 @@ pub fn layout_entries(visibility: wgpu::ShaderStages) -> [wgpu::BindGroupLayoutE
             },
             count: None,
         },
-        crate::passes::uniform(10, visibility),
+        crate::passes::uniform(first + 2, visibility),
     ]
 }
 

@@ -1,5 +1,6 @@
 //! Per-frame scene update for animated scenes: triangles and the BVH when geometry moved
-//! (a refit: same tree, new boxes — measured against a rebuild in docs/bench.md), the light
+//! (a refit: same tree, new boxes; a rebuild once the refitted tree has degraded, see
+//! `rebuild.rs` and docs/bench.md), the light
 //! table, punctual lights and materials only when lights changed. Buffers are rewritten in
 //! place, so bind groups stay valid, and light-table indices stay the light's identity
 //! (fixed slots, see `LightTable::build_with_slots`): the previous → current light map is
@@ -10,6 +11,7 @@ use std::time::Instant;
 use glam::Vec3;
 
 use super::GpuScene;
+use super::rebuild::repoint_triangle_entries;
 use super::records::{gpu_materials, light_areas, triangle_records};
 use crate::gpu::Gpu;
 use crate::scene::Scene;
@@ -19,8 +21,10 @@ use crate::scene::lights::LightTable;
 /// What one update cost on the CPU (milliseconds), for `--stats` and docs/bench.md.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct SceneUpdateTimes {
-    /// Refitting the BVH to the new positions.
+    /// Refitting the BVH to the new positions (and rebuilding it when due).
     pub bvh_ms: f64,
+    /// Whether the refitted tree had degraded past `BVH_REBUILD_FACTOR` and was rebuilt.
+    pub bvh_rebuilt: bool,
     /// Rebuilding the light table (alias table included).
     pub lights_ms: f64,
     /// Building the GPU records and queueing their upload.
@@ -43,6 +47,8 @@ impl GpuScene {
             return times;
         }
         let start = Instant::now();
+        // Before any write: last frame's data becomes the previous frame's.
+        self.keep_previous_frame(gpu);
         // Rigid emitter motion keeps every power: the table (alias probabilities) stays
         // valid, only the geometry it points at moved (the shader reads that from the
         // triangles). Rebuild only when emission changed or some emitter's area did.
@@ -50,9 +56,11 @@ impl GpuScene {
             && (change.emission || self.directional || !self.light_areas_match(scene));
         let lights = if rebuild_table {
             let t = Instant::now();
+            // Over the slot order: slots stay where they were at upload, whatever the
+            // tree's order is now (rebuild.rs); entries are repointed before the write.
             let table = LightTable::build_with_slots(
                 scene,
-                &self.bvh.triangle_order,
+                &self.slot_order,
                 &self.kept_materials,
                 self.keep_punctual,
             );
@@ -63,7 +71,6 @@ impl GpuScene {
             None
         };
         if change.geometry {
-            self.keep_previous_triangles(gpu);
             let positions: Vec<[Vec3; 3]> = (0..scene.triangles.len())
                 .map(|t| scene.triangle_positions(t))
                 .collect();
@@ -75,6 +82,10 @@ impl GpuScene {
                 .map(|&i| positions[i as usize])
                 .collect();
             self.bvh.refit(&ordered);
+            if self.rebuild_due() {
+                self.rebuild_bvh(gpu, &positions, self.rebuild_plant);
+                times.bvh_rebuilt = true;
+            }
             times.bvh_ms = t.elapsed().as_secs_f64() * 1e3;
             // The light slots are fixed, so the per-triangle light index is too.
             let (triangles, shading) = triangle_records(
@@ -109,6 +120,7 @@ impl GpuScene {
             self.bounds = scene.bounds();
             self.info.bounds_min = self.bounds.min.into();
             self.info.bounds_max = self.bounds.max.into();
+            self.triangle_records = triangles;
         }
         if change.lights && !scene.punctual_lights.is_empty() {
             // Moved or changed punctual lights: their records, whether or not the table is.
@@ -144,8 +156,10 @@ impl GpuScene {
                 );
             } else {
                 self.sampleable = table.sampleable();
-                self.light_areas = light_areas(scene, &self.bvh.triangle_order, &table);
-                self.light_entries = table.entries;
+                self.light_areas = light_areas(scene, &self.slot_order, &table);
+                let mut entries = table.entries;
+                repoint_triangle_entries(&mut entries, &self.slot_order, &self.bvh.triangle_order);
+                self.light_entries = entries;
                 // Through the environment share, as at upload (it also sets light_pdfs).
                 self.write_light_table(gpu);
                 self.info.power_range = table.power_range;
@@ -168,40 +182,42 @@ impl GpuScene {
         })
     }
 
-    /// Called once per rendered frame: makes `prev_triangles` the triangles of the frame
-    /// just before this one. After an update it already is (copied before the write); a
-    /// frame without update copies current → previous, so a scene that stopped moving
-    /// stops having motion.
+    /// Called once per rendered frame: makes the previous-frame buffers (triangles,
+    /// materials, punctual lights) hold the frame just before this one. After an update
+    /// they already do (copied before the write); a frame without update copies current →
+    /// previous, so a scene that stopped changing stops having motion or light changes.
     pub fn begin_frame(&mut self, gpu: &Gpu) {
         if self.updated_since_frame {
             self.updated_since_frame = false;
             self.prev_differs = true;
         } else if self.prev_differs {
-            self.copy_triangles_to_previous(gpu);
+            self.copy_current_to_previous(gpu);
             self.prev_differs = false;
         }
     }
 
-    /// Before the first update since the last frame, last frame's triangles become the
-    /// previous ones (later updates before the next frame keep them).
-    fn keep_previous_triangles(&mut self, gpu: &Gpu) {
+    /// Before the first update since the last frame, last frame's data becomes the
+    /// previous frame's (later updates before the next frame keep it).
+    fn keep_previous_frame(&mut self, gpu: &Gpu) {
         if !self.updated_since_frame {
-            self.copy_triangles_to_previous(gpu);
+            self.copy_current_to_previous(gpu);
         }
     }
 
-    fn copy_triangles_to_previous(&self, gpu: &Gpu) {
+    fn copy_current_to_previous(&mut self, gpu: &Gpu) {
         if !self.dynamic {
-            return; // `prev_triangles` is the triangle buffer itself
+            return; // the previous-frame buffers are the current ones
         }
+        self.prev_triangle_records
+            .clone_from(&self.triangle_records);
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        encoder.copy_buffer_to_buffer(
-            &self.buffers.triangles,
-            0,
-            &self.prev_triangles,
-            0,
-            self.buffers.triangles.size(),
-        );
+        for (current, previous) in [
+            (&self.buffers.triangles, &self.prev_triangles),
+            (&self.buffers.materials, &self.prev_materials),
+            (&self.buffers.punctual, &self.prev_punctual),
+        ] {
+            encoder.copy_buffer_to_buffer(current, 0, previous, 0, current.size());
+        }
         // Submitted now: queued writes land at the start of the *next* submission, so the
         // copy reads the old triangles and the frame sees the new ones.
         gpu.queue.submit([encoder.finish()]);

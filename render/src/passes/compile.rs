@@ -127,7 +127,7 @@ impl PassLayouts {
     pub fn new(gpu: &Gpu) -> PassLayouts {
         let all =
             wgpu::ShaderStages::COMPUTE | wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT;
-        let mut scene_entries: Vec<_> = (0..8)
+        let mut scene_entries: Vec<_> = (0..crate::gpu_scene::SCENE_STORAGE_BINDINGS)
             .map(|i| wgpu::BindGroupLayoutEntry {
                 visibility: all,
                 ..storage(i, true)

@@ -14,8 +14,9 @@ use crate::gpu_types::GpuBvhNode;
 
 mod refit;
 mod traverse;
+pub mod two_level;
 
-pub use traverse::{Hit, Ray};
+pub use traverse::{Hit, Ray, Visits};
 
 /// Deepest tree the builder makes (root = level 1). The WGSL traversal stack has 64 entries
 /// and holds at most one pending sibling per level, so this leaves a safe margin.
@@ -56,17 +57,27 @@ impl Bvh {
             triangles.len() <= (1 << 30),
             "over 2^30 triangles: the light table indexes them in 30 bits"
         );
-        let mut prims: Vec<Prim> = triangles
+        let boxes: Vec<Aabb> = triangles
             .iter()
-            .enumerate()
-            .map(|(i, tri)| {
+            .map(|tri| {
                 let mut bounds = Aabb::EMPTY;
                 tri.iter().for_each(|&p| bounds.grow(p));
-                Prim {
-                    bounds,
-                    centroid: bounds.center(),
-                    index: i as u32,
-                }
+                bounds
+            })
+            .collect();
+        Bvh::build_boxes(&boxes)
+    }
+
+    /// A tree over boxes (triangles' bounds, or instances' world bounds for the top level
+    /// of `TwoLevelBvh`); leaves index `triangle_order` like `build`'s.
+    pub fn build_boxes(boxes: &[Aabb]) -> Bvh {
+        let mut prims: Vec<Prim> = boxes
+            .iter()
+            .enumerate()
+            .map(|(i, &bounds)| Prim {
+                bounds,
+                centroid: bounds.center(),
+                index: i as u32,
             })
             .collect();
         let mut nodes = Vec::new();

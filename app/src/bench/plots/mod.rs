@@ -8,9 +8,12 @@
 //!   time, with the equal-time budget marked;
 //! - `pass_times.png`: median time of each pass, stacked per configuration;
 //! - `lag.png` (a dynamic scene with events): per-frame luma RMSE of every configuration
-//!   against that frame's reference, linear, with a vertical line at each event frame.
+//!   against that frame's reference, linear, with a vertical line at each event frame;
+//! - `lag_vs_noise.png` (the same): lag area against steady error, one point per
+//!   configuration (`lag_noise.rs`).
 
 pub mod canvas;
+pub mod lag_noise;
 
 use std::path::Path;
 
@@ -54,6 +57,18 @@ pub fn write_all(
     if scored && results.iter().any(|r| !r.lag.is_empty()) {
         render_png(&out.join("lag.png"), (1200, 800), |a| lag(a, info, results))?;
         written.push("lag.png".into());
+        let points: Vec<_> = results
+            .iter()
+            .filter_map(|r| lag_noise::point(&r.config.name, &r.lag))
+            .collect();
+        let note = format!(
+            "{} · events from {} · averaged over {} seed(s) and the events",
+            subtitle(info),
+            info.event_source.unwrap_or("?"),
+            info.seeds
+        );
+        lag_noise::write(&out.join("lag_vs_noise.png"), &note, &points)?;
+        written.push("lag_vs_noise.png".into());
     }
     let height = 200 + 70 * results.len() as u32;
     render_png(&out.join("pass_times.png"), (1200, height), |a| {

@@ -24,27 +24,65 @@ pub struct Hit {
     pub v: f32,
 }
 
+/// What a traversal touched: nodes whose box was tested or popped, and primitive tests
+/// (triangles; instances at the top level of a two-level tree). The measure of a tree's
+/// traversal cost that does not depend on the machine (docs/bench.md).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Visits {
+    pub nodes: u64,
+    pub primitives: u64,
+}
+
 impl Bvh {
     /// Nearest hit with t in (0, t_max), either face. `tris_bvh_order[i]` is the triangle
     /// at BVH position `i`.
     pub fn closest_hit(&self, tris_bvh_order: &[[Vec3; 3]], ray: &Ray) -> Option<Hit> {
-        self.traverse(tris_bvh_order, ray, false)
+        self.closest_hit_counted(tris_bvh_order, ray, &mut Visits::default())
     }
 
     /// Whether anything is hit with t in (0, t_max): a shadow ray.
     pub fn any_hit(&self, tris_bvh_order: &[[Vec3; 3]], ray: &Ray) -> bool {
-        self.traverse(tris_bvh_order, ray, true).is_some()
+        self.any_hit_counted(tris_bvh_order, ray, &mut Visits::default())
     }
 
-    /// The shared loop; `any` returns at the first hit found. The stack holds one pending
-    /// sibling per level, so 64 entries cover `BVH_MAX_DEPTH`.
-    fn traverse(&self, tris: &[[Vec3; 3]], ray: &Ray, any: bool) -> Option<Hit> {
+    /// `closest_hit`, adding what it touched to `visits`.
+    pub fn closest_hit_counted(
+        &self,
+        tris: &[[Vec3; 3]],
+        ray: &Ray,
+        visits: &mut Visits,
+    ) -> Option<Hit> {
+        self.walk(ray, false, visits, |i, t_max| {
+            triangle_hit(tris, i, ray, t_max)
+        })
+    }
+
+    /// `any_hit`, adding what it touched to `visits`.
+    pub fn any_hit_counted(&self, tris: &[[Vec3; 3]], ray: &Ray, visits: &mut Visits) -> bool {
+        self.walk(ray, true, visits, |i, t_max| {
+            triangle_hit(tris, i, ray, t_max)
+        })
+        .is_some()
+    }
+
+    /// The shared loop over the tree; `leaf(position, t_max)` tests the primitive at BVH
+    /// position `position` and returns a hit nearer than t_max. `any` returns at the first
+    /// hit found. The stack holds one pending sibling per level, so 64 entries cover
+    /// `BVH_MAX_DEPTH`.
+    pub fn walk(
+        &self,
+        ray: &Ray,
+        any: bool,
+        visits: &mut Visits,
+        mut leaf: impl FnMut(u32, f32) -> Option<Hit>,
+    ) -> Option<Hit> {
         let root = self.nodes.first()?;
         let inv_dir = safe_recip(ray.dir);
         let mut t_max = ray.t_max;
         let mut best = None;
         let mut stack = [(0u32, 0.0f32); 64];
         let mut len = 0;
+        visits.nodes += 1;
         if let Some(t) = slab(root, ray.origin, inv_dir, t_max) {
             stack[0] = (0, t);
             len = 1;
@@ -58,16 +96,10 @@ impl Bvh {
             let node = &self.nodes[index as usize];
             if node.count > 0 {
                 for i in node.first..node.first + node.count {
-                    if let Some((t, u, v)) =
-                        intersect_triangle(&tris[i as usize], ray.origin, ray.dir, t_max)
-                    {
-                        t_max = t;
-                        best = Some(Hit {
-                            t,
-                            triangle: i,
-                            u,
-                            v,
-                        });
+                    visits.primitives += 1;
+                    if let Some(hit) = leaf(i, t_max) {
+                        t_max = hit.t;
+                        best = Some(hit);
                         if any {
                             return best;
                         }
@@ -75,6 +107,7 @@ impl Bvh {
                 }
                 continue;
             }
+            visits.nodes += 2;
             let children = [node.first, node.first + 1]
                 .map(|c| (c, slab(&self.nodes[c as usize], ray.origin, inv_dir, t_max)));
             let [near, far] = match (children[0].1, children[1].1) {
@@ -90,6 +123,16 @@ impl Bvh {
         }
         best
     }
+}
+
+fn triangle_hit(tris: &[[Vec3; 3]], i: u32, ray: &Ray, t_max: f32) -> Option<Hit> {
+    let (t, u, v) = intersect_triangle(&tris[i as usize], ray.origin, ray.dir, t_max)?;
+    Some(Hit {
+        t,
+        triangle: i,
+        u,
+        v,
+    })
 }
 
 /// `1/dir` with components below 1e-30 replaced by ±1e-30 first, as `safe_inverse_dir` in

@@ -1,0 +1,220 @@
+//! `bench-bvh`: the per-frame ray-tracing structure of an animated scene, three ways
+//! (issue 10): the renderer's refit (tree built at the first time, boxes refitted), a
+//! full rebuild every frame, and a two-level BVH (`scene::bvh::two_level`: BLAS per
+//! instance built once, TLAS rebuilt every frame). For each scene time: the CPU time of
+//! the per-frame work, the SAH cost, and the nodes visited and triangles tested by a fixed
+//! set of rays — primary rays from the scene camera and one shadow ray per hit to a point
+//! on an emitter — which measures traversal cost independently of the machine. Prints a
+//! Markdown table; never a timing assertion.
+
+use std::time::Instant;
+
+use clap::Args;
+use glam::{Mat4, Vec3};
+use restir_render::load_scene;
+use restir_render::scene::Scene;
+use restir_render::scene::animation::ClipChoice;
+use restir_render::scene::bvh::two_level::TwoLevelBvh;
+use restir_render::scene::bvh::{Bvh, Ray, Visits};
+use restir_render::scene::camera::Camera;
+
+use crate::cli::setup::parse_size;
+
+#[derive(Args, Debug)]
+pub struct BvhCostArgs {
+    /// An animated scene (`builtin:dynamic:...` or a glTF file with animations).
+    #[arg(long)]
+    pub scene: String,
+    /// Scene times to measure, in seconds; the refitted tree is built at the first.
+    #[arg(long, value_delimiter = ',', default_value = "0,0.25,0.5,1,2")]
+    pub times: Vec<f32>,
+    /// Primary rays, WxH through the scene camera (one shadow ray per hit).
+    #[arg(long, default_value = "64x40")]
+    pub rays: String,
+    /// Timed repetitions of each build / refit; the median is reported.
+    #[arg(long, default_value_t = 3)]
+    pub repeats: u32,
+}
+
+/// Rays traced through every structure: primary (closest hit) and shadow (any hit).
+struct RaySet {
+    primary: Vec<Ray>,
+    shadow: Vec<Ray>,
+}
+
+/// Mean nodes visited and triangles tested per ray, primary and shadow together.
+fn per_ray(v: Visits, rays: usize) -> (f64, f64) {
+    let n = rays.max(1) as f64;
+    (v.nodes as f64 / n, v.primitives as f64 / n)
+}
+
+fn median_ms(repeats: u32, mut f: impl FnMut()) -> f64 {
+    let mut times: Vec<f64> = (0..repeats.max(1))
+        .map(|_| {
+            let t = Instant::now();
+            f();
+            t.elapsed().as_secs_f64() * 1e3
+        })
+        .collect();
+    times.sort_by(f64::total_cmp);
+    times[times.len() / 2]
+}
+
+fn positions(scene: &Scene) -> Vec<[Vec3; 3]> {
+    (0..scene.triangles.len())
+        .map(|t| scene.triangle_positions(t))
+        .collect()
+}
+
+fn in_order(bvh: &Bvh, positions: &[[Vec3; 3]]) -> Vec<[Vec3; 3]> {
+    bvh.triangle_order
+        .iter()
+        .map(|&i| positions[i as usize])
+        .collect()
+}
+
+/// Primary rays through pixel centres, and from each hit (found with `bvh`) one shadow ray
+/// to a point on an emitter picked by a hash of the pixel (the same for every structure).
+fn ray_set(scene: &Scene, bvh: &Bvh, ordered: &[[Vec3; 3]], (w, h): (u32, u32)) -> RaySet {
+    let camera = scene
+        .camera
+        .unwrap_or_else(|| Camera::framing(scene.bounds()));
+    let tan = (camera.yfov * 0.5).tan();
+    let aspect = w as f32 / h as f32;
+    let emitters: Vec<usize> = (0..scene.triangles.len())
+        .filter(|&t| scene.materials[scene.triangles[t].material as usize].is_emissive())
+        .collect();
+    let scale = scene.bounds().extent().length().max(1e-30);
+    let mut set = RaySet {
+        primary: Vec::new(),
+        shadow: Vec::new(),
+    };
+    for y in 0..h {
+        for x in 0..w {
+            let sx = (2.0 * (x as f32 + 0.5) / w as f32 - 1.0) * tan * aspect;
+            let sy = (1.0 - 2.0 * (y as f32 + 0.5) / h as f32) * tan;
+            let dir = (camera.forward() + camera.right() * sx + camera.up() * sy).normalize();
+            let ray = Ray {
+                origin: camera.position,
+                dir,
+                t_max: f32::INFINITY,
+            };
+            set.primary.push(ray);
+            let (Some(hit), false) = (bvh.closest_hit(ordered, &ray), emitters.is_empty()) else {
+                continue;
+            };
+            let k = hash_u32(x * 7919 + y * 104_729);
+            let tri = scene.triangle_positions(emitters[k as usize % emitters.len()]);
+            let (a, b) = (
+                (k >> 8 & 255) as f32 / 255.0,
+                (k >> 16 & 255) as f32 / 255.0,
+            );
+            let (a, b) = if a + b > 1.0 {
+                (1.0 - a, 1.0 - b)
+            } else {
+                (a, b)
+            };
+            let target = tri[0] * (1.0 - a - b) + tri[1] * a + tri[2] * b;
+            // Off the surface toward the camera, and stop just short of the light.
+            let origin = ray.origin + dir * hit.t - dir * (1e-5 * scale);
+            set.shadow.push(Ray {
+                origin,
+                dir: target - origin,
+                t_max: 0.999,
+            });
+        }
+    }
+    set
+}
+
+/// PCG's output hash (as `pcg_hash` in rng.wgsl): a fixed pseudo-random u32 per pixel.
+fn hash_u32(v: u32) -> u32 {
+    let state = v.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
+    let word = ((state >> ((state >> 28) + 4)) ^ state).wrapping_mul(277_803_737);
+    (word >> 22) ^ word
+}
+
+fn trace_single(bvh: &Bvh, ordered: &[[Vec3; 3]], rays: &RaySet) -> Visits {
+    let mut v = Visits::default();
+    for r in &rays.primary {
+        bvh.closest_hit_counted(ordered, r, &mut v);
+    }
+    for r in &rays.shadow {
+        bvh.any_hit_counted(ordered, r, &mut v);
+    }
+    v
+}
+
+fn trace_two_level(two: &TwoLevelBvh, rays: &RaySet) -> Visits {
+    let mut v = Visits::default();
+    for r in &rays.primary {
+        two.closest_hit_counted(r, &mut v);
+    }
+    for r in &rays.shadow {
+        two.any_hit_counted(r, &mut v);
+    }
+    v
+}
+
+pub fn run(args: BvhCostArgs) -> anyhow::Result<()> {
+    let size = parse_size(&args.rays)?;
+    let mut scene = load_scene(&args.scene)?;
+    let Some(anim) = scene.animation.clone() else {
+        anyhow::bail!("{}: not an animated scene (nothing to refit)", args.scene);
+    };
+    let Some(&first) = args.times.first() else {
+        anyhow::bail!("--times: give at least one scene time");
+    };
+    anim.pose(&mut scene, first, ClipChoice::All);
+    let mut refit = Bvh::build(&positions(&scene));
+    let started = Instant::now();
+    let mut two = TwoLevelBvh::new(&scene);
+    let blas_ms = started.elapsed().as_secs_f64() * 1e3;
+    println!(
+        "{}: {} triangles, {} instances (BLASes built once in {blas_ms:.0} ms); {}×{} primary rays + a shadow ray per hit",
+        args.scene,
+        scene.triangles.len(),
+        two.instance_count(),
+        size.0,
+        size.1
+    );
+    println!();
+    println!(
+        "| time | refit | rebuild | TLAS | SAH refit | SAH rebuild | SAH two-level | nodes/ray refit | rebuild | two-level | triangles/ray refit | rebuild | two-level |"
+    );
+    println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
+    for &t in &args.times {
+        anim.pose(&mut scene, t, ClipChoice::All);
+        let world: Vec<Mat4> = anim.world_matrices(t, ClipChoice::All);
+        let pos = positions(&scene);
+        // As `GpuScene::update` does it: reorder into BVH order, then refit.
+        let refit_ms = median_ms(args.repeats, || {
+            let ordered = in_order(&refit, &pos);
+            refit.refit(&ordered);
+        });
+        let mut rebuilt = None;
+        let rebuild_ms = median_ms(args.repeats, || rebuilt = Some(Bvh::build(&pos)));
+        let rebuilt = rebuilt.expect("built at least once");
+        let tlas_ms = median_ms(args.repeats, || two.update(&world));
+        let refit_order = in_order(&refit, &pos);
+        let rebuilt_order = in_order(&rebuilt, &pos);
+        let rays = ray_set(&scene, &rebuilt, &rebuilt_order, size);
+        let n = rays.primary.len() + rays.shadow.len();
+        let v_refit = per_ray(trace_single(&refit, &refit_order, &rays), n);
+        let v_rebuild = per_ray(trace_single(&rebuilt, &rebuilt_order, &rays), n);
+        let v_two = per_ray(trace_two_level(&two, &rays), n);
+        println!(
+            "| {t} s | {refit_ms:.3} ms | {rebuild_ms:.3} ms | {tlas_ms:.3} ms | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} |",
+            refit.sah_cost(),
+            rebuilt.sah_cost(),
+            two.sah_cost(),
+            v_refit.0,
+            v_rebuild.0,
+            v_two.0,
+            v_refit.1,
+            v_rebuild.1,
+            v_two.1,
+        );
+    }
+    Ok(())
+}

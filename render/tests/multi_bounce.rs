@@ -16,9 +16,8 @@ mod common;
 
 use std::collections::BTreeSet;
 
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 use restir_render::effects::{Effect, EffectSet, SceneFeatures};
-use restir_render::scene::{Material, Triangle, Vertex};
 use restir_render::{Camera, LinearImage, Mode, Renderer, Scene, Settings};
 
 const LE: f32 = 1.0;

@@ -1,5 +1,5 @@
 //! The configurations a bench compares: built-in names (`nee`, `ris`, `ris+temporal`,
-//! `ris+spatial`, `restir`, `restir-pairwise`, `path-2b`, ...) and preset files, each a mode
+//! `ris+spatial`, `restir`, `restir-pairwise`, `path-2b`, `restir+gi`, ...) and preset files, each a mode
 //! plus settings on top of the bench's base settings. A configuration is scored against the
 //! reference of its own `max_bounces` (references.rs).
 
@@ -55,6 +55,18 @@ const BUILTIN: &[(&str, Mode, &[&str], &str)] = &[
         Mode::Reference,
         &["reference_spp=1", "max_bounces=2"],
         "one-sample brute-force path tracing, 2 bounces (the reference estimator at 1 spp, per frame; scored against a 2-bounce reference)",
+    ),
+    (
+        "restir+gi",
+        Mode::Restir,
+        &["gi=true", "gi_bias_correction=one-over-m", "max_bounces=2"],
+        "restir (DI) + ReSTIR GI with 1/M weights (biased); scored against a 2-bounce reference",
+    ),
+    (
+        "restir+gi-pairwise",
+        Mode::Restir,
+        &["gi=true", "gi_bias_correction=pairwise", "max_bounces=2"],
+        "restir (DI) + ReSTIR GI with pairwise MIS (the GI default); scored against a 2-bounce reference",
     ),
     (
         "tiles-on",
@@ -191,5 +203,24 @@ mod tests {
         assert!(!path.settings.jitter);
         // `ris` stays direct-only, so it gets the 1-bounce reference.
         assert_eq!(configs[0].settings.max_bounces, 1);
+    }
+
+    #[test]
+    fn gi_configurations_run_gi_and_are_scored_against_two_bounces() {
+        use restir_render::settings::BiasCorrection;
+        let configs = parse_configs("restir+gi,restir+gi-pairwise", &Settings::default()).unwrap();
+        for c in &configs {
+            assert_eq!(c.mode, Mode::Restir);
+            assert!(c.settings.gi && c.settings.gi_temporal && c.settings.gi_spatial);
+            assert_eq!(c.settings.max_bounces, 2);
+        }
+        assert_eq!(
+            configs[0].settings.gi_bias_correction,
+            BiasCorrection::OneOverM
+        );
+        assert_eq!(
+            configs[1].settings.gi_bias_correction,
+            BiasCorrection::Pairwise
+        );
     }
 }

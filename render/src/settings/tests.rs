@@ -139,8 +139,10 @@ fn indirect_defaults_and_flags() {
 #[test]
 fn reference_spp_reaches_the_gpu_as_the_count_a_frame_renders() {
     let most = REFERENCE_SAMPLES_PER_DISPATCH * crate::passes::PASS_INFO_SLOTS;
-    let mut s = Settings::default();
-    s.reference_spp = 4096;
+    let mut s = Settings {
+        reference_spp: 4096,
+        ..Settings::default()
+    };
     assert_eq!(s.gpu_params(100).reference_spp, most);
     s.reference_spp = 64;
     assert_eq!(s.gpu_params(100).reference_spp, 64);

@@ -490,12 +490,23 @@ impl Settings {
             gi_spatial_neighbours: self.gi_spatial_neighbours.min(MAX_SPATIAL_NEIGHBOURS),
             gi_spatial_radius: self.effective_gi_spatial_radius(height),
             gi_jacobian_max: self.gi_jacobian_max.max(1.0),
-            max_bounces: self.max_bounces.clamp(1, MAX_BOUNCES),
+            max_bounces: self.reference_bounces(),
             _pad: [0; 3],
         }
     }
 
     /// The Indirect stage's `PARAM_FLAG_GI_*` bits of `GpuParams::flags`.
+    /// The bounces the reference traces: `max_bounces`, and at least 2 while ReSTIR GI is on
+    /// (GI adds one indirect bounce, so its image is compared with a 2-bounce reference).
+    pub fn reference_bounces(&self) -> u32 {
+        let wanted = if self.gi {
+            self.max_bounces.max(2)
+        } else {
+            self.max_bounces
+        };
+        wanted.clamp(1, MAX_BOUNCES)
+    }
+
     fn gi_flags(&self) -> u32 {
         [
             (self.gi, PARAM_FLAG_GI),

@@ -178,3 +178,45 @@ fn gi_passes_run_only_when_gi_is_on() {
         !ris.last_passes().contains(&"gi temporal") && !ris.last_passes().contains(&"gi spatial")
     );
 }
+
+/// The inspector captures the GI reservoir after each GI stage; the last one is what the
+/// frame left in the GI buffers, and the GI debug record comes along.
+#[test]
+fn the_inspector_shows_the_gi_reservoir_after_each_stage() {
+    let scene = load_scene("builtin:cornell").unwrap();
+    let mut r = render(&scene, &["gi=true"], None, 0);
+    let pixel = (W / 2, H / 2);
+    r.set_inspected_pixel(Some(pixel));
+    for _ in 0..4 {
+        r.render_frame().unwrap();
+    }
+    let reports = r.collect_reports(true);
+    let inspection = reports
+        .iter()
+        .rev()
+        .find_map(|f| f.inspection.clone())
+        .expect("an inspected frame");
+    let gi = inspection
+        .gi
+        .expect("GI ran: its part of the inspection is there");
+    let names: Vec<&str> = gi.stages.iter().map(|s| s.stage.as_str()).collect();
+    assert_eq!(names, ["gi initial", "gi temporal", "gi spatial"]);
+    assert_eq!(inspection.frame, reports.last().unwrap().frame);
+    let index = (pixel.1 * W + pixel.0) as usize;
+    assert_eq!(gi.stages[2].reservoir, r.read_gi_reservoirs()[index]);
+    // M grows through the stages of a warm pipeline (initial 1, then the history merged).
+    assert_eq!(gi.stages[0].reservoir.m, 1.0);
+    assert!(gi.stages[1].reservoir.m > 1.0, "{:?}", gi.stages[1]);
+    assert!(gi.debug.jacobian.is_finite());
+    // Without GI the inspection has no GI part.
+    let mut off = render(&scene, &[], None, 0);
+    off.set_inspected_pixel(Some(pixel));
+    off.render_frame().unwrap();
+    let reports = off.collect_reports(true);
+    assert!(
+        reports
+            .iter()
+            .filter_map(|f| f.inspection.as_ref())
+            .all(|i| i.gi.is_none())
+    );
+}

@@ -386,7 +386,6 @@ fn expected_kind(binding: &restir_render::passes::pass::Binding) -> String {
         Resource::Chain(c, _) => stride(c.stride),
         Resource::ShownImage => stride(16),
         Resource::LightTiles => stride(std::mem::size_of::<GpuTileSample>()),
-        Resource::PrevTriangles => stride(std::mem::size_of::<GpuTriangle>()),
     }
 }
 

@@ -221,7 +221,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         &shot,
         (args.warmup, measured),
         reference_clock.as_mut(),
-        configs.iter().map(|c| c.settings.max_bounces),
+        configs.iter().map(|c| c.settings.reference_bounces()),
     )?;
     let refs = ref_sets.primary();
     let plan = RunPlan {
@@ -258,7 +258,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
             .iter()
             .zip(renderers.drain(..))
             .map(|(c, r)| {
-                let own = ref_sets.for_bounces(c.settings.max_bounces);
+                let own = ref_sets.for_bounces(c.settings.reference_bounces());
                 let probe = events
                     .as_ref()
                     .map(|e| LagProbe::new(e, &own.images, k == 0));

@@ -22,12 +22,12 @@ pub const RASTER: PassDef = PassDef {
     dispatch: Dispatch::Raster,
 };
 
-/// Turns the visibility buffer into `Surface` records; the previous frame's triangles
-/// give object motion (read only under ANIMATION).
+/// Turns the visibility buffer into `Surface` records (object motion comes from the
+/// scene group's previous-frame triangles).
 pub const RESOLVE: PassDef = PassDef {
     name: "gbuffer resolve",
     shader: "gbuffer_resolve.wgsl",
-    group: &[read(Visibility), write(Surfaces), read(PrevTriangles)],
+    group: &[read(Visibility), write(Surfaces)],
     dispatch: Dispatch::Pixels,
 };
 

@@ -54,8 +54,6 @@ pub enum Resource {
     DisplayUniform,
     /// The presampled light tiles (owned by the renderer).
     LightTiles,
-    /// The scene's previous-frame triangles (object motion).
-    PrevTriangles,
     /// The rasterised visibility buffer (triangle id + barycentrics), sampled as a texture.
     Visibility,
     /// The display's RGBA8 output, a write-only storage texture.

@@ -16,8 +16,6 @@ pub struct Uniforms<'a> {
     pub display: &'a wgpu::Buffer,
     /// The presampled light tiles (a one-element placeholder until tiles are used).
     pub light_tiles: &'a wgpu::Buffer,
-    /// The scene's previous-frame triangles (the triangle buffer itself when static).
-    pub prev_triangles: &'a wgpu::Buffer,
 }
 
 #[derive(Default)]
@@ -77,7 +75,6 @@ fn create(
                 Bound::PassInfo => pass_info_binding(u.pass_info),
                 Bound::DisplayUniform => u.display.as_entire_binding(),
                 Bound::LightTiles => u.light_tiles.as_entire_binding(),
-                Bound::PrevTriangles => u.prev_triangles.as_entire_binding(),
                 Bound::Visibility => wgpu::BindingResource::TextureView(&t.visibility),
                 Bound::Output => wgpu::BindingResource::TextureView(&t.display_view),
             },

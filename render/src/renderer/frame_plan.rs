@@ -6,6 +6,7 @@
 
 use std::ops::Range;
 
+use crate::passes::resources::{Chain, RESERVOIRS};
 use crate::passes::{
     PassDef, display, gbuffer, gi_initial, gi_shade, gi_spatial, gi_temporal, gi_view, initial,
     presample, reference, shade, spatial, temporal,
@@ -18,8 +19,15 @@ pub struct Step {
     /// `PassInfo` slots: one dispatch per slot, in one timed pass (empty: one dispatch,
     /// with slot 0 if the pass reads `PassInfo`).
     pub slots: Range<u32>,
-    /// After this step the pixel inspector captures the DI reservoir as this stage.
-    pub inspect: Option<&'static str>,
+    /// After this step the pixel inspector captures this chain's reservoir as a stage.
+    pub inspect: Option<Inspect>,
+}
+
+/// What the inspector captures after a step: the current reservoir of `chain`, as `stage`.
+#[derive(Clone, Copy, Debug)]
+pub struct Inspect {
+    pub chain: &'static Chain,
+    pub stage: &'static str,
 }
 
 impl Step {
@@ -37,7 +45,18 @@ impl Step {
     }
 
     fn inspect(mut self, stage: &'static str) -> Step {
-        self.inspect = Some(stage);
+        self.inspect = Some(Inspect {
+            chain: &RESERVOIRS,
+            stage,
+        });
+        self
+    }
+
+    fn inspect_gi(mut self, stage: &'static str) -> Step {
+        self.inspect = Some(Inspect {
+            chain: &gi_initial::GI_RESERVOIRS,
+            stage,
+        });
         self
     }
 }
@@ -82,12 +101,12 @@ pub fn frame_plan(f: &FrameSwitches) -> Vec<Step> {
         }
         steps.push(Step::new(&shade::PASS));
         if f.gi {
-            steps.push(Step::new(&gi_initial::PASS));
+            steps.push(Step::new(&gi_initial::PASS).inspect_gi("gi initial"));
             if f.gi_temporal {
-                steps.push(Step::new(&gi_temporal::PASS));
+                steps.push(Step::new(&gi_temporal::PASS).inspect_gi("gi temporal"));
             }
             if f.gi_spatial {
-                steps.push(Step::new(&gi_spatial::PASS));
+                steps.push(Step::new(&gi_spatial::PASS).inspect_gi("gi spatial"));
             }
             steps.push(Step::new(&gi_shade::PASS));
         }

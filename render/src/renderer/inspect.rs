@@ -3,7 +3,9 @@
 //! comes back asynchronously with the frame's report.
 
 use crate::gpu::readback::ReadbackRing;
-use crate::gpu_types::{GpuPixelDebug, GpuReservoir, GpuSurface, NO_LIGHT};
+use crate::gpu_types::{
+    GpuGiPixelDebug, GpuGiReservoir, GpuPixelDebug, GpuReservoir, GpuSurface, NO_LIGHT,
+};
 use crate::shader_constants::*;
 
 const SURFACE_BYTES: u64 = std::mem::size_of::<GpuSurface>() as u64;
@@ -11,7 +13,12 @@ const DEBUG_BYTES: u64 = std::mem::size_of::<GpuPixelDebug>() as u64;
 const RESERVOIR_BYTES: u64 = std::mem::size_of::<GpuReservoir>() as u64;
 /// initial, temporal and up to 8 spatial passes.
 const MAX_STAGES: u64 = 10;
-pub const INSPECT_BYTES: u64 = SURFACE_BYTES + DEBUG_BYTES + MAX_STAGES * RESERVOIR_BYTES;
+const DI_BYTES: u64 = SURFACE_BYTES + DEBUG_BYTES + MAX_STAGES * RESERVOIR_BYTES;
+/// ReSTIR GI, after the DI part: its debug record, then gi initial, temporal, spatial.
+const GI_DEBUG_BYTES: u64 = std::mem::size_of::<GpuGiPixelDebug>() as u64;
+const GI_RESERVOIR_BYTES: u64 = std::mem::size_of::<GpuGiReservoir>() as u64;
+const MAX_GI_STAGES: u64 = 3;
+pub const INSPECT_BYTES: u64 = DI_BYTES + GI_DEBUG_BYTES + MAX_GI_STAGES * GI_RESERVOIR_BYTES;
 
 /// One stage's reservoir at the inspected pixel.
 #[derive(Clone, Debug, PartialEq)]
@@ -26,6 +33,60 @@ pub struct StageReservoir {
     pub environment_direction: Option<[f32; 3]>,
 }
 
+/// One GI stage's reservoir at the inspected pixel.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GiStageReservoir {
+    /// "gi initial", "gi temporal", "gi spatial".
+    pub stage: String,
+    pub reservoir: GpuGiReservoir,
+}
+
+impl GiStageReservoir {
+    pub fn is_null(&self) -> bool {
+        (self.reservoir.packed & GI_SOURCE_MASK) == SOURCE_NULL || !(self.reservoir.weight > 0.0)
+    }
+
+    pub fn source_name(&self) -> &'static str {
+        let source = self.reservoir.packed & GI_SOURCE_MASK;
+        SOURCE_NAMES.get(source as usize).copied().unwrap_or("?")
+    }
+
+    pub fn age(&self) -> u32 {
+        self.reservoir.packed >> GI_AGE_SHIFT
+    }
+
+    /// The GI rejection bits the stage that wrote it recorded, by name.
+    pub fn rejections(&self) -> Vec<&'static str> {
+        gi_bit_names((self.reservoir.packed >> GI_FLAGS_SHIFT) & GI_FLAGS_MASK)
+    }
+}
+
+/// The ReSTIR GI part of an inspection (present when GI ran that frame).
+#[derive(Clone, Debug, PartialEq)]
+pub struct GiInspection {
+    pub debug: GpuGiPixelDebug,
+    pub stages: Vec<GiStageReservoir>,
+}
+
+impl GiInspection {
+    pub fn temporal_rejections(&self) -> Vec<&'static str> {
+        gi_bit_names(self.debug.temporal_mask)
+    }
+
+    pub fn spatial_rejections(&self) -> Vec<&'static str> {
+        gi_bit_names(self.debug.spatial_mask)
+    }
+}
+
+fn gi_bit_names(mask: u32) -> Vec<&'static str> {
+    GI_REJECT_REASON_NAMES
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| mask & (1 << i) != 0)
+        .map(|(_, n)| *n)
+        .collect()
+}
+
 /// Everything the inspector shows about one pixel in one frame.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PixelInspection {
@@ -34,6 +95,7 @@ pub struct PixelInspection {
     pub surface: GpuSurface,
     pub debug: GpuPixelDebug,
     pub stages: Vec<StageReservoir>,
+    pub gi: Option<GiInspection>,
 }
 
 fn bit_names(mask: u32) -> Vec<&'static str> {
@@ -73,12 +135,16 @@ pub struct InspectCapture {
     /// ring copies out of it before the next frame's copies land in queue order).
     staging: wgpu::Buffer,
     stages: Vec<String>,
+    gi_stages: Vec<String>,
+    gi: bool,
 }
 
 /// A capture in flight: the stage names, waiting for its bytes.
 pub struct PendingInspection {
     pub pixel: (u32, u32),
     pub stages: Vec<String>,
+    pub gi_stages: Vec<String>,
+    pub gi: bool,
 }
 
 impl InspectCapture {
@@ -89,6 +155,8 @@ impl InspectCapture {
             index: (y * size.0 + x) as u64,
             staging,
             stages: Vec::new(),
+            gi_stages: Vec::new(),
+            gi: false,
         }
     }
 
@@ -135,6 +203,39 @@ impl InspectCapture {
         );
     }
 
+    /// Copies the pixel's GI reservoir from `reservoirs` as the next GI stage.
+    pub fn copy_gi_reservoir(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        reservoirs: &wgpu::Buffer,
+        stage: &str,
+    ) {
+        let slot = self.gi_stages.len() as u64;
+        if slot >= MAX_GI_STAGES {
+            return;
+        }
+        self.gi_stages.push(stage.to_string());
+        encoder.copy_buffer_to_buffer(
+            reservoirs,
+            self.index * GI_RESERVOIR_BYTES,
+            &self.staging,
+            DI_BYTES + GI_DEBUG_BYTES + slot * GI_RESERVOIR_BYTES,
+            GI_RESERVOIR_BYTES,
+        );
+    }
+
+    /// Copies the pixel's GI debug record (frames where GI ran).
+    pub fn copy_gi_debug(&mut self, encoder: &mut wgpu::CommandEncoder, gi_debug: &wgpu::Buffer) {
+        self.gi = true;
+        encoder.copy_buffer_to_buffer(
+            gi_debug,
+            self.index * GI_DEBUG_BYTES,
+            &self.staging,
+            DI_BYTES,
+            GI_DEBUG_BYTES,
+        );
+    }
+
     /// Copies the pixel's surface and final debug record.
     pub fn copy_pixel_records(
         &self,
@@ -174,6 +275,8 @@ impl InspectCapture {
         PendingInspection {
             pixel: self.pixel,
             stages: self.stages,
+            gi_stages: self.gi_stages,
+            gi: self.gi,
         }
     }
 }
@@ -195,6 +298,27 @@ impl PendingInspection {
         let debug: GpuPixelDebug = bytemuck::pod_read_unaligned(
             &bytes[SURFACE_BYTES as usize..(SURFACE_BYTES + DEBUG_BYTES) as usize],
         );
+        let gi = self.gi.then(|| {
+            let at = DI_BYTES as usize;
+            let debug: GpuGiPixelDebug =
+                bytemuck::pod_read_unaligned(&bytes[at..at + GI_DEBUG_BYTES as usize]);
+            let stages = self
+                .gi_stages
+                .iter()
+                .enumerate()
+                .map(|(slot, stage)| {
+                    let start =
+                        (DI_BYTES + GI_DEBUG_BYTES + slot as u64 * GI_RESERVOIR_BYTES) as usize;
+                    GiStageReservoir {
+                        stage: stage.clone(),
+                        reservoir: bytemuck::pod_read_unaligned(
+                            &bytes[start..start + GI_RESERVOIR_BYTES as usize],
+                        ),
+                    }
+                })
+                .collect();
+            GiInspection { debug, stages }
+        });
         let stages = self
             .stages
             .into_iter()
@@ -220,6 +344,7 @@ impl PendingInspection {
             surface,
             debug,
             stages,
+            gi,
         })
     }
 }

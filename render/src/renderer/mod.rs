@@ -17,7 +17,7 @@ pub mod resolve;
 mod setup;
 mod uniforms;
 
-pub use inspect::{PixelInspection, StageReservoir};
+pub use inspect::{GiInspection, GiStageReservoir, PixelInspection, StageReservoir};
 pub use setup::check_size;
 
 use std::collections::HashMap;

@@ -4,6 +4,7 @@ use super::Renderer;
 use crate::gpu::readback::{read_buffer, read_rgba8_texture};
 use crate::gpu_types::{GpuPixelDebug, GpuReservoir, GpuSurface};
 use crate::image::LinearImage;
+use crate::passes::gi_initial::GI_RESERVOIRS;
 use crate::passes::resources::{ACCUMULATION, DEBUG, RADIANCE, RESERVOIRS};
 
 impl Renderer {
@@ -64,6 +65,15 @@ impl Renderer {
             Some(i) => self.pixel_records(self.targets.chain(&RESERVOIRS, i)),
             None => Vec::new(),
         }
+    }
+
+    /// The last frame's final ReSTIR GI reservoirs (empty before GI has run).
+    pub fn read_gi_reservoirs(&self) -> Vec<crate::gpu_types::GpuGiReservoir> {
+        if self.targets.chain_len(&GI_RESERVOIRS) == 0 {
+            return Vec::new();
+        }
+        let final_buffer = self.carried.history(&GI_RESERVOIRS);
+        self.pixel_records(self.targets.chain(&GI_RESERVOIRS, final_buffer))
     }
 
     /// The last frame's G-buffer surfaces.

@@ -15,6 +15,7 @@ use crate::effects::{Effect, EffectSet};
 use crate::gpu::timing::FrameRecorder;
 use crate::gpu::{Gpu, GpuError};
 use crate::passes::gbuffer::RasterPass;
+use crate::passes::gi_initial::GI_DEBUG;
 use crate::passes::pass::Dispatch;
 use crate::passes::resources::{DEBUG, RESERVOIRS};
 use crate::passes::{ComputePass, PASS_INFO_SLOTS, PASS_INFO_STRIDE, PassDef, PassLayouts};
@@ -200,7 +201,6 @@ impl Renderer {
             pass_info: &self.pass_info,
             display: &self.display_uniform,
             light_tiles: &self.light_tiles,
-            prev_triangles: &self.scene.prev_triangles,
         };
         for (step, r) in plan.iter().zip(&resolved.steps) {
             if step.pass.dispatch == Dispatch::Raster {
@@ -232,12 +232,13 @@ impl Renderer {
             if dispatched.last() != Some(&step.pass.name) {
                 dispatched.push(step.pass.name);
             }
-            if let (Some(c), Some((stage, buffer))) = (&mut capture, r.inspect) {
-                c.copy_reservoir(
-                    rec.encoder(),
-                    self.targets.chain(&RESERVOIRS, buffer),
-                    stage,
-                );
+            if let (Some(c), Some((chain, stage, buffer))) = (&mut capture, r.inspect) {
+                let reservoirs = self.targets.chain(chain, buffer);
+                if chain.name == RESERVOIRS.name {
+                    c.copy_reservoir(rec.encoder(), reservoirs, stage);
+                } else {
+                    c.copy_gi_reservoir(rec.encoder(), reservoirs, stage);
+                }
             }
         }
         if let Some(c) = &mut capture {
@@ -246,6 +247,9 @@ impl Renderer {
                 &self.targets.surfaces[resolved.surfaces],
                 self.targets.pixels(&DEBUG),
             );
+            if switches.gi {
+                c.copy_gi_debug(rec.encoder(), self.targets.pixels(&GI_DEBUG));
+            }
         }
 
         let frame = self.frame_index;
@@ -314,7 +318,6 @@ impl Renderer {
             pass_info: &self.pass_info,
             display: &self.display_uniform,
             light_tiles: &self.light_tiles,
-            prev_triangles: &self.scene.prev_triangles,
         };
         let size = (self.targets.width, self.targets.height);
         let mut rec = FrameRecorder::new(

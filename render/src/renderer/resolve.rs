@@ -18,7 +18,6 @@ pub enum Bound {
     PassInfo,
     DisplayUniform,
     LightTiles,
-    PrevTriangles,
     Visibility,
     Output,
 }
@@ -44,8 +43,8 @@ impl Carried {
 #[derive(Debug)]
 pub struct ResolvedStep {
     pub bound: Vec<Bound>,
-    /// (stage name, buffer of the DI chain) to capture after the step.
-    pub inspect: Option<(&'static str, usize)>,
+    /// (chain, stage name, its buffer) to capture after the step.
+    pub inspect: Option<(&'static Chain, &'static str, usize)>,
 }
 
 #[derive(Debug)]
@@ -133,7 +132,6 @@ pub fn resolve(
                 Resource::PassInfo => Bound::PassInfo,
                 Resource::DisplayUniform => Bound::DisplayUniform,
                 Resource::LightTiles => Bound::LightTiles,
-                Resource::PrevTriangles => Bound::PrevTriangles,
                 Resource::Visibility => Bound::Visibility,
                 Resource::Output => Bound::Output,
             });
@@ -142,12 +140,12 @@ pub fn resolve(
             chains[slot].1 = out;
             chains[slot].3 = chains[slot].3.max(out);
         }
-        let inspect = step.inspect.map(|stage| {
-            let di = chains
+        let inspect = step.inspect.map(|inspect| {
+            let current = chains
                 .iter()
-                .find(|c| c.0.name == crate::passes::resources::RESERVOIRS.name)
+                .find(|c| c.0.name == inspect.chain.name)
                 .map_or(0, |c| c.1);
-            (stage, di)
+            (inspect.chain, inspect.stage, current)
         });
         steps.push(ResolvedStep { bound, inspect });
     }

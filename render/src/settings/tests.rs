@@ -147,3 +147,15 @@ fn reference_spp_reaches_the_gpu_as_the_count_a_frame_renders() {
     s.reference_spp = 64;
     assert_eq!(s.gpu_params(100).reference_spp, 64);
 }
+
+/// With GI on, the reference traces at least 2 bounces (GI's image is direct + one bounce).
+#[test]
+fn the_reference_follows_gi_with_two_bounces() {
+    let mut s = Settings::default();
+    assert_eq!(s.reference_bounces(), 1);
+    s.gi = true;
+    assert_eq!(s.reference_bounces(), 2);
+    assert_eq!(s.gpu_params(100).max_bounces, 2);
+    s.max_bounces = 5;
+    assert_eq!(s.reference_bounces(), 5);
+}

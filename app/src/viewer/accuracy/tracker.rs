@@ -122,7 +122,7 @@ impl AccuracyTracker {
             size: renderer.size(),
             jitter: renderer.settings().jitter,
             spp: state.reference_spp,
-            max_bounces: renderer.settings().max_bounces,
+            max_bounces: renderer.settings().reference_bounces(),
         };
         if self.view.as_ref() != Some(&key) {
             self.view_changed(renderer, state, key, now);

@@ -4,7 +4,7 @@
 
 use egui::{RichText, Ui};
 use restir_render::gpu_types::NO_LIGHT;
-use restir_render::renderer::{PixelInspection, StageReservoir};
+use restir_render::renderer::{GiInspection, GiStageReservoir, PixelInspection, StageReservoir};
 use restir_render::shader_constants::*;
 
 use crate::viewer::state::InspectorState;
@@ -78,6 +78,78 @@ pub fn inspection(ui: &mut Ui, i: &PixelInspection) {
     rejections(ui, "Spatial", d.spatial_mask, &i.spatial_rejections());
     ui.label(format!("Spatial neighbours merged: {}", d.spatial_accepted));
     ui.label(format!("Flags: {}", flag_names(d.flags)));
+    if let Some(gi) = &i.gi {
+        ui.separator();
+        gi_inspection(ui, gi);
+    }
+}
+
+/// The ReSTIR GI reservoir after each GI stage, and the GI checks.
+fn gi_inspection(ui: &mut Ui, gi: &GiInspection) {
+    ui.strong("Indirect (ReSTIR GI)");
+    type Cell = fn(&GiStageReservoir) -> String;
+    fn axis(s: &GiStageReservoir, v: [f32; 3], k: usize) -> String {
+        if s.is_null() {
+            "–".to_string()
+        } else {
+            format!("{:.3}", v[k])
+        }
+    }
+    let rows: [(&str, Cell); 12] = [
+        ("source", |s| s.source_name().to_string()),
+        ("hit x", |s| axis(s, s.reservoir.position, 0)),
+        ("hit y", |s| axis(s, s.reservoir.position, 1)),
+        ("hit z", |s| axis(s, s.reservoir.position, 2)),
+        ("L_o r", |s| axis(s, s.reservoir.radiance, 0)),
+        ("L_o g", |s| axis(s, s.reservoir.radiance, 1)),
+        ("L_o b", |s| axis(s, s.reservoir.radiance, 2)),
+        ("p_hat", |s| format!("{:.4e}", s.reservoir.p_hat)),
+        ("W", |s| format!("{:.4e}", s.reservoir.weight)),
+        ("M", |s| format!("{}", s.reservoir.m)),
+        ("age", |s| s.age().to_string()),
+        ("rejected", |s| {
+            let names = s.rejections();
+            if names.is_empty() {
+                "–".to_string()
+            } else {
+                names.join(", ")
+            }
+        }),
+    ];
+    egui::ScrollArea::horizontal()
+        .id_salt("gi reservoirs")
+        .show(ui, |ui| {
+            ui.style_mut().wrap_mode = Some(egui::TextWrapMode::Extend);
+            egui::Grid::new("gi reservoirs")
+                .num_columns(1 + gi.stages.len())
+                .striped(true)
+                .show(ui, |ui| {
+                    ui.strong("stage");
+                    for stage in &gi.stages {
+                        ui.strong(&stage.stage);
+                    }
+                    ui.end_row();
+                    for (name, cell) in rows {
+                        ui.label(name);
+                        for stage in &gi.stages {
+                            ui.label(cell(stage));
+                        }
+                        ui.end_row();
+                    }
+                });
+        });
+    let d = &gi.debug;
+    rejections(
+        ui,
+        "GI temporal",
+        d.temporal_mask,
+        &gi.temporal_rejections(),
+    );
+    rejections(ui, "GI spatial", d.spatial_mask, &gi.spatial_rejections());
+    ui.label(format!(
+        "GI spatial neighbours merged: {} · |J| of the survivor's last shift: {:.4}",
+        d.spatial_accepted, d.jacobian
+    ));
 }
 
 /// One column per stage, one row per quantity: three stages fit the side panel at its

@@ -110,7 +110,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
                 // Whether the neighbour could have produced this pixel's sample: its point must
                 // be visible from there too (gi_mis_visibility; off leaves the canonical weight
                 // too small where neighbours are shadowed, see README "Indirect").
-                if j_back > 0.0 && gi_flag_on(PARAM_FLAG_GI_MIS_VISIBILITY) && !gi_reconnection_visible(neighbour_sp, canonical) {
+                if j_back > 0.0 && gi_mis_visibility() && !gi_reconnection_visible(neighbour_sp, canonical) {
                     j_back = 0.0;
                 }
                 let at_neighbour = gi_target_at(neighbour_sp, canonical.position, canonical.radiance);

@@ -57,6 +57,16 @@ fn every_pass_validates_for_every_effect_set() {
         let mut bare = BTreeSet::new();
         bare.insert(planted.to_string());
         parse_and_validate("reference.wgsl", &bare);
+    } // The GI tests' planted errors (render/tests/restir_gi.rs).
+    for (shader, planted) in [
+        ("gi_spatial.wgsl", "PLANTED_GI_NO_JACOBIAN"),
+        ("gi_spatial.wgsl", "PLANTED_GI_INVERTED_JACOBIAN"),
+        ("gi_temporal.wgsl", "PLANTED_GI_INVERTED_JACOBIAN"),
+        ("gi_temporal.wgsl", "PLANTED_GI_NO_TEMPORAL_VISIBILITY"),
+    ] {
+        let mut defines = EffectSet::all().defines();
+        defines.insert(planted.to_string());
+        parse_and_validate(shader, &defines);
     }
 }
 

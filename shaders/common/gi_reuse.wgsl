@@ -10,6 +10,15 @@ fn gi_flag_on(bit: u32) -> bool {
     return (params.flags & bit) != 0u;
 }
 
+// MIS visibility (the canonical sample's weight asks whether each neighbour sees it) only
+// together with reconnection visibility: both make visibility part of the target. With
+// reconnection visibility off the neighbours' samples are merged unshadowed, and weights
+// that assume a shadowed target no longer sum to one: samples fed back through temporal
+// reuse grew without bound (W 1e19 after 256 frames on builtin:cornell).
+fn gi_mis_visibility() -> bool {
+    return gi_flag_on(PARAM_FLAG_GI_MIS_VISIBILITY) && gi_flag_on(PARAM_FLAG_GI_SPATIAL_VISIBILITY);
+}
+
 // p̂ of the GI sample (x_s, L_o) at a receiving shading point: luminance(f_r · L_o · cos θ),
 // 0 when x_s is below the receiver's geometric or shading hemisphere.
 fn gi_target_at(sp: ShadingPoint, sample_position: vec3<f32>, radiance: vec3<f32>) -> f32 {

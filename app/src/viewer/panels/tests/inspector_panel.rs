@@ -62,6 +62,7 @@ pub(super) fn synthetic_inspection() -> PixelInspection {
                 environment_direction: Some([0.0, 1.0, 0.0]),
             },
         ],
+        gi: None,
     }
 }
 
@@ -99,6 +100,64 @@ fn the_inspector_shows_every_field_of_a_pixel() {
     }
     // Light ids as their own cells.
     assert!(h.query_by_label("7").is_some() && h.query_by_label("9").is_some());
+}
+
+/// With GI on, the inspector adds the GI reservoir after each GI stage and the GI checks.
+#[test]
+fn the_inspector_shows_the_gi_stages() {
+    let gi_reservoir = |source: u32, flags: u32, m: f32| GpuGiReservoir {
+        position: [0.25, 1.5, -0.75],
+        normal: 0,
+        radiance: [2.0, 0.5, 0.125],
+        w_sum: 0.5,
+        weight: 3.25,
+        m,
+        p_hat: 0.0625,
+        packed: GpuGiReservoir::pack(source, flags, 3),
+    };
+    let mut inspection = synthetic_inspection();
+    inspection.gi = Some(GiInspection {
+        debug: GpuGiPixelDebug {
+            temporal_mask: GI_REJECT_JACOBIAN,
+            spatial_mask: GI_REJECT_OCCLUDED,
+            spatial_accepted: 2,
+            jacobian: 1.5,
+            ..Default::default()
+        },
+        stages: vec![
+            GiStageReservoir {
+                stage: "gi initial".into(),
+                reservoir: gi_reservoir(SOURCE_INITIAL, 0, 1.0),
+            },
+            GiStageReservoir {
+                stage: "gi temporal".into(),
+                reservoir: gi_reservoir(SOURCE_TEMPORAL, GI_REJECT_JACOBIAN, 11.0),
+            },
+        ],
+    });
+    let mut s = state();
+    s.inspector.pixel = Some((12, 34));
+    s.inspector.last = Some(inspection);
+    let h = harness(
+        |ui, s: &mut ViewerState| inspector::ui(ui, &mut s.inspector),
+        s,
+    );
+    for text in [
+        "Indirect (ReSTIR GI)",
+        "gi initial",
+        "gi temporal",
+        "hit y",
+        "1.500",
+        "L_o r",
+        "2.000",
+        "3.2500e0",
+        "jacobian",
+        "GI temporal rejections: 0b10000000 jacobian",
+        "GI spatial rejections: 0b100000000 occluded",
+        "|J| of the survivor's last shift: 1.5000",
+    ] {
+        assert!(shows(&h, text), "the inspector does not show '{text}'");
+    }
 }
 
 /// The stage table fits the side panel at its default width: three stages (initial,

@@ -5,8 +5,10 @@ use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
 use glam::Vec3;
-use restir_render::gpu_types::{GpuPixelDebug, GpuReservoir, GpuSurface, NO_LIGHT};
-use restir_render::renderer::{PixelInspection, StageReservoir};
+use restir_render::gpu_types::{
+    GpuGiPixelDebug, GpuGiReservoir, GpuPixelDebug, GpuReservoir, GpuSurface, NO_LIGHT,
+};
+use restir_render::renderer::{GiInspection, GiStageReservoir, PixelInspection, StageReservoir};
 use restir_render::scene::Aabb;
 use restir_render::settings::preset;
 use restir_render::shader_constants::*;

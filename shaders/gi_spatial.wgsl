@@ -40,13 +40,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let size = vec2<i32>(frame.size);
     let k = min(params.gi_spatial_neighbours, MAX_SPATIAL_NEIGHBOURS);
     for (var i = 0u; i < k; i++) {
-        let u = rand_vec2(&rng);
-        let radius = params.gi_spatial_radius * sqrt(u.x);
-        let angle = 2.0 * PI * u.y;
-        var offset = vec2<i32>(round(radius * vec2<f32>(cos(angle), sin(angle))));
-        if all(offset == vec2<i32>(0)) {
-            offset = vec2<i32>(1, 0);
-        }
+        let offset = disk_neighbour_offset(rand_vec2(&rng), params.gi_spatial_radius);
         let q = vec2<i32>(id.xy) + offset;
         // `mask`: surface checks, which drop the neighbour. `unusable`: its sample cannot
         // reach this pixel (no reconnection, Jacobian outside the window, occluded): the

@@ -55,3 +55,15 @@ fn permute_pixel(p: vec2<i32>) -> vec2<i32> {
     let offset = vec2<i32>(i32(r & 3u), i32((r >> 2u) & 3u));
     return ((p + offset) ^ vec2<i32>(3)) - offset;
 }
+
+// A spatial neighbour's pixel offset, uniform in the disk of `radius` pixels (u uniform in
+// [0, 1)²), never the pixel itself. DI and GI spatial reuse share it.
+fn disk_neighbour_offset(u: vec2<f32>, radius: f32) -> vec2<i32> {
+    let r = radius * sqrt(u.x);
+    let angle = 2.0 * PI * u.y;
+    var offset = vec2<i32>(round(r * vec2<f32>(cos(angle), sin(angle))));
+    if all(offset == vec2<i32>(0)) {
+        offset = vec2<i32>(1, 0);
+    }
+    return offset;
+}

@@ -26,37 +26,36 @@ pub fn source_color(source: u32) -> Color32 {
     })
 }
 
-/// Temporal rejection reason `bit` (0..REJECT_REASON_COUNT).
-pub fn reason_color(bit: u32) -> Color32 {
-    const PALETTE: [[f32; 3]; 9] = [
-        [1.0, 0.0, 0.0],
-        [1.0, 0.5, 0.0],
-        [1.0, 0.0, 1.0],
-        [0.0, 0.6, 1.0],
-        [0.0, 1.0, 1.0],
-        [1.0, 1.0, 0.0],
-        [0.6, 0.3, 0.1],
-        [1.0, 1.0, 1.0],
-        [0.1, 0.9, 0.2],
-    ];
-    linear(PALETTE[(bit as usize).min(PALETTE.len() - 1)])
+/// The six surface and reservoir checks DI and GI share (bits 0..6), in both palettes.
+const CHECK_COLOURS: [[f32; 3]; 6] = [
+    [1.0, 0.0, 0.0],
+    [1.0, 0.5, 0.0],
+    [1.0, 0.0, 1.0],
+    [0.0, 0.6, 1.0],
+    [0.0, 1.0, 1.0],
+    [1.0, 1.0, 0.0],
+];
+
+/// Bit `bit` of a palette that starts with the shared checks and goes on with `own`.
+fn check_or_own(bit: u32, own: &[[f32; 3]; 3]) -> Color32 {
+    let bit = bit as usize;
+    let colour = match CHECK_COLOURS.get(bit) {
+        Some(shared) => *shared,
+        None => own[(bit - CHECK_COLOURS.len()).min(own.len() - 1)],
+    };
+    linear(colour)
 }
 
-/// GI rejection reason `bit` (0..GI_REJECT_REASON_COUNT), as gi_view.wgsl draws it: DI's
-/// six checks in DI's colours, then reconnection, Jacobian, occluded.
+/// Temporal rejection reason `bit` (0..REJECT_REASON_COUNT): the shared checks, then
+/// target ≤ 0 brown, target ratio white, light gone green.
+pub fn reason_color(bit: u32) -> Color32 {
+    check_or_own(bit, &[[0.6, 0.3, 0.1], [1.0, 1.0, 1.0], [0.1, 0.9, 0.2]])
+}
+
+/// GI rejection reason `bit` (0..GI_REJECT_REASON_COUNT), as gi_view.wgsl draws it: the
+/// shared checks, then reconnection violet, Jacobian white, occluded green.
 pub fn gi_reason_color(bit: u32) -> Color32 {
-    const PALETTE: [[f32; 3]; 9] = [
-        [1.0, 0.0, 0.0],
-        [1.0, 0.5, 0.0],
-        [1.0, 0.0, 1.0],
-        [0.0, 0.6, 1.0],
-        [0.0, 1.0, 1.0],
-        [1.0, 1.0, 0.0],
-        [0.55, 0.0, 1.0],
-        [1.0, 1.0, 1.0],
-        [0.1, 0.9, 0.2],
-    ];
-    linear(PALETTE[(bit as usize).min(PALETTE.len() - 1)])
+    check_or_own(bit, &[[0.55, 0.0, 1.0], [1.0, 1.0, 1.0], [0.1, 0.9, 0.2]])
 }
 
 /// The GI Jacobian view's three anchors: |J| at the window's low end, 1, the high end.
@@ -154,6 +153,7 @@ fn ramp_of(ui: &mut egui::Ui, low: &str, high: &str, color: fn(f32) -> Color32) 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use restir_render::shader_constants::{GI_REJECT_REASON_COUNT, REJECT_REASON_COUNT};
 
     #[test]
     fn palette_matches_the_shader_in_srgb() {
@@ -167,5 +167,39 @@ mod tests {
         // light_gone: (0.1, 0.9, 0.2) linear.
         assert_eq!(reason_color(8), linear([0.1, 0.9, 0.2]));
         assert_eq!(heatmap(1.0), linear([0.993, 0.906, 0.144]));
+    }
+
+    /// The `vec3<f32>(r, g, b)` entries of the palette array inside WGSL function `name`.
+    fn wgsl_palette(source: &str, name: &str) -> Vec<[f32; 3]> {
+        let body = &source[source.find(&format!("fn {name}(")).expect("the function")..];
+        let array = &body[body.find("array<").unwrap()..body.find(");").unwrap()];
+        array
+            .split("vec3<f32>(")
+            .skip(1) // what comes before the first entry
+            .map(|entry| {
+                let numbers: Vec<f32> = entry[..entry.find(')').unwrap()]
+                    .split(',')
+                    .map(|n| n.trim().parse().unwrap())
+                    .collect();
+                [numbers[0], numbers[1], numbers[2]]
+            })
+            .collect()
+    }
+
+    /// The legends' colours are the shaders' colours, read from the WGSL itself.
+    #[test]
+    fn rejection_palettes_match_the_shaders() {
+        let display = include_str!("../../../../shaders/display.wgsl");
+        let gi_view = include_str!("../../../../shaders/gi_view.wgsl");
+        let di = wgsl_palette(display, "reason_color");
+        let gi = wgsl_palette(gi_view, "gi_reason_color");
+        assert_eq!(di.len(), REJECT_REASON_COUNT);
+        assert_eq!(gi.len(), GI_REJECT_REASON_COUNT);
+        for (bit, colour) in di.into_iter().enumerate() {
+            assert_eq!(reason_color(bit as u32), linear(colour), "DI bit {bit}");
+        }
+        for (bit, colour) in gi.into_iter().enumerate() {
+            assert_eq!(gi_reason_color(bit as u32), linear(colour), "GI bit {bit}");
+        }
     }
 }

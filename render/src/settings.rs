@@ -282,8 +282,8 @@ parameter_table! {
             "Path vertices the reference shades. 1: emission seen directly + direct light at the first hit (what nee, ris and restir estimate). N: the path continues along the BSDF-sampled ray, with direct light (light sampling + BSDF sampling, balance heuristic) at each of its first N hits, so 2 adds one bounce of indirect light. Every bounce costs two more rays per sample.";
     }
     Indirect {
-        gi: bool = false, ParamKind::Bool, "ReSTIR GI",
-            "One-bounce indirect light with reservoir reuse (Ouyang et al. 2021; issue 12): one BSDF ray per pixel, its hit's outgoing direct radiance as the sample, reused over time and space through the reconnection Jacobian. The image is direct (ReSTIR DI) + indirect. Off: no GI code is compiled or run.";
+        gi: bool = false, ParamKind::Bool, "Indirect (ReSTIR GI)",
+            "One-bounce indirect light with reservoir reuse (Ouyang et al. 2021): one BSDF ray per pixel, its hit's outgoing direct radiance as the sample, reused over time and space through the reconnection Jacobian. The image is direct (ReSTIR DI) + indirect. Off: no GI code is compiled or run.";
         gi_temporal: bool = true, ParamKind::Bool, "GI temporal reuse",
             "Merge the reprojected previous-frame GI reservoir, its sample reconnected to this frame's visible point.";
         gi_spatial: bool = true, ParamKind::Bool, "GI spatial reuse",

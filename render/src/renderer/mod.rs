@@ -276,6 +276,33 @@ impl Renderer {
         );
     }
 
+    /// The same for the ReSTIR GI history (after a frame with GI): NaN and infinite
+    /// weights and positions, which the next GI temporal pass must count and drop.
+    #[doc(hidden)]
+    pub fn poison_gi_history_for_tests(&mut self) {
+        use crate::passes::gi_initial::GI_RESERVOIRS;
+        if self.targets.chain_len(&GI_RESERVOIRS) == 0 {
+            return;
+        }
+        let poisoned = GpuGiReservoir {
+            position: [f32::NAN, 0.0, f32::INFINITY],
+            normal: 0,
+            radiance: [f32::INFINITY; 3],
+            w_sum: f32::NAN,
+            weight: f32::INFINITY,
+            m: f32::NAN,
+            p_hat: 1.0,
+            packed: GpuGiReservoir::pack(crate::shader_constants::SOURCE_TEMPORAL, 0, 0),
+        };
+        let data = vec![poisoned; self.targets.pixel_count() as usize];
+        let history = self.carried.history(&GI_RESERVOIRS);
+        self.gpu.queue.write_buffer(
+            self.targets.chain(&GI_RESERVOIRS, history),
+            0,
+            bytemuck::cast_slice(&data),
+        );
+    }
+
     /// Restarts the running average (on any change that makes old frames stale).
     pub fn reset_accumulation(&mut self) {
         self.accumulated_frames = 0;

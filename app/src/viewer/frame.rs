@@ -441,7 +441,7 @@ impl Viewer {
                 self.state.scene.env_error = Some(e);
                 return;
             }
-            Ok(Loaded::Scene(scene)) => Ok(scene),
+            Ok(Loaded::Scene(scene)) => Ok(*scene),
             Err(e) => Err(e),
         };
         let uploaded = result.and_then(|mut scene| {

@@ -8,7 +8,8 @@ use restir_render::{Environment, Scene, load_environment, load_scene};
 
 /// What a background load produced.
 pub enum Loaded {
-    Scene(Scene),
+    /// Boxed: a scene is a few hundred bytes of handles, an environment much less.
+    Scene(Box<Scene>),
     Environment(Environment),
 }
 
@@ -47,7 +48,7 @@ impl SceneLoader {
     /// dropped).
     pub fn start(&mut self, spec: String) {
         self.start_with(spec, |s| {
-            load_scene(s).map(Loaded::Scene).map_err(|e| e.to_string())
+            load_scene(s).map(|s| Loaded::Scene(Box::new(s))).map_err(|e| e.to_string())
         });
     }
 

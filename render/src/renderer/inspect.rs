@@ -43,7 +43,9 @@ pub struct GiStageReservoir {
 
 impl GiStageReservoir {
     pub fn is_null(&self) -> bool {
-        (self.reservoir.packed & GI_SOURCE_MASK) == SOURCE_NULL || !(self.reservoir.weight > 0.0)
+        // A NaN weight counts as null too.
+        let usable = self.reservoir.weight > 0.0;
+        (self.reservoir.packed & GI_SOURCE_MASK) == SOURCE_NULL || !usable
     }
 
     pub fn source_name(&self) -> &'static str {

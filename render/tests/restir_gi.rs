@@ -179,6 +179,19 @@ fn gi_passes_run_only_when_gi_is_on() {
             on.last_passes()
         );
     }
+    // GI switched off and on again: the first frame back has no GI history to reuse.
+    let mut toggled = render(&scene, &["gi=true"], None, 2);
+    let mut settings = toggled.settings().clone();
+    settings.gi = false;
+    toggled.set_settings(settings.clone());
+    toggled.render_frame().unwrap();
+    settings.gi = true;
+    toggled.set_settings(settings);
+    toggled.render_frame().unwrap();
+    assert!(toggled.last_passes().contains(&"gi initial"));
+    assert!(!toggled.last_passes().contains(&"gi temporal"));
+    toggled.render_frame().unwrap();
+    assert!(toggled.last_passes().contains(&"gi temporal"));
     let mut ris = render(&scene, &["gi=true"], None, 0);
     ris.set_mode(Mode::Ris);
     ris.render_frame().unwrap();

@@ -48,7 +48,9 @@ impl SceneLoader {
     /// dropped).
     pub fn start(&mut self, spec: String) {
         self.start_with(spec, |s| {
-            load_scene(s).map(|s| Loaded::Scene(Box::new(s))).map_err(|e| e.to_string())
+            load_scene(s)
+                .map(|s| Loaded::Scene(Box::new(s)))
+                .map_err(|e| e.to_string())
         });
     }
 

@@ -16,6 +16,7 @@ use crate::gpu::timing::FrameRecorder;
 use crate::gpu::{Gpu, GpuError};
 use crate::passes::gbuffer::RasterPass;
 use crate::passes::gi_initial::GI_DEBUG;
+use crate::passes::gi_shade;
 use crate::passes::pass::Dispatch;
 use crate::passes::resources::{DEBUG, RESERVOIRS};
 use crate::passes::{ComputePass, PASS_INFO_SLOTS, PASS_INFO_STRIDE, PassDef, PassLayouts};
@@ -166,7 +167,9 @@ impl Renderer {
                 .div_ceil(REFERENCE_SAMPLES_PER_DISPATCH)
                 .min(PASS_INFO_SLOTS),
             gi: realtime && settings.gi,
-            gi_temporal: settings.gi_temporal,
+            // GI's history is only last frame's if last frame ran GI (GI switched on
+            // again, or back from the reference, starts fresh).
+            gi_temporal: settings.gi_temporal && self.last_passes.contains(&gi_shade::PASS.name),
             gi_spatial: settings.gi_spatial && settings.gi_spatial_neighbours > 0,
             gi_view: self.view.view.is_indirect(),
         };

@@ -24,6 +24,57 @@ use crate::settings::Settings;
 use crate::shader_constants::{MAX_SPATIAL_PASSES, REFERENCE_SAMPLES_PER_DISPATCH};
 use crate::view::Mode;
 
+/// What recording one step needs besides the bind group cache and the recorder (shared by
+/// a frame and a redisplay).
+struct StepContext<'a> {
+    gpu: &'a Gpu,
+    layouts: &'a PassLayouts,
+    targets: &'a crate::frame_targets::FrameTargets,
+    uniforms: &'a Uniforms<'a>,
+    variant: &'a PipelineVariant,
+    /// Groups 0 (frame) and 1 (scene).
+    groups: [&'a wgpu::BindGroup; 2],
+    triangle_count: u32,
+}
+
+impl StepContext<'_> {
+    /// Records `step` with its resolved bindings: the raster draw, or the compute pass
+    /// with its group 2 and one dispatch per `PassInfo` slot.
+    fn record(
+        &self,
+        bind_groups: &mut super::bind_groups::BindGroupCache,
+        rec: &mut FrameRecorder,
+        step: &Step,
+        bound: &[super::resolve::Bound],
+    ) {
+        let [frame, scene] = self.groups;
+        if step.pass.dispatch == Dispatch::Raster {
+            let raster = self
+                .variant
+                .raster
+                .as_ref()
+                .expect("compiled with the plan");
+            raster.record(
+                rec,
+                [frame, scene],
+                &self.targets.visibility,
+                &self.targets.depth,
+                self.triangle_count,
+            );
+            return;
+        }
+        let t = self.targets;
+        let group = bind_groups.get(self.gpu, self.layouts, t, self.uniforms, step.pass, bound);
+        let size = (t.width, t.height);
+        self.variant.passes[step.pass.name].record(
+            rec,
+            [frame, scene, &group],
+            &dynamic_offsets(step),
+            size,
+        );
+    }
+}
+
 /// The `PassInfo` dynamic offsets of a step's dispatches (slot 0 for a pass that reads
 /// `PassInfo` but names no slots).
 fn dynamic_offsets(step: &Step) -> Vec<u32> {
@@ -205,32 +256,17 @@ impl Renderer {
             display: &self.display_uniform,
             light_tiles: &self.light_tiles,
         };
+        let steps = StepContext {
+            gpu: &self.gpu,
+            layouts: &self.layouts,
+            targets: &self.targets,
+            uniforms: &uniforms,
+            variant,
+            groups: [&frame_group, &scene_group],
+            triangle_count: self.scene.triangle_count,
+        };
         for (step, r) in plan.iter().zip(&resolved.steps) {
-            if step.pass.dispatch == Dispatch::Raster {
-                variant.raster.as_ref().expect("compiled above").record(
-                    &mut rec,
-                    [&frame_group, &scene_group],
-                    &self.targets.visibility,
-                    &self.targets.depth,
-                    self.scene.triangle_count,
-                );
-            } else {
-                let group = self.bind_groups.get(
-                    &self.gpu,
-                    &self.layouts,
-                    &self.targets,
-                    &uniforms,
-                    step.pass,
-                    &r.bound,
-                );
-                let offsets = dynamic_offsets(step);
-                variant.passes[step.pass.name].record(
-                    &mut rec,
-                    [&frame_group, &scene_group, &group],
-                    &offsets,
-                    size,
-                );
-            }
+            steps.record(&mut self.bind_groups, &mut rec, step, &r.bound);
             // Repeated passes (spatial × P) are listed once.
             if dispatched.last() != Some(&step.pass.name) {
                 dispatched.push(step.pass.name);
@@ -322,27 +358,22 @@ impl Renderer {
             display: &self.display_uniform,
             light_tiles: &self.light_tiles,
         };
-        let size = (self.targets.width, self.targets.height);
         let mut rec = FrameRecorder::new(
             &self.gpu,
             &mut self.timer,
             crate::gpu::timing::TimingMode::Off,
         );
+        let steps = StepContext {
+            gpu: &self.gpu,
+            layouts: &self.layouts,
+            targets: &self.targets,
+            uniforms: &uniforms,
+            variant,
+            groups: [&self.frame_bind_group, &self.scene.bind_group],
+            triangle_count: self.scene.triangle_count,
+        };
         for (step, r) in plan.iter().zip(&resolved.steps) {
-            let group = self.bind_groups.get(
-                &self.gpu,
-                &self.layouts,
-                &self.targets,
-                &uniforms,
-                step.pass,
-                &r.bound,
-            );
-            variant.passes[step.pass.name].record(
-                &mut rec,
-                [&self.frame_bind_group, &self.scene.bind_group, &group],
-                &[],
-                size,
-            );
+            steps.record(&mut self.bind_groups, &mut rec, step, &r.bound);
         }
         rec.submit(self.frame_index, |_| {});
         self.gpu.check()

@@ -25,16 +25,12 @@ struct GiTemporalCandidate {
 
 fn gi_validate_previous(pixel: vec2<i32>, s: Surface, sp: ShadingPoint) -> GiTemporalCandidate {
     var c = GiTemporalCandidate(0u, 0u, gi_reservoir_empty(), 0.0, 0.0, Surface());
-    let size = vec2<i32>(frame.size);
-    var p = pixel;
-    if any(p < vec2<i32>(0)) || any(p >= size) || s.motion.x <= NO_MOTION {
-        if check_enabled(REJECT_OFFSCREEN) {
-            c.mask |= REJECT_OFFSCREEN;
-            return c;
-        }
-        p = clamp(p, vec2<i32>(0), size - 1);
+    let read = previous_pixel(pixel, s);
+    if read.mask != 0u {
+        c.mask |= read.mask;
+        return c;
     }
-    let prev_index = pixel_index(vec2<u32>(p));
+    let prev_index = read.index;
     let ps = prev_surfaces[prev_index];
     c.prev_surface = ps;
     if frame.history_valid == 0u || !surface_is_valid(ps) {

@@ -67,3 +67,23 @@ fn disk_neighbour_offset(u: vec2<f32>, radius: f32) -> vec2<i32> {
     }
     return offset;
 }
+
+// Where temporal reuse (DI and GI) reads the previous frame: the reprojected `pixel`, or
+// REJECT_OFFSCREEN when it left the image (or the point was behind the previous camera);
+// with that check disabled, the nearest pixel inside.
+struct PreviousPixel {
+    mask: u32,
+    index: u32,
+}
+
+fn previous_pixel(pixel: vec2<i32>, s: Surface) -> PreviousPixel {
+    let size = vec2<i32>(frame.size);
+    var p = pixel;
+    if any(p < vec2<i32>(0)) || any(p >= size) || s.motion.x <= NO_MOTION {
+        if check_enabled(REJECT_OFFSCREEN) {
+            return PreviousPixel(REJECT_OFFSCREEN, 0u);
+        }
+        p = clamp(p, vec2<i32>(0), size - 1);
+    }
+    return PreviousPixel(0u, pixel_index(vec2<u32>(p)));
+}

@@ -18,9 +18,10 @@ pub struct Uniforms<'a> {
     pub light_tiles: &'a wgpu::Buffer,
 }
 
+/// Per pass, per arrangement (looked up by slice: the common frame allocates nothing).
 #[derive(Default)]
 pub struct BindGroupCache {
-    groups: HashMap<(&'static str, Vec<Bound>), wgpu::BindGroup>,
+    groups: HashMap<&'static str, HashMap<Vec<Bound>, wgpu::BindGroup>>,
 }
 
 impl BindGroupCache {
@@ -37,12 +38,12 @@ impl BindGroupCache {
         pass: &'static PassDef,
         bound: &[Bound],
     ) -> wgpu::BindGroup {
-        if let Some(group) = self.groups.get(&(pass.name, bound.to_vec())) {
+        let arrangements = self.groups.entry(pass.name).or_default();
+        if let Some(group) = arrangements.get(bound) {
             return group.clone();
         }
         let group = create(gpu, layouts.group2(pass), pass.name, t, u, bound);
-        self.groups
-            .insert((pass.name, bound.to_vec()), group.clone());
+        arrangements.insert(bound.to_vec(), group.clone());
         group
     }
 }

@@ -281,7 +281,7 @@ impl Renderer {
     #[doc(hidden)]
     pub fn poison_gi_history_for_tests(&mut self) {
         use crate::passes::gi_initial::GI_RESERVOIRS;
-        if self.targets.chain_len(&GI_RESERVOIRS) == 0 {
+        if !self.carried.has_history(&GI_RESERVOIRS) {
             return;
         }
         let poisoned = GpuGiReservoir {

@@ -67,9 +67,9 @@ impl Renderer {
         }
     }
 
-    /// The last frame's final ReSTIR GI reservoirs (empty before GI has run).
+    /// The last frame's final ReSTIR GI reservoirs (empty unless the last frame ran GI).
     pub fn read_gi_reservoirs(&self) -> Vec<crate::gpu_types::GpuGiReservoir> {
-        if self.targets.chain_len(&GI_RESERVOIRS) == 0 {
+        if !self.carried.has_history(&GI_RESERVOIRS) {
             return Vec::new();
         }
         let final_buffer = self.carried.history(&GI_RESERVOIRS);

@@ -15,8 +15,7 @@ use crate::effects::{Effect, EffectSet};
 use crate::gpu::timing::FrameRecorder;
 use crate::gpu::{Gpu, GpuError};
 use crate::passes::gbuffer::RasterPass;
-use crate::passes::gi_initial::GI_DEBUG;
-use crate::passes::gi_shade;
+use crate::passes::gi_initial::{GI_DEBUG, GI_RESERVOIRS};
 use crate::passes::pass::Dispatch;
 use crate::passes::resources::{DEBUG, RESERVOIRS};
 use crate::passes::{ComputePass, PASS_INFO_SLOTS, PASS_INFO_STRIDE, PassDef, PassLayouts};
@@ -218,9 +217,9 @@ impl Renderer {
                 .div_ceil(REFERENCE_SAMPLES_PER_DISPATCH)
                 .min(PASS_INFO_SLOTS),
             gi: realtime && settings.gi,
-            // GI's history is only last frame's if last frame ran GI (GI switched on
-            // again, or back from the reference, starts fresh).
-            gi_temporal: settings.gi_temporal && self.last_passes.contains(&gi_shade::PASS.name),
+            // A chain has a history only if last frame used it (GI switched on again, or
+            // back from the reference, starts fresh).
+            gi_temporal: settings.gi_temporal && self.carried.has_history(&GI_RESERVOIRS),
             gi_spatial: settings.gi_spatial && settings.gi_spatial_neighbours > 0,
             gi_view: self.view.view.is_indirect(),
         };
@@ -314,7 +313,8 @@ impl Renderer {
 
         // Hand over to the next frame.
         let final_reservoirs = resolved.finals.get(RESERVOIRS.name).copied();
-        self.carried.history.extend(resolved.finals);
+        // Only the chains this frame used carry a history into the next.
+        self.carried.history = resolved.finals;
         self.carried.surfaces = resolved.surfaces;
         self.carried.surface_buffers = self.targets.surfaces.len();
         self.history_valid = realtime;

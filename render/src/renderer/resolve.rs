@@ -25,7 +25,7 @@ pub enum Bound {
 /// Last frame's state the resolution starts from.
 #[derive(Clone, Debug, Default)]
 pub struct Carried {
-    /// Per chain, the buffer holding last frame's final reservoirs (0 if none yet).
+    /// Per chain last frame used, the buffer holding its final reservoirs.
     pub history: HashMap<&'static str, usize>,
     /// The surface buffer last frame wrote.
     pub surfaces: usize,
@@ -34,6 +34,11 @@ pub struct Carried {
 }
 
 impl Carried {
+    /// Whether last frame left `chain` a history (it used the chain).
+    pub fn has_history(&self, chain: &Chain) -> bool {
+        self.history.contains_key(chain.name)
+    }
+
     /// The buffer of `chain` holding last frame's final reservoirs.
     pub fn history(&self, chain: &Chain) -> usize {
         self.history.get(chain.name).copied().unwrap_or(0)

@@ -105,8 +105,11 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             // Visibility reuse (ReSTIR paper §4, RTXDI "initial visibility"): one shadow
             // ray for the survivor; an occluded one becomes a zero-contribution sample, so
             // reuse never spreads samples that are in shadow where they were found.
+            // With mis_visibility this is the canonical sample's own V (settings.rs turns the
+            // flag on): the reservoir is then a sample of the target p̂·V.
             if (params.flags & PARAM_FLAG_INITIAL_VISIBILITY) != 0u && !reservoir_is_null(r) {
                 let lp = light_point(r.light, r.uv);
+                add_stat(STAT_SHADOW_RAYS + PASS_INITIAL, 1u);
                 if !light_visible(sp, lp, light_contribution(sp, lp)) {
                     r = reservoir_empty();
                 }

@@ -40,7 +40,19 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             let c = light_contribution(sp, lp);
             d.weight = r.weight;
             d.p_hat = target_pdf(c);
-            if d.p_hat > 0.0 && light_visible(sp, lp, c) {
+            // With visibility in the target (mis_visibility) every survivor was traced
+            // from this very point when it was picked (initial visibility, temporal and
+            // spatial reuse): the same ray again would give the same answer.
+            var visible = d.p_hat > 0.0;
+            var trace = (params.flags & PARAM_FLAG_MIS_VISIBILITY) == 0u;
+#ifdef TEST_TRACE_SURVIVOR
+            trace = true;  // test only: trace the ray the shortcut saves (it must change nothing)
+#endif
+            if visible && trace {
+                add_stat(STAT_SHADOW_RAYS + PASS_SHADE, 1u);
+                visible = light_visible(sp, lp, c);
+            }
+            if visible {
                 color += c.value * r.weight;
             }
 #ifdef ENVIRONMENT

@@ -1,7 +1,11 @@
 // Spatial reuse (restir-notes.md §3): K neighbours in a disk of radius R pixels, each
 // checked for depth / normal / material compatibility (its own rejection bits, apart
 // from the temporal ones), merged with the neighbour's M (1/M) or with pairwise MIS
-// around this pixel's reservoir (unbiased); M is capped after the pass. Reads one
+// around this pixel's reservoir (unbiased); M is capped after the pass. Under pairwise MIS
+// only the G-buffer checks drop a neighbour (reuse.wgsl, rejecting_checks): a null
+// neighbour or one whose sample has target 0 here is merged with its confidence and
+// contributes nothing. With mis_visibility every pairwise term is p̂·V: each neighbour's
+// sample is traced from here, and this pixel's sample from each neighbour. Reads one
 // reservoir buffer and writes another, so neighbours never see half-updated data.
 #include "common/frame_bindings.wgsl"
 #include "common/stats_bindings.wgsl"
@@ -70,7 +74,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             if !reservoir_is_null(nr) && check_enabled(REJECT_TARGET) && target_at(sp, nr.light, nr.uv) <= 0.0 {
                 mask |= REJECT_TARGET;
             }
-            if mask == 0u {
+            if rejecting_checks(mask) == 0u {
                 accepted[n_accepted] = q_index;
                 n_accepted++;
                 c_total += nr.m;
@@ -95,16 +99,23 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
 
     // 3. Merge.
     var r = reservoir_empty();
-    if (params.flags & PARAM_FLAG_PAIRWISE) != 0u {
+    var rays = 0u;
+    if pairwise_mis() {
         var m_canonical = confidence_share(canonical.m, c_total);
         for (var i = 0u; i < n_accepted; i++) {
             let q_index = accepted[i];
             let nr = load_neighbour(q_index);
-            let target_here = target_at(sp, nr.light, nr.uv);
+            var target_here = target_at(sp, nr.light, nr.uv);
+            if target_here > 0.0 && mis_visibility() && !sample_visible(sp, nr.light, nr.uv, false, &rays) {
+                target_here = 0.0;
+            }
             let m_i = pairwise_mis_noncanonical(c_total, canonical.m, nr.m, nr.p_hat, target_here);
             reservoir_merge_mis(&r, nr, target_here, m_i, source_with_age(SOURCE_SPATIAL, reservoir_age(nr)), rand_f32(&rng));
             let neighbour_sp = shading_point_from_surface(surfaces[q_index], frame.camera_position);
-            let neighbour_at_canonical = target_at(neighbour_sp, canonical.light, canonical.uv);
+            var neighbour_at_canonical = target_at(neighbour_sp, canonical.light, canonical.uv);
+            if neighbour_at_canonical > 0.0 && mis_visibility() && !sample_visible(neighbour_sp, canonical.light, canonical.uv, false, &rays) {
+                neighbour_at_canonical = 0.0;
+            }
             m_canonical += pairwise_mis_canonical_term(c_total, canonical.m, nr.m, canonical.p_hat, neighbour_at_canonical);
         }
         reservoir_merge_mis(&r, canonical, canonical.p_hat, m_canonical, canonical.source, rand_f32(&rng));
@@ -128,6 +139,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         count_stat(STAT_NONFINITE + PASS_SPATIAL);
         r = reservoir_empty();
     }
+    add_stat(STAT_SHADOW_RAYS + PASS_SPATIAL, rays);
     reservoirs_out[index] = r;
     d.source = reservoir_source(r);
     d.m_spatial = r.m;

@@ -2,6 +2,8 @@
 // validate the previous surface and reservoir (every failed check sets its own bit of the
 // rejection mask), re-evaluate the target here, and merge the previous sample with weight
 // p̂(x, y_prev) · W_prev · min(M_prev, M_cap) (1/M) or a pairwise MIS weight (unbiased).
+// Under pairwise MIS only the G-buffer checks drop the history (reuse.wgsl,
+// rejecting_checks); the sample checks are counted and the history stays a domain.
 #include "common/frame_bindings.wgsl"
 #include "common/stats_bindings.wgsl"
 #include "common/shading_point.wgsl"
@@ -50,6 +52,7 @@ fn validate_previous(pixel: vec2<i32>, s: Surface, sp: ShadingPoint) -> Temporal
     // Light identity is the table slot (fixed for the animation); a slot with select_pdf 0
     // is a light that is off now. Its sample cannot be reused, whatever the checks say:
     // not a switchable heuristic, so not behind check_enabled.
+    // Under pairwise MIS the history still takes part: its sample's target here stays 0.
     if !prev_null && (prev.light >= arrayLength(&lights) || lights[prev.light].select_pdf <= 0.0) {
         c.mask |= REJECT_LIGHT_GONE;
         return c;
@@ -59,14 +62,62 @@ fn validate_previous(pixel: vec2<i32>, s: Surface, sp: ShadingPoint) -> Temporal
     if c.target_here <= 0.0 && check_enabled(REJECT_TARGET) {
         c.mask |= REJECT_TARGET;
     }
-    if !prev_null && params.target_ratio_clamp > 0.0 && check_enabled(REJECT_TARGET_RATIO) {
-        let ratio = c.target_here / prev.p_hat;
-        let clamp_value = params.target_ratio_clamp;
-        if !(ratio >= 1.0 / clamp_value && ratio <= clamp_value) {
-            c.mask |= REJECT_TARGET_RATIO;
-        }
+    if !prev_null && check_enabled(REJECT_TARGET_RATIO) && !target_ratio_in_window(c.target_here, prev.p_hat) {
+        c.mask |= REJECT_TARGET_RATIO;
     }
     return c;
+}
+
+// Pairwise MIS of this pixel's initial reservoir (canonical) and the history, which is a
+// domain whatever its sample holds: a null sample, a target of 0 here or a light that went
+// off contributes nothing, and its confidence m_prev still counts in c_total. Every term
+// uses the same targets T_here = p̂·V here and T_prev = p̂·V at the previous pixel (V only
+// with mis_visibility), and the target-ratio clamp is a window on T_here / T_prev applied
+// to both samples alike: outside it the history's weight is 0 and the canonical keeps its
+// share, so the weights still sum to one (unbiased; a rejection of the history sample alone
+// is not). `rays` counts the shadow rays.
+fn merge_pairwise(sp: ShadingPoint, current: Reservoir, cand: TemporalCandidate, m_prev: f32, temporal_source: u32, u_current: f32, u_prev: f32, rays: ptr<function, u32>) -> Reservoir {
+    let prev = cand.reservoir;
+    let c_total = current.m + m_prev;
+
+    // The history's sample y_p: T_here(y_p) and its weight. T_prev(y_p) is the stored p̂.
+    var target_here = cand.target_here;
+    if !target_ratio_in_window(target_here, prev.p_hat) {
+        target_here = 0.0;
+    }
+    if target_here > 0.0 && mis_visibility() && !sample_visible(sp, prev.light, prev.uv, false, rays) {
+        target_here = 0.0;
+    }
+    let m_temporal = pairwise_mis_noncanonical(c_total, current.m, m_prev, prev.p_hat, target_here);
+
+    // The canonical sample y_c at the previous pixel: the previous surface and, under
+    // animation, last frame's lights (a light switched on since then has p̂ 0 there, so
+    // the canonical sample keeps its full weight). Current lights there (previous_lights
+    // off) under-weight newly lit samples: a dark lag.
+    let prev_sp = shading_point_from_surface(cand.prev_surface, frame.prev_camera_position);
+    var previous = false;
+#ifdef ANIMATION
+    previous = (params.flags & PARAM_FLAG_PREVIOUS_LIGHTS) != 0u;
+#endif
+    var prev_at_current = 0.0;
+    if current.light != NO_LIGHT {
+        prev_at_current = target_pdf(light_contribution(prev_sp, light_point_in_frame(current.light, current.uv, previous)));
+    }
+    if !target_ratio_in_window(current.p_hat, prev_at_current) {
+        prev_at_current = 0.0;
+    }
+    if prev_at_current > 0.0 && mis_visibility() && !sample_visible(prev_sp, current.light, current.uv, previous, rays) {
+        prev_at_current = 0.0;
+    }
+    let m_current = confidence_share(current.m, c_total)
+        + pairwise_mis_canonical_term(c_total, current.m, m_prev, current.p_hat, prev_at_current);
+
+    var r = reservoir_empty();
+    reservoir_merge_mis(&r, current, current.p_hat, m_current, current.source, u_current);
+    reservoir_merge_mis(&r, prev, target_here, m_temporal, temporal_source, u_prev);
+    reservoir_finalize(&r, 1.0);
+    r.m = c_total;
+    return r;
 }
 
 @compute @workgroup_size(8, 8)
@@ -89,12 +140,13 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     var cand: TemporalCandidate;
     if (params.flags & PARAM_FLAG_PERMUTATION) != 0u {
         cand = validate_previous(permute_pixel(reprojected), s, sp);
-        if cand.mask != 0u {
+        if rejecting_checks(cand.mask) != 0u {
             // Permuted reads fail at object edges; retry the plain reprojection (Solari #21722).
+            // Under pairwise MIS only the G-buffer decides which pixel is read.
             count_stat(STAT_FALLBACK_TRIED);
             d.flags |= DEBUG_FLAG_FALLBACK_TRIED;
             cand = validate_previous(reprojected, s, sp);
-            if cand.mask == 0u {
+            if rejecting_checks(cand.mask) == 0u {
                 count_stat(STAT_FALLBACK_USED);
                 d.flags |= DEBUG_FLAG_FALLBACK_USED;
             }
@@ -106,7 +158,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     d.temporal_mask = cand.mask;
 
     var r = current;
-    if cand.mask == 0u {
+    var rays = 0u;
+    if rejecting_checks(cand.mask) == 0u {
         count_stat(STAT_TEMPORAL_ACCEPTED);
         d.flags |= DEBUG_FLAG_TEMPORAL_MERGED;
         let m_prev = min(cand.reservoir.m, params.m_cap);
@@ -118,33 +171,10 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         let u_prev = rand_f32(&rng);
         // A history sample that survives is one frame older.
         let temporal_source = source_with_age(SOURCE_TEMPORAL, reservoir_age(cand.reservoir) + 1u);
-        r = reservoir_empty();
-        if (params.flags & PARAM_FLAG_PAIRWISE) != 0u {
-            // Pairwise MIS with the current (initial) reservoir as the canonical sample.
-            let c_total = current.m + m_prev;
-            let prev_sp = shading_point_from_surface(cand.prev_surface, frame.prev_camera_position);
-            // The previous pixel's target for the current sample: the previous surface
-            // and, under animation, last frame's lights (a light switched on since then has
-            // p̂ 0 there, so the canonical sample keeps its full weight). Current lights
-            // here (previous_lights off) under-weight newly lit samples: a dark lag.
-            var prev_at_current = 0.0;
-#ifdef ANIMATION
-            if (params.flags & PARAM_FLAG_PREVIOUS_LIGHTS) != 0u {
-                prev_at_current = previous_target_at(prev_sp, current.light, current.uv);
-            } else {
-                prev_at_current = target_at(prev_sp, current.light, current.uv);
-            }
-#else
-            prev_at_current = target_at(prev_sp, current.light, current.uv);
-#endif
-            let m_current = confidence_share(current.m, c_total)
-                + pairwise_mis_canonical_term(c_total, current.m, m_prev, current.p_hat, prev_at_current);
-            let m_temporal = pairwise_mis_noncanonical(c_total, current.m, m_prev, cand.reservoir.p_hat, cand.target_here);
-            reservoir_merge_mis(&r, current, current.p_hat, m_current, current.source, u_current);
-            reservoir_merge_mis(&r, cand.reservoir, cand.target_here, m_temporal, temporal_source, u_prev);
-            reservoir_finalize(&r, 1.0);
-            r.m = c_total;
+        if pairwise_mis() {
+            r = merge_pairwise(sp, current, cand, m_prev, temporal_source, u_current, u_prev, &rays);
         } else {
+            r = reservoir_empty();
             reservoir_merge(&r, current, current.p_hat, current.m, current.source, u_current);
             reservoir_merge(&r, cand.reservoir, cand.target_here, m_prev, temporal_source, u_prev);
             reservoir_finalize(&r, r.m);
@@ -159,6 +189,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         r = reservoir_empty();
         r.m = 1.0;
     }
+    add_stat(STAT_SHADOW_RAYS + PASS_TEMPORAL, rays);
     reservoirs_out[index] = r;
     d.source = reservoir_source(r);
     d.m_temporal = r.m;

@@ -3,21 +3,10 @@
 //! `params` list what exists; `render` writes what it promises.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn viewer(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_restir-viewer"))
-        .args(args)
-        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
-        .output()
-        .expect("run restir-viewer")
-}
-
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("restir-cli-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
+mod cli_support;
+use cli_support::{temp_dir, viewer};
 
 /// The error line (stderr lines that are not the Vulkan loader's noise).
 fn error_lines(out: &Output) -> Vec<String> {

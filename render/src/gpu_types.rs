@@ -284,7 +284,9 @@ pub struct GpuDisplay {
     pub spatial_tries: u32,
     /// Radiance scale of the comparison image (the difference view's B side).
     pub comparison_scale: f32,
-    pub _pad: [u32; 3],
+    /// The reference's own per-pixel noise (luma RMSE), added to the bias view's noise.
+    pub reference_noise: f32,
+    pub _pad: [u32; 2],
 }
 
 /// Uniform of one spatial pass: which pass it is (for decorrelated random numbers).

@@ -45,6 +45,29 @@ pub fn luma_ratio(avg: &LinearImage, reference: &LinearImage) -> Result<f64> {
     })
 }
 
+/// (mean luminance(frame) − mean luminance(reference)) / mean luminance(reference): the
+/// signed energy bias of one frame (or of an average), 0 = none, negative = too dark. 0 when
+/// both are black.
+pub fn signed_bias(frame: &LinearImage, reference: &LinearImage) -> Result<f64> {
+    Ok(luma_ratio(frame, reference)? - 1.0)
+}
+
+/// A reference pixel counts as lit above this fraction of the reference's mean luminance.
+pub const LIT_FLOOR: f64 = 0.01;
+/// A frame pixel is black where its luminance is below this fraction of the reference's.
+pub const BLACK_FRACTION: f64 = 0.05;
+
+/// The fraction of all pixels that are black in `frame` (luminance below
+/// [`BLACK_FRACTION`] of the reference's) where the reference is lit (above [`LIT_FLOOR`] of
+/// its mean): the speckles of a pixel that picked a sample it cannot see (issue 18).
+pub fn black_pixel_fraction(frame: &LinearImage, reference: &LinearImage) -> Result<f64> {
+    let lit = LIT_FLOOR * mean_over_pixels(frame, reference, |_, r| luma(r))?;
+    mean_over_pixels(frame, reference, |x, r| {
+        let truth = luma(r);
+        (truth > lit && luma(x) < BLACK_FRACTION * truth) as u8 as f64
+    })
+}
+
 /// Relative MSE: mean over pixels and channels of (a − r)² / (r² + [`REL_MSE_EPSILON`]).
 pub fn rel_mse(a: &LinearImage, reference: &LinearImage) -> Result<f64> {
     mean_over_pixels(a, reference, |x, r| {
@@ -124,6 +147,8 @@ pub struct SequenceMetrics {
     count: Vec<u32>,
     per_frame_luma_rmse: Vec<f64>,
     per_frame_stability: Vec<f64>,
+    per_frame_signed_bias: Vec<f64>,
+    per_frame_black_fraction: Vec<f64>,
     non_finite_pixels: usize,
 }
 
@@ -138,6 +163,13 @@ pub struct SequenceReport {
     pub accumulated_rgb_rmse: f64,
     /// Energy bias of the running average; 1.0 = none.
     pub accumulated_luma_ratio: f64,
+    /// Signed bias: per frame (mean luminance − the reference's) / the reference's, averaged
+    /// over frames (0 = none; the same as luma ratio − 1 of the average for a still camera,
+    /// and the honest figure for a moving one, each frame against its own reference).
+    pub mean_signed_bias: f64,
+    /// Per frame, the fraction of pixels black where the reference is lit
+    /// ([`black_pixel_fraction`]), averaged over frames.
+    pub mean_black_pixel_fraction: f64,
     pub per_frame_luma_rmse: Vec<f64>,
     /// `frames − 1` entries: frame i+1 against frame i.
     pub per_frame_stability_rmse: Vec<f64>,
@@ -155,6 +187,8 @@ impl SequenceMetrics {
             count: vec![0; n],
             per_frame_luma_rmse: Vec::new(),
             per_frame_stability: Vec::new(),
+            per_frame_signed_bias: Vec::new(),
+            per_frame_black_fraction: Vec::new(),
             non_finite_pixels: 0,
         }
     }
@@ -162,6 +196,10 @@ impl SequenceMetrics {
     pub fn push(&mut self, frame: &LinearImage) -> Result<()> {
         self.per_frame_luma_rmse
             .push(luma_rmse(frame, &self.reference)?);
+        self.per_frame_signed_bias
+            .push(signed_bias(frame, &self.reference)?);
+        self.per_frame_black_fraction
+            .push(black_pixel_fraction(frame, &self.reference)?);
         if let Some(previous) = &self.previous {
             self.per_frame_stability.push(luma_rmse(frame, previous)?);
         }
@@ -215,6 +253,8 @@ impl SequenceMetrics {
             mean_stability_rmse: mean(&self.per_frame_stability),
             accumulated_rgb_rmse: rgb_rmse(&accumulated, &self.reference).expect(same_size),
             accumulated_luma_ratio: luma_ratio(&accumulated, &self.reference).expect(same_size),
+            mean_signed_bias: mean(&self.per_frame_signed_bias),
+            mean_black_pixel_fraction: mean(&self.per_frame_black_fraction),
             per_frame_luma_rmse: self.per_frame_luma_rmse.clone(),
             per_frame_stability_rmse: self.per_frame_stability.clone(),
             non_finite_pixels: self.non_finite_pixels,

@@ -240,6 +240,10 @@ fn clamp_unit(x: f32) -> f32 {
 #[cfg(test)]
 mod tests;
 
+/// One pairwise-MIS reuse step of direct light with the rules of the shaders: which
+/// candidates take part, windows and visibility in the targets (issue 18).
+pub mod pairwise_reuse;
+
 /// ReSTIR GI: the GI sample and reservoir, its target, merges and one reuse step.
 pub mod gi;
 /// ReSTIR GI's reconnection shift: the Jacobian, its singularities and its window.

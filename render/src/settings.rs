@@ -233,7 +233,7 @@ parameter_table! {
         depth_threshold: f32 = 0.1, ParamKind::Float { min: 0.0, max: 1.0 }, "Depth threshold",
             "Reject when the world-position distance (temporal) or depth difference (spatial) exceeds this fraction of the view depth.";
         target_ratio_clamp: f32 = 10.0, ParamKind::Float { min: 1.0, max: 1e6 }, "Target-ratio clamp",
-            "Reject the temporal sample when p̂(x, y_prev) / p̂(x_prev, y_prev) is outside [1/clamp, clamp]. 1 rejects any change of target.";
+            "1/M: reject the temporal sample when p̂(x, y_prev) / p̂(x_prev, y_prev) is outside [1/clamp, clamp]; 1 rejects any change of target. Pairwise MIS: a window on that ratio for both samples alike — outside it the history's sample gets weight 0, and where this pixel's own sample is outside it the pixel keeps the history's share — so the weights still sum to one and the clamp stays unbiased (a rejection of the history alone would not).";
         permutation: bool = true, ParamKind::Bool, "Permutation sampling",
             "Read the previous reservoir through a per-frame 4×4 pixel permutation to decorrelate neighbours; fall back to the plain reprojected pixel when that read fails validation.";
         check_offscreen: bool = true, ParamKind::Bool, "Check: off-screen",
@@ -247,11 +247,11 @@ parameter_table! {
         check_depth: bool = true, ParamKind::Bool, "Check: position / depth",
             "Reject when positions (temporal) or depths (spatial) differ by more than the depth threshold.";
         check_reservoir: bool = true, ParamKind::Bool, "Check: reservoir null",
-            "Reject a previous or neighbouring reservoir that holds no sample.";
+            "1/M: reject a previous or neighbouring reservoir that holds no sample. Pairwise MIS: counted, not rejected (a null sample is a sample of its domain: it contributes nothing, its M counts).";
         check_target: bool = true, ParamKind::Bool, "Check: target > 0",
-            "Reject the temporal sample when its target re-evaluated here is zero.";
+            "1/M: reject a temporal or spatial sample whose target re-evaluated here is zero. Pairwise MIS: counted, not rejected (it contributes nothing, its domain's M counts; rejecting it made the image brighter).";
         check_target_ratio: bool = true, ParamKind::Bool, "Check: target ratio",
-            "Apply the target-ratio clamp (off disables the test whatever the clamp).";
+            "Apply the target-ratio clamp (off disables the test whatever the clamp; under pairwise MIS the clamp is an unbiased window, see the clamp).";
         camera_cut: f32 = 0.25, ParamKind::Float { min: 0.0, max: 100.0 }, "Camera cut distance",
             "A camera jump longer than this fraction of the scene size in one frame is a cut: history is dropped. 0 treats every move as a cut.";
     }
@@ -270,6 +270,8 @@ parameter_table! {
     Resampling {
         bias_correction: BiasCorrection = BiasCorrection::Pairwise, ParamKind::Choice(BIAS_CORRECTION_NAMES), "Bias correction",
             "pairwise (default): defensive pairwise MIS with the pixel's own reservoir as canonical (unbiased, one extra target evaluation per neighbour, ~3 % of the frame). one-over-m: 1/M weights with rejection (biased: darker where reused samples are occluded or outside a narrow lobe; fast).";
+        mis_visibility: bool = true, ParamKind::Bool, "MIS visibility",
+            "Pairwise: the target is p̂·V (visibility included) at every pixel and in every MIS term, as unbiased reuse of visibility-tested samples requires (RTXDI's ray-traced bias correction): each reused sample is traced from here before it can be picked, this pixel's sample from each spatial neighbour and from the previous pixel (against this frame's geometry). Implies initial visibility; shading then traces no ray (the survivor is known visible). Costs 2 shadow rays per spatial neighbour and 2 per temporal merge. Off: unshadowed MIS terms: darker where neighbours are shadowed differently (sun-lit Cornell box −5 %) and black speckles where a pixel picks a sample it cannot see.";
         previous_lights: bool = true, ParamKind::Bool, "Previous-frame lights",
             "Animated scenes, pairwise MIS: evaluate this pixel's own (canonical) sample at the previous pixel with last frame's lights — positions, emission, punctual records — as unbiasedness requires. Off: with the current lights, a common shortcut; then a light switched on stays too dark for a few frames (its new samples are weighted as if the history could have found them). Static scenes: no difference.";
     }
@@ -456,7 +458,10 @@ impl Settings {
         if self.jitter {
             flags |= PARAM_FLAG_JITTER;
         }
-        if self.initial_visibility {
+        if self.visibility_in_target() {
+            flags |= PARAM_FLAG_MIS_VISIBILITY;
+        }
+        if self.traces_initial_visibility() {
             flags |= PARAM_FLAG_INITIAL_VISIBILITY;
         }
         flags |= self.gi_flags();
@@ -493,6 +498,19 @@ impl Settings {
             max_bounces: self.reference_bounces(),
             _pad: [0; 3],
         }
+    }
+
+    /// Whether the pairwise target includes visibility (`mis_visibility`; 1/M has no MIS
+    /// terms to put it in).
+    pub fn visibility_in_target(&self) -> bool {
+        self.mis_visibility && self.bias_correction == BiasCorrection::Pairwise
+    }
+
+    /// Whether the initial pass traces its survivor's shadow ray: `initial_visibility`, or
+    /// visibility in the target, which needs the canonical sample's own V whatever
+    /// `initial_visibility` says.
+    pub fn traces_initial_visibility(&self) -> bool {
+        self.initial_visibility || self.visibility_in_target()
     }
 
     /// The Indirect stage's `PARAM_FLAG_GI_*` bits of `GpuParams::flags`.

@@ -21,6 +21,12 @@ pub const REJECT_REASON_COUNT: usize = 9;
 /// Every temporal rejection reason (the rejection view's default reason mask; its
 /// spatial part is a count of rejected neighbours, not a mask).
 pub const REJECT_TEMPORAL_REASONS: u32 = (1 << REJECT_REASON_COUNT) - 1;
+/// The checks that read the G-buffer only (the candidate's surface, never its sample).
+/// Under pairwise MIS only these decide whether a temporal or spatial candidate takes part
+/// (issue 18); the others (reservoir null, target 0, target ratio, light gone) look at the
+/// sample and are counted, not acted on: the candidate stays in the MIS as a domain.
+pub const REJECT_SURFACE_CHECKS: u32 =
+    REJECT_OFFSCREEN | REJECT_SURFACE | REJECT_MATERIAL | REJECT_NORMAL | REJECT_DEPTH;
 
 /// Human names of the rejection bits, in bit order (stats JSON keys and UI legend).
 pub const REJECT_REASON_NAMES: [&str; REJECT_REASON_COUNT] = [
@@ -64,6 +70,9 @@ pub const PARAM_FLAG_INITIAL_VISIBILITY: u32 = 1 << 3;
 /// Pairwise MIS evaluates the canonical sample at the previous pixel with last frame's
 /// lights (`previous_lights`; only compiled in for animated scenes).
 pub const PARAM_FLAG_PREVIOUS_LIGHTS: u32 = 1 << 10;
+/// Pairwise MIS with visibility in the target (`mis_visibility`): every pairwise term is
+/// p̂·V, so reuse traces the shadow rays the MIS weights need and shading traces none.
+pub const PARAM_FLAG_MIS_VISIBILITY: u32 = 1 << 11;
 
 /// Passes that count non-finite values (issue "hard cases": a GPU-side guard).
 pub const PASS_GBUFFER: u32 = 0;
@@ -100,7 +109,10 @@ pub const STAT_GI_NONFINITE: u32 = STAT_SPATIAL_REJECT + REJECT_REASON_COUNT as 
 pub const STAT_GI_TEMPORAL_REJECT: u32 = STAT_GI_NONFINITE + GI_GUARDED_PASS_NAMES.len() as u32;
 pub const STAT_GI_SPATIAL_REJECT: u32 = STAT_GI_TEMPORAL_REJECT + GI_REJECT_REASON_COUNT as u32;
 pub const STAT_GI_TEMPORAL_ACCEPTED: u32 = STAT_GI_SPATIAL_REJECT + GI_REJECT_REASON_COUNT as u32;
-pub const STAT_COUNT: u32 = STAT_GI_TEMPORAL_ACCEPTED + 1;
+/// Shadow rays traced by each DI pass, at STAT_SHADOW_RAYS + PASS_* (GUARDED_PASS_NAMES
+/// order; the reference's rays are not counted), summed over pixels.
+pub const STAT_SHADOW_RAYS: u32 = STAT_GI_TEMPORAL_ACCEPTED + 1;
+pub const STAT_COUNT: u32 = STAT_SHADOW_RAYS + GUARDED_PASS_NAMES.len() as u32;
 
 /// The GI passes that count non-finite values (at STAT_GI_NONFINITE + id).
 pub const GI_PASS_INITIAL: u32 = 0;
@@ -169,6 +181,18 @@ pub const VIEW_GI_SOURCE: u32 = 13;
 pub const VIEW_GI_M: u32 = 14;
 pub const VIEW_GI_REJECTION: u32 = 15;
 pub const VIEW_GI_JACOBIAN: u32 = 16;
+pub const VIEW_BIAS: u32 = 17;
+/// Frames per batch mean of the bias view's noise estimate (moments.wgsl): long enough to
+/// hold most of the frame-to-frame correlation at the default M cap of 20, short enough
+/// that a few hundred frames give a usable spread.
+pub const BIAS_BATCH: u32 = 16;
+/// The bias view paints a pixel when |mean − reference| exceeds this many standard errors
+/// (two-sided false alarm 0.3 % for Gaussian noise).
+pub const BIAS_SIGNIFICANCE: f32 = 3.0;
+/// … and by more than this fraction of the reference: smaller differences are white in its
+/// palette anyway, and the reference's noise, known only as an image-wide RMSE, is larger
+/// than that in its brightest pixels.
+pub const BIAS_NEGLIGIBLE: f32 = 0.01;
 
 pub const TONEMAP_ACES: u32 = 0;
 pub const TONEMAP_REINHARD: u32 = 1;
@@ -250,6 +274,7 @@ pub fn wgsl_prelude() -> String {
         ("REJECT_TARGET_RATIO", REJECT_TARGET_RATIO),
         ("REJECT_LIGHT_GONE", REJECT_LIGHT_GONE),
         ("REJECT_REASON_COUNT", REJECT_REASON_COUNT as u32),
+        ("REJECT_SURFACE_CHECKS", REJECT_SURFACE_CHECKS),
         ("SOURCE_NULL", SOURCE_NULL),
         ("SOURCE_INITIAL", SOURCE_INITIAL),
         ("SOURCE_TEMPORAL", SOURCE_TEMPORAL),
@@ -274,6 +299,7 @@ pub fn wgsl_prelude() -> String {
             PARAM_FLAG_INITIAL_VISIBILITY,
         ),
         ("PARAM_FLAG_PREVIOUS_LIGHTS", PARAM_FLAG_PREVIOUS_LIGHTS),
+        ("PARAM_FLAG_MIS_VISIBILITY", PARAM_FLAG_MIS_VISIBILITY),
         ("PASS_GBUFFER", PASS_GBUFFER),
         ("PASS_INITIAL", PASS_INITIAL),
         ("PASS_TEMPORAL", PASS_TEMPORAL),
@@ -296,6 +322,7 @@ pub fn wgsl_prelude() -> String {
         ("STAT_GI_TEMPORAL_REJECT", STAT_GI_TEMPORAL_REJECT),
         ("STAT_GI_SPATIAL_REJECT", STAT_GI_SPATIAL_REJECT),
         ("STAT_GI_TEMPORAL_ACCEPTED", STAT_GI_TEMPORAL_ACCEPTED),
+        ("STAT_SHADOW_RAYS", STAT_SHADOW_RAYS),
         ("GI_PASS_INITIAL", GI_PASS_INITIAL),
         ("GI_PASS_TEMPORAL", GI_PASS_TEMPORAL),
         ("GI_PASS_SPATIAL", GI_PASS_SPATIAL),
@@ -335,6 +362,8 @@ pub fn wgsl_prelude() -> String {
         ("VIEW_GI_M", VIEW_GI_M),
         ("VIEW_GI_REJECTION", VIEW_GI_REJECTION),
         ("VIEW_GI_JACOBIAN", VIEW_GI_JACOBIAN),
+        ("VIEW_BIAS", VIEW_BIAS),
+        ("BIAS_BATCH", BIAS_BATCH),
         ("TONEMAP_ACES", TONEMAP_ACES),
         ("TONEMAP_REINHARD", TONEMAP_REINHARD),
         ("TONEMAP_CLAMP", TONEMAP_CLAMP),
@@ -366,6 +395,8 @@ pub fn wgsl_prelude() -> String {
         ("GI_MIN_DISTANCE_SQ", GI_MIN_DISTANCE_SQ),
         ("GI_MAX_DISTANCE_SQ", GI_MAX_DISTANCE_SQ),
         ("GI_MIN_COS", GI_MIN_COS),
+        ("BIAS_SIGNIFICANCE", BIAS_SIGNIFICANCE),
+        ("BIAS_NEGLIGIBLE", BIAS_NEGLIGIBLE),
     ] {
         out.push_str(&format!("const {name}: f32 = {value:e};\n"));
     }
@@ -405,6 +436,7 @@ mod stream_tests {
             PARAM_FLAG_JITTER,
             PARAM_FLAG_INITIAL_VISIBILITY,
             PARAM_FLAG_PREVIOUS_LIGHTS,
+            PARAM_FLAG_MIS_VISIBILITY,
             PARAM_FLAG_GI,
             PARAM_FLAG_GI_TEMPORAL,
             PARAM_FLAG_GI_SPATIAL,

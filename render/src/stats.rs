@@ -85,6 +85,10 @@ pub struct StatsSummary {
     pub fallback_used: u64,
     pub boiling_dropped: u64,
     pub surface_pixels: u64,
+    /// Shadow rays per surface pixel and frame, by DI pass (passes that traced none are left
+    /// out), and their total.
+    pub shadow_rays_per_pixel: BTreeMap<String, f64>,
+    pub shadow_rays_per_pixel_total: f64,
 }
 
 fn median(mut v: Vec<f64>) -> Option<f64> {
@@ -142,6 +146,14 @@ impl StatsSummary {
                 .map(|(i, n)| (n.to_string(), total.get(base + i as u32)))
                 .collect()
         };
+        // Surface pixels are counted every frame, so this is per pixel and frame.
+        let rays: BTreeMap<String, f64> = GUARDED_PASS_NAMES
+            .iter()
+            .enumerate()
+            .map(|(i, n)| (n, total.get(STAT_SHADOW_RAYS + i as u32)))
+            .filter(|(_, count)| *count > 0)
+            .map(|(n, count)| (n.to_string(), fraction(count)))
+            .collect();
         StatsSummary {
             frames: reports.len() as u64,
             pass_ms_median: per_pass
@@ -178,6 +190,8 @@ impl StatsSummary {
             fallback_used: total.get(STAT_FALLBACK_USED),
             boiling_dropped: total.get(STAT_BOILING_DROPPED),
             surface_pixels: surface,
+            shadow_rays_per_pixel: rays.clone(),
+            shadow_rays_per_pixel_total: rays.values().sum(),
         }
     }
 
@@ -197,6 +211,7 @@ mod tests {
         c[(STAT_SOURCE + SOURCE_TEMPORAL) as usize] = 60;
         c[(STAT_SOURCE + SOURCE_INITIAL) as usize] = 40;
         c[(STAT_TEMPORAL_REJECT + 1) as usize] = 7;
+        c[(STAT_SHADOW_RAYS + PASS_SPATIAL) as usize] = 250;
         let reports: Vec<_> = [1.0, 3.0, 2.0]
             .iter()
             .enumerate()
@@ -213,5 +228,9 @@ mod tests {
         assert!((s.source_fractions["temporal"] - 0.6).abs() < 1e-12);
         assert_eq!(s.temporal_rejections["surface_invalid"], 21);
         assert_eq!(s.non_finite_total(), 0);
+        // 250 rays over 100 surface pixels each frame: 2.5 per pixel, the only pass listed.
+        assert_eq!(s.shadow_rays_per_pixel.len(), 1);
+        assert!((s.shadow_rays_per_pixel["spatial"] - 2.5).abs() < 1e-12);
+        assert!((s.shadow_rays_per_pixel_total - 2.5).abs() < 1e-12);
     }
 }

@@ -48,6 +48,8 @@ pub enum DebugView {
     Error,
     /// |A − B| against the other side of a split-screen comparison.
     Difference,
+    /// The running average minus the reference, signed, where it exceeds the noise.
+    Bias,
     Age,
     /// ReSTIR GI: the indirect radiance alone, and the GI reservoirs (drawn by gi_view).
     Indirect,
@@ -58,7 +60,7 @@ pub enum DebugView {
 }
 
 impl DebugView {
-    pub const ALL: [DebugView; 17] = [
+    pub const ALL: [DebugView; 18] = [
         DebugView::Final,
         DebugView::Source,
         DebugView::M,
@@ -70,6 +72,7 @@ impl DebugView {
         DebugView::Motion,
         DebugView::Error,
         DebugView::Difference,
+        DebugView::Bias,
         DebugView::Age,
         DebugView::Indirect,
         DebugView::GiSource,
@@ -91,6 +94,7 @@ impl DebugView {
             DebugView::Motion => "motion",
             DebugView::Error => "error",
             DebugView::Difference => "difference",
+            DebugView::Bias => "bias",
             DebugView::Age => "age",
             DebugView::Indirect => "indirect",
             DebugView::GiSource => "gi-source",
@@ -117,6 +121,7 @@ impl DebugView {
             DebugView::Motion => VIEW_MOTION,
             DebugView::Error => VIEW_ERROR,
             DebugView::Difference => VIEW_DIFFERENCE,
+            DebugView::Bias => VIEW_BIAS,
             DebugView::Age => VIEW_AGE,
             DebugView::Indirect => VIEW_INDIRECT,
             DebugView::GiSource => VIEW_GI_SOURCE,
@@ -124,6 +129,11 @@ impl DebugView {
             DebugView::GiRejection => VIEW_GI_REJECTION,
             DebugView::GiJacobian => VIEW_GI_JACOBIAN,
         }
+    }
+
+    /// Whether the view compares with the Accuracy reference (which must be fetched).
+    pub fn needs_reference(self) -> bool {
+        matches!(self, DebugView::Error | DebugView::Bias)
     }
 
     /// Whether the view shows ReSTIR GI data (drawn by the gi_view pass, only when GI runs).

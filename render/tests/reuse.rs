@@ -225,52 +225,72 @@ fn turning_a_check_off_removes_its_bit_everywhere() {
 fn target_ratio_clamp_one_rejects_every_changed_target() {
     // Static camera, no jitter, no permutation: every pixel re-reads its own history at
     // the same surface point, so the re-evaluated target equals the stored one bit for
-    // bit and clamp 1 accepts. Then an orbit changes every target: clamp 1 rejects all.
-    let base = [
-        "jitter=false",
-        "permutation=false",
-        "target_ratio_clamp=1",
-        "spatial=false",
-    ];
-    let mut r = common::renderer(
-        "builtin:cornell",
-        64,
-        48,
-        Mode::Restir,
-        common::settings(&base),
-    );
-    warm_up(&mut r, 3);
-    let debug = r.read_debug();
-    let ratio_rejected = debug
-        .iter()
-        .filter(|d| d.temporal_mask & REJECT_TARGET_RATIO != 0)
-        .count();
-    assert_eq!(ratio_rejected, 0, "unchanged targets must pass clamp 1");
-    assert!(temporal_merged(&debug) > 0);
+    // bit and clamp 1 accepts. Then an orbit changes every target: clamp 1 stops every
+    // temporal sample. Under 1/M it rejects the history; under pairwise MIS (issue 18) the
+    // history stays a domain whose sample gets weight 0 outside the window, so it is merged,
+    // counted as a ratio failure, and never survives.
+    for bias_correction in ["one-over-m", "pairwise"] {
+        let pairwise = bias_correction == "pairwise";
+        let base = [
+            "jitter=false",
+            "permutation=false",
+            "target_ratio_clamp=1",
+            "spatial=false",
+            &format!("bias_correction={bias_correction}"),
+        ];
+        let mut r = common::renderer(
+            "builtin:cornell",
+            64,
+            48,
+            Mode::Restir,
+            common::settings(&base),
+        );
+        warm_up(&mut r, 3);
+        let debug = r.read_debug();
+        let ratio_rejected = debug
+            .iter()
+            .filter(|d| d.temporal_mask & REJECT_TARGET_RATIO != 0)
+            .count();
+        assert_eq!(ratio_rejected, 0, "unchanged targets must pass clamp 1");
+        assert!(temporal_merged(&debug) > 0);
+        assert!(debug.iter().any(|d| d.source == SOURCE_TEMPORAL));
 
-    let center = r.scene_bounds().center();
-    let cam = r.camera();
-    let q = glam::Quat::from_rotation_y(2f32.to_radians());
-    r.set_camera(restir_render::Camera {
-        position: center + q * (cam.position - center),
-        rotation: q * cam.rotation,
-        yfov: cam.yfov,
-    });
-    r.render_frame().unwrap();
-    let debug = r.read_debug();
-    assert_eq!(
-        temporal_merged(&debug),
-        0,
-        "every target changed, clamp 1 must reject every temporal sample"
-    );
-    let only_ratio = debug
-        .iter()
-        .filter(|d| d.temporal_mask == REJECT_TARGET_RATIO)
-        .count();
-    assert!(
-        only_ratio > 100,
-        "the ratio test should be what rejects ({only_ratio} pixels)"
-    );
+        let center = r.scene_bounds().center();
+        let cam = r.camera();
+        let q = glam::Quat::from_rotation_y(2f32.to_radians());
+        r.set_camera(restir_render::Camera {
+            position: center + q * (cam.position - center),
+            rotation: q * cam.rotation,
+            yfov: cam.yfov,
+        });
+        r.render_frame().unwrap();
+        let debug = r.read_debug();
+        let only_ratio = debug
+            .iter()
+            .filter(|d| d.temporal_mask == REJECT_TARGET_RATIO)
+            .count();
+        assert!(
+            only_ratio > 100,
+            "{bias_correction}: the ratio test should be what stops them ({only_ratio} pixels)"
+        );
+        let temporal_survivors = debug.iter().filter(|d| d.source == SOURCE_TEMPORAL).count();
+        assert_eq!(
+            temporal_survivors, 0,
+            "{bias_correction}: every target changed, clamp 1 must stop every temporal sample"
+        );
+        if pairwise {
+            assert!(
+                temporal_merged(&debug) > 100,
+                "pairwise keeps the history as a domain"
+            );
+        } else {
+            assert_eq!(
+                temporal_merged(&debug),
+                0,
+                "1/M: every target changed, clamp 1 must reject every temporal sample"
+            );
+        }
+    }
 }
 
 #[test]

@@ -315,7 +315,8 @@ fn host_structs_match_wgsl_layouts() {
             m_scale,
             reference_scale,
             spatial_tries,
-            comparison_scale
+            comparison_scale,
+            reference_noise
         ]
     );
     check_struct!(m, "PassInfo", GpuPassInfo, [pass_index, is_last]);

@@ -87,3 +87,56 @@ fn previous_pixel(pixel: vec2<i32>, s: Surface) -> PreviousPixel {
     }
     return PreviousPixel(0u, pixel_index(vec2<u32>(p)));
 }
+
+fn pairwise_mis() -> bool {
+    return (params.flags & PARAM_FLAG_PAIRWISE) != 0u;
+}
+
+// The failed checks that drop a temporal or spatial candidate. Under 1/M: every enabled
+// check. Under pairwise MIS: the G-buffer checks only (REJECT_SURFACE_CHECKS). Whether a
+// candidate takes part may not depend on its sample (issue 18; the ReSTIR course notes'
+// rule): the canonical sample's weight assumes the candidate's domain is there, so
+// dropping it for a null sample, a target of 0 here or a light gone made the image too
+// bright by the canonical share it lost (+4.5 % at M cap 100, +41 % after a switch-off).
+// Such a candidate stays in the MIS and contributes what its target says: nothing.
+fn rejecting_checks(mask: u32) -> u32 {
+#ifndef PLANTED_SAMPLE_REJECTION
+    if pairwise_mis() {
+        return mask & REJECT_SURFACE_CHECKS;
+    }
+#endif
+    return mask;
+}
+
+// Visibility in every pairwise MIS term (`mis_visibility`): the target is p̂·V at every
+// pixel, so a sample is reused only where it is visible and each domain's weight knows
+// which samples that domain can produce. Without shadows V is 1 everywhere.
+fn mis_visibility() -> bool {
+#ifdef SHADOWS
+    return (params.flags & PARAM_FLAG_MIS_VISIBILITY) != 0u;
+#else
+    return false;
+#endif
+}
+
+// Whether t_here / t_there lies in [1/clamp, clamp] (the target-ratio clamp; true when it
+// is off). A zero on either side is outside: the two targets do not agree at all.
+fn target_ratio_in_window(t_here: f32, t_there: f32) -> bool {
+    let k = params.target_ratio_clamp;
+    if k <= 0.0 {
+        return true;
+    }
+    if !(t_here > 0.0 && t_there > 0.0) {
+        return false;
+    }
+    return t_here <= k * t_there && t_here * k >= t_there;
+}
+
+// One shadow ray from sp to a stored light sample: this frame's light, or (`previous`, for
+// animated scenes) the light as it was last frame. Traced against this frame's geometry:
+// the BVH is refitted in place, last frame's is gone. `rays` counts what was traced.
+fn sample_visible(sp: ShadingPoint, light: u32, uv: vec2<f32>, previous: bool, rays: ptr<function, u32>) -> bool {
+    let lp = light_point_in_frame(light, uv, previous);
+    *rays += 1u;
+    return light_visible(sp, lp, light_contribution(sp, lp));
+}

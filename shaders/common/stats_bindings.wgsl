@@ -4,3 +4,10 @@
 fn count_stat(index: u32) {
     atomicAdd(&stats[index], 1u);
 }
+
+// Adds n to a counter with one atomic (a pass sums its rays per invocation first).
+fn add_stat(index: u32, n: u32) {
+    if n > 0u {
+        atomicAdd(&stats[index], n);
+    }
+}

@@ -170,9 +170,9 @@ struct Display {
     reference_scale: f32,
     spatial_tries: u32,  // neighbours tried per pixel (K × passes); 0 hides the spatial count
     comparison_scale: f32, // radiance scale of the comparison image (difference view)
+    reference_noise: f32,  // the reference's own luma RMSE (bias view)
     _pad0: u32,
     _pad1: u32,
-    _pad2: u32,
 }
 
 struct PassInfo {

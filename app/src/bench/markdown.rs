@@ -125,6 +125,9 @@ pub fn results(info: &BenchInfo, results: &[ConfigResult]) -> String {
         "stability (luma RMSE)",
         accumulated,
         "luma ratio",
+        "signed bias",
+        "black pixels",
+        "shadow rays / pixel",
         "per-frame MSE × nee",
     ]
     .map(String::from)
@@ -142,6 +145,11 @@ pub fn results(info: &BenchInfo, results: &[ConfigResult]) -> String {
                 sig(s.and_then(|s| s.accumulated_rgb_rmse)),
                 s.map(|s| format!("{:.4}", s.luma_ratio))
                     .unwrap_or_else(|| "n/a".into()),
+                s.map(|s| format!("{:+.4}", s.signed_bias))
+                    .unwrap_or_else(|| "n/a".into()),
+                s.map(|s| format!("{:.2} %", 100.0 * s.black_pixel_fraction))
+                    .unwrap_or_else(|| "n/a".into()),
+                format!("{:.2}", r.times.shadow_rays_per_pixel_total),
                 ratio(r.frame_mse_vs_nee),
             ]
         })

@@ -6,7 +6,9 @@
 //! frames, and the running average is not defined (n/a).
 
 use restir_render::LinearImage;
-use restir_render::metrics::{SequenceMetrics, luma_ratio, luma_rmse, rel_mse};
+use restir_render::metrics::{
+    SequenceMetrics, black_pixel_fraction, luma_ratio, luma_rmse, rel_mse,
+};
 
 /// One frame's numbers.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -30,6 +32,11 @@ pub struct ScoreSummary {
     /// mean luminance(average) / mean luminance(reference) (still camera), or the mean over
     /// frames of the per-frame ratio (moving camera).
     pub luma_ratio: f64,
+    /// Signed bias, (mean luminance of a frame − the reference's) / the reference's, averaged
+    /// over frames (each against its own reference with a moving camera).
+    pub signed_bias: f64,
+    /// Per frame, the fraction of pixels black where the reference is lit (speckles), mean.
+    pub black_pixel_fraction: f64,
     /// Non-finite pixels seen (each skipped by the metrics).
     pub non_finite_pixels: usize,
 }
@@ -48,6 +55,7 @@ pub enum Scoring<'a> {
         luma: Vec<f64>,
         stability: Vec<f64>,
         ratios: Vec<f64>,
+        black: Vec<f64>,
         non_finite: usize,
     },
 }
@@ -67,6 +75,7 @@ impl<'a> Scoring<'a> {
             luma: Vec::new(),
             stability: Vec::new(),
             ratios: Vec::new(),
+            black: Vec::new(),
             non_finite: 0,
         }
     }
@@ -97,6 +106,7 @@ impl<'a> Scoring<'a> {
                 luma,
                 stability,
                 ratios,
+                black,
                 non_finite,
             } => {
                 let reference = references
@@ -106,6 +116,7 @@ impl<'a> Scoring<'a> {
                 *non_finite += frame.non_finite_count();
                 luma.push(luma_rmse(frame, reference)?);
                 ratios.push(luma_ratio(frame, reference)?);
+                black.push(black_pixel_fraction(frame, reference)?);
                 let step = match previous_error {
                     Some(previous) => Some(luma_rmse(&error, previous)?),
                     None => None,
@@ -135,6 +146,8 @@ impl<'a> Scoring<'a> {
                     accumulated_rgb_rmse: Some(report.accumulated_rgb_rmse),
                     accumulated_rel_mse: Some(rel_mse(&sequence.accumulated(), reference)?),
                     luma_ratio: report.accumulated_luma_ratio,
+                    signed_bias: report.mean_signed_bias,
+                    black_pixel_fraction: report.mean_black_pixel_fraction,
                     non_finite_pixels: report.non_finite_pixels,
                 })
             }
@@ -142,6 +155,7 @@ impl<'a> Scoring<'a> {
                 luma,
                 stability,
                 ratios,
+                black,
                 non_finite,
                 ..
             } => Some(ScoreSummary {
@@ -150,6 +164,8 @@ impl<'a> Scoring<'a> {
                 accumulated_rgb_rmse: None,
                 accumulated_rel_mse: None,
                 luma_ratio: mean(ratios),
+                signed_bias: mean(ratios) - 1.0,
+                black_pixel_fraction: mean(black),
                 non_finite_pixels: *non_finite,
             }),
         })

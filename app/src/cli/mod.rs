@@ -4,5 +4,6 @@ pub mod camera_path;
 pub mod environment;
 pub mod params;
 pub mod render;
+mod render_reference;
 mod render_stats;
 pub mod setup;

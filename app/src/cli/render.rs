@@ -13,6 +13,7 @@ use restir_render::view::auto_exposure_ev;
 use restir_render::{DebugView, Gpu, LinearImage, Mode, Renderer, Settings, load_scene};
 
 use super::camera_path::{cut_viewpoint, orbit};
+use super::render_reference::{check_comparable, reference_of};
 use super::render_stats::{CompareStats, Side, scene_time_stats, side_stats};
 use super::setup::{PipelineArgs, TimeArgs, parse_size};
 use crate::compare::{CompareTarget, divider_column, split_columns};
@@ -49,9 +50,16 @@ pub struct RenderArgs {
     /// Write statistics as JSON here.
     #[arg(long)]
     pub stats: Option<PathBuf>,
-    /// final | source | m | rejection | w | normals | albedo | depth | motion (PNG only).
+    /// final | source | m | rejection | w | normals | albedo | depth | motion | error | bias | ...
+    /// (PNG only; see README "Debug views").
     #[arg(long, default_value = "final")]
     pub debug_view: String,
+    /// Samples per pixel of the reference the error and bias views compare with.
+    #[arg(long, default_value_t = 1024)]
+    pub reference_spp: u32,
+    /// Where that reference is cached (default `$RESTIR_CACHE_DIR`, else target/restir-cache).
+    #[arg(long)]
+    pub cache_dir: Option<PathBuf>,
     /// Orbit the camera about the scene centre by this many degrees per frame.
     #[arg(long, default_value_t = 0.0)]
     pub orbit: f32,
@@ -115,6 +123,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     let timeline = args.time.timeline()?;
     let mut loaded = load_scene(&args.scene)?;
     args.env.apply(&mut loaded)?;
+    check_comparable(view, &args, loaded.animation.is_some())?;
     let gpu = Gpu::new_headless()?;
     // Each side poses its own copy of the scene along the same timeline.
     let side = |mode: Mode, settings: Settings| -> anyhow::Result<Side> {
@@ -161,6 +170,14 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         Format::Png => {
             // Both sides use the exposure of the split image, so equal radiance looks equal.
             let exposure_ev = exposure_ev(&image, &args.exposure)?;
+            if view.needs_reference() {
+                let (reference, noise) =
+                    reference_of(&left.renderer, &gpu, &loaded, effects.as_ref(), &args)?;
+                left.renderer.set_reference_image(&reference, noise)?;
+                if let Some(r) = &mut right {
+                    r.renderer.set_reference_image(&reference, noise)?;
+                }
+            }
             let rgba = match (&mut right, view) {
                 // |A − B| over the whole image, on A's display pass.
                 (Some(r), DebugView::Difference) => {

@@ -8,7 +8,7 @@ use std::time::{Duration, Instant};
 use restir_render::reference_cache::ReferenceCache;
 use restir_render::timeline::AnimatedScene;
 use restir_render::view::auto_exposure_ev;
-use restir_render::{DebugView, Environment, Gpu, Renderer, Scene};
+use restir_render::{Environment, Gpu, Renderer, Scene};
 use winit::dpi::PhysicalSize;
 use winit::window::Window;
 
@@ -347,7 +347,7 @@ impl Viewer {
         // While scene time plays there is no reference of "now" to compare with.
         let playing = state.time.playing && state.time.duration > 0.0;
         let wanted = (state.accuracy.panel_open
-            || state.view.view == DebugView::Error
+            || state.view.view.needs_reference()
             || state.compare.enabled)
             && !playing;
         self.accuracy

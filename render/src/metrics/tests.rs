@@ -142,3 +142,42 @@ fn sequence_metrics_accuracy_stability_and_accumulation() {
     assert!(close(report.accumulated_rgb_rmse, (off * off / 6.0).sqrt()));
     assert!(close(report.accumulated_luma_ratio, 1.0 - off / 6.0));
 }
+
+#[test]
+fn signed_bias_and_black_pixels_on_known_images() {
+    let grey = constant(4, 3, [1.0; 3]);
+    let half = constant(4, 3, [0.5; 3]);
+    assert!(close(signed_bias(&half, &grey).unwrap(), -0.5));
+    assert!(close(signed_bias(&grey, &half).unwrap(), 1.0));
+    assert_eq!(signed_bias(&grey, &grey).unwrap(), 0.0);
+    // Three of twelve pixels black (one just above the 5 % line, which is not black),
+    // one pixel of the reference unlit (black there is no speckle).
+    let reference = LinearImage::from_fn(4, 3, |x, y| {
+        let v = if (x, y) == (3, 2) { 0.0 } else { 1.0 };
+        [v, v, v, 1.0]
+    });
+    let frame = LinearImage::from_fn(4, 3, |x, y| {
+        let v = match (x, y) {
+            (0, 0) | (1, 0) | (2, 0) => 0.01,
+            (3, 0) => 1.2 * BLACK_FRACTION as f32,
+            (3, 2) => 0.0,
+            _ => 0.9,
+        };
+        [v, v, v, 1.0]
+    });
+    assert!(close(
+        black_pixel_fraction(&frame, &reference).unwrap(),
+        3.0 / 12.0
+    ));
+    assert_eq!(black_pixel_fraction(&reference, &reference).unwrap(), 0.0);
+    // Through the sequence: per-frame figures averaged.
+    let mut m = SequenceMetrics::new(reference.clone());
+    m.push(&frame).unwrap();
+    m.push(&reference).unwrap();
+    let r = m.report();
+    assert!(close(r.mean_black_pixel_fraction, 3.0 / 24.0));
+    assert!(close(
+        r.mean_signed_bias,
+        0.5 * signed_bias(&frame, &reference).unwrap()
+    ));
+}

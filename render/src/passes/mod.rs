@@ -8,6 +8,7 @@ pub mod compile;
 pub mod pass;
 pub mod resources;
 
+pub mod bias_view;
 pub mod display;
 pub mod gbuffer;
 pub mod gi_initial;
@@ -16,6 +17,7 @@ pub mod gi_spatial;
 pub mod gi_temporal;
 pub mod gi_view;
 pub mod initial;
+pub mod moments;
 pub mod presample;
 pub mod reference;
 pub mod shade;
@@ -29,7 +31,7 @@ pub use compile::{
 pub use pass::PassDef;
 
 /// Every pass, in pipeline order (a layout is created for each; tests validate each).
-pub const ALL: [&PassDef; 14] = [
+pub const ALL: [&PassDef; 16] = [
     &gbuffer::RASTER,
     &gbuffer::RESOLVE,
     &presample::PASS,
@@ -42,6 +44,8 @@ pub const ALL: [&PassDef; 14] = [
     &gi_spatial::PASS,
     &gi_shade::PASS,
     &reference::PASS,
+    &moments::PASS,
     &display::PASS,
     &gi_view::PASS,
+    &bias_view::PASS,
 ];

@@ -87,8 +87,22 @@ pub const COMPARISON: PixelBuffer = PixelBuffer {
     stride: 16,
     allocation: Allocation::Placeholder,
 };
+/// The running average's luminance statistics for the bias view (moments.wgsl), cleared
+/// with the accumulation.
+pub const MOMENTS: PixelBuffer = PixelBuffer {
+    name: "moments",
+    stride: 16,
+    allocation: Allocation::Full,
+};
 /// The buffers every frame has from the start (readbacks and uploads may come first).
-pub const STANDARD: [&PixelBuffer; 5] = [&DEBUG, &RADIANCE, &ACCUMULATION, &REFERENCE, &COMPARISON];
+pub const STANDARD: [&PixelBuffer; 6] = [
+    &DEBUG,
+    &RADIANCE,
+    &ACCUMULATION,
+    &MOMENTS,
+    &REFERENCE,
+    &COMPARISON,
+];
 
 /// ReSTIR DI reservoirs.
 pub const RESERVOIRS: Chain = Chain {

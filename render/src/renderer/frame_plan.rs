@@ -1,15 +1,15 @@
 //! The frame as an ordered list of passes, read top to bottom like the pipeline diagram
 //! (README): G-buffer → (light tiles) → DI initial → temporal → spatial × P → shade →
-//! (GI initial → temporal → spatial → shade) → display (→ GI view), or G-buffer (jitter
-//! off) → reference → display. A stage the settings switch off is not in the list, hence
-//! never dispatched or compiled.
+//! (GI initial → temporal → spatial → shade) → moments → display (→ GI view), or G-buffer
+//! (jitter off) → reference → moments → display. A stage the settings switch off is not in
+//! the list, hence never dispatched or compiled.
 
 use std::ops::Range;
 
 use crate::passes::resources::{Chain, RESERVOIRS};
 use crate::passes::{
-    PassDef, display, gbuffer, gi_initial, gi_shade, gi_spatial, gi_temporal, gi_view, initial,
-    presample, reference, shade, spatial, temporal,
+    PassDef, bias_view, display, gbuffer, gi_initial, gi_shade, gi_spatial, gi_temporal, gi_view,
+    initial, moments, presample, reference, shade, spatial, temporal,
 };
 
 /// One pass of the frame.
@@ -80,6 +80,8 @@ pub struct FrameSwitches {
     pub gi_spatial: bool,
     /// A GI debug view is shown (drawn over the display's output).
     pub gi_view: bool,
+    /// The bias view is shown (drawn over the display's output).
+    pub bias_view: bool,
 }
 
 pub fn frame_plan(f: &FrameSwitches) -> Vec<Step> {
@@ -113,19 +115,27 @@ pub fn frame_plan(f: &FrameSwitches) -> Vec<Step> {
     } else {
         steps.push(Step::new(&reference::PASS).slots(0..f.reference_chunks.max(1)));
     }
+    // The frame's radiance is final here (DI, GI, or the reference).
+    steps.push(Step::new(&moments::PASS));
     steps.push(Step::new(&display::PASS));
     if f.realtime && f.gi && f.gi_view {
         steps.push(Step::new(&gi_view::PASS));
     }
+    if f.bias_view {
+        steps.push(Step::new(&bias_view::PASS));
+    }
     steps
 }
 
-/// Only the display (and GI view) passes, on the last frame's buffers
+/// Only the display (and GI or bias view) passes, on the last frame's buffers
 /// (`Renderer::redisplay`).
-pub fn display_only(gi_view: bool) -> Vec<Step> {
+pub fn display_only(gi_view: bool, bias_view: bool) -> Vec<Step> {
     let mut steps = vec![Step::new(&display::PASS)];
     if gi_view {
         steps.push(Step::new(&gi_view::PASS));
+    }
+    if bias_view {
+        steps.push(Step::new(&bias_view::PASS));
     }
     steps
 }

@@ -31,7 +31,7 @@ use crate::gpu::timing::{PassTimer, TimingMode};
 use crate::gpu::{Gpu, GpuError};
 use crate::gpu_scene::{GpuScene, SceneInfo, SceneUpdateTimes};
 use crate::gpu_types::*;
-use crate::passes::resources::{ACCUMULATION, REFERENCE, RESERVOIRS};
+use crate::passes::resources::{ACCUMULATION, MOMENTS, REFERENCE, RESERVOIRS};
 use crate::passes::{ComputePass, PassLayouts, gbuffer::RasterPass};
 use crate::scene::animation::SceneChange;
 use crate::scene::{Camera, Scene};
@@ -84,6 +84,8 @@ pub struct Renderer {
     view: ViewSettings,
     /// `Some` forces an effect set (`--effects`); `None` derives it from the scene.
     forced_effects: Option<EffectSet>,
+    /// Test-only `PLANTED_*` defines added to whatever effect set the frame uses.
+    planted: std::collections::BTreeSet<String>,
     camera: Camera,
     prev_camera: Option<Camera>,
     prev_view_proj: Option<Mat4>,
@@ -101,6 +103,8 @@ pub struct Renderer {
     last_passes: Vec<&'static str>,
     /// Radiance scale of the comparison image (1/N of an accumulated other side).
     comparison_scale: f32,
+    /// The uploaded reference's own luma RMSE (the bias view counts it as noise).
+    reference_noise: f32,
     last_update: SceneUpdateTimes,
 }
 
@@ -215,6 +219,15 @@ impl Renderer {
         self.forced_effects = effects;
     }
 
+    /// Test-only: compiles the `PLANTED_*` defines `defines` into every pass from the next
+    /// frame on (on top of the derived or forced effect set), so that a test can show that
+    /// its detector fires on a known error.
+    #[doc(hidden)]
+    pub fn plant_for_tests(&mut self, defines: &[&str]) {
+        self.planted = defines.iter().map(|d| d.to_string()).collect();
+        self.last_effects = None;
+    }
+
     /// The effect set of the last rendered frame and the passes it dispatched.
     pub fn last_effects(&self) -> Option<&EffectSet> {
         self.last_effects.as_ref().map(|e| &e.set)
@@ -308,6 +321,7 @@ impl Renderer {
         self.accumulated_frames = 0;
         let mut encoder = self.gpu.device.create_command_encoder(&Default::default());
         encoder.clear_buffer(self.targets.pixels(&ACCUMULATION), 0, None);
+        encoder.clear_buffer(self.targets.pixels(&MOMENTS), 0, None);
         self.gpu.queue.submit([encoder.finish()]);
     }
 
@@ -333,8 +347,14 @@ impl Renderer {
         &self.targets.display_view
     }
 
-    /// Uploads a reference image (linear radiance, same size) for the error view.
-    pub fn set_reference_image(&mut self, image: &crate::image::LinearImage) -> anyhow::Result<()> {
+    /// Uploads a reference image (linear radiance, same size) for the error and bias views,
+    /// with its own noise (luma RMSE against the truth; 0 if unknown), which the bias view
+    /// adds to the running average's when it decides what is within noise.
+    pub fn set_reference_image(
+        &mut self,
+        image: &crate::image::LinearImage,
+        noise_luma_rmse: f32,
+    ) -> anyhow::Result<()> {
         anyhow::ensure!(
             (image.width, image.height) == self.size(),
             "reference is {}x{}, the output is {}x{}",
@@ -348,6 +368,11 @@ impl Renderer {
             0,
             bytemuck::cast_slice(&image.pixels),
         );
+        self.reference_noise = if noise_luma_rmse.is_finite() {
+            noise_luma_rmse.max(0.0)
+        } else {
+            0.0
+        };
         Ok(())
     }
 

@@ -21,7 +21,7 @@ use crate::passes::resources::{DEBUG, RESERVOIRS};
 use crate::passes::{ComputePass, PASS_INFO_SLOTS, PASS_INFO_STRIDE, PassDef, PassLayouts};
 use crate::settings::Settings;
 use crate::shader_constants::{MAX_SPATIAL_PASSES, REFERENCE_SAMPLES_PER_DISPATCH};
-use crate::view::Mode;
+use crate::view::{DebugView, Mode};
 
 /// What recording one step needs besides the bind group cache and the recorder (shared by
 /// a frame and a redisplay).
@@ -110,10 +110,11 @@ impl Renderer {
         if let Some(last) = self.last_effects.as_ref().filter(|l| unchanged(l)) {
             return last.clone();
         }
-        let set = match &self.forced_effects {
+        let mut set = match &self.forced_effects {
             Some(forced) => forced.clone(),
             None => EffectSet::detect(&self.features, settings, moved),
         };
+        set.planted.extend(self.planted.iter().cloned());
         let defines = set.defines();
         let key = defines.iter().cloned().collect::<Vec<_>>().join(",");
         Arc::new(ActiveEffects {
@@ -222,6 +223,7 @@ impl Renderer {
             gi_temporal: settings.gi_temporal && self.carried.has_history(&GI_RESERVOIRS),
             gi_spatial: settings.gi_spatial && settings.gi_spatial_neighbours > 0,
             gi_view: self.view.view.is_indirect(),
+            bias_view: self.view.view == DebugView::Bias,
         };
         let plan = frame_plan(&switches);
         if switches.light_tiles
@@ -345,7 +347,7 @@ impl Renderer {
         let shown_accumulation = self.shows_accumulation();
         let variant = self.variants.entry(active.key.clone()).or_default();
         let gi_view = settings.gi && self.mode != Mode::Reference && self.view.view.is_indirect();
-        let plan = frame_plan::display_only(gi_view);
+        let plan = frame_plan::display_only(gi_view, self.view.view == DebugView::Bias);
         for step in &plan {
             variant.compile(&self.gpu, &self.layouts, &active.defines, step.pass)?;
         }

@@ -156,6 +156,7 @@ impl Renderer {
             settings,
             view: ViewSettings::default(),
             forced_effects: None,
+            planted: Default::default(),
             camera,
             prev_camera: None,
             prev_view_proj: None,
@@ -170,6 +171,7 @@ impl Renderer {
             last_effects: None,
             last_passes: Vec::new(),
             comparison_scale: 1.0,
+            reference_noise: 0.0,
             last_update: Default::default(),
             gpu,
         })

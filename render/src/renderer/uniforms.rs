@@ -81,7 +81,8 @@ impl Renderer {
                 0
             },
             comparison_scale: self.comparison_scale,
-            _pad: [0; 3],
+            reference_noise: self.reference_noise,
+            _pad: [0; 2],
         };
         self.gpu
             .queue

@@ -32,6 +32,9 @@ pub struct CurvePoint {
     pub accumulated_rgb_rmse: f64,
     /// Mean luminance of that average over the reference's (1 = no energy bias).
     pub luma_ratio: f64,
+    /// Signed bias: (mean luminance − the reference's) / the reference's, per measured frame,
+    /// averaged over the curve so far (0 = none, negative = too dark).
+    pub signed_bias: f64,
     /// The frame's pass times, filled in when its report comes back (a frame or two
     /// later); empty when passes are not timed.
     pub pass_ms: Vec<(&'static str, f64)>,
@@ -233,6 +236,7 @@ mod tests {
             stability: None,
             accumulated_rgb_rmse: 0.05,
             luma_ratio: 1.0,
+            signed_bias: 0.0,
             pass_ms: Vec::new(),
         }
     }

@@ -202,6 +202,7 @@ impl AccuracyTracker {
             stability: report.per_frame_stability_rmse.last().copied(),
             accumulated_rgb_rmse: report.accumulated_rgb_rmse,
             luma_ratio: report.accumulated_luma_ratio,
+            signed_bias: report.mean_signed_bias,
             pass_ms: Vec::new(),
         });
         let end = Instant::now();
@@ -235,7 +236,7 @@ impl AccuracyTracker {
             // A stale reference would draw a plausible but wrong heatmap; black makes the
             // error view show |frame| until the new reference arrives (its legend says so).
             let (w, h) = renderer.size();
-            let _ = renderer.set_reference_image(&LinearImage::new(w, h));
+            let _ = renderer.set_reference_image(&LinearImage::new(w, h), 0.0);
         }
         self.view = Some(key);
         self.view_since = now;
@@ -273,7 +274,8 @@ impl AccuracyTracker {
     }
 
     fn accept(&mut self, renderer: &mut Renderer, reference: Reference) -> ReferenceStatus {
-        if let Err(e) = renderer.set_reference_image(&reference.image) {
+        let noise = reference.meta.noise_luma_rmse.unwrap_or(0.0) as f32;
+        if let Err(e) = renderer.set_reference_image(&reference.image, noise) {
             return ReferenceStatus::Failed(format!("{e:#}"));
         }
         self.uploaded = true;

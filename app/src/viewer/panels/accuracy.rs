@@ -162,6 +162,11 @@ fn current_numbers(ui: &mut Ui, curve: &Curve) {
                     number(Some(last.luma_ratio)),
                     "Mean luminance of that average over the reference's: 1 = no energy bias",
                 ),
+                (
+                    "Signed bias",
+                    format!("{:+.2} %", 100.0 * last.signed_bias),
+                    "(mean luminance of a frame − the reference's) / the reference's, averaged over this curve's frames: 0 = no energy bias, negative = too dark; the bias view shows where",
+                ),
             ];
             for (name, value, doc) in rows {
                 ui.label(name).on_hover_text(doc);

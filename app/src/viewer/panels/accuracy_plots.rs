@@ -50,10 +50,11 @@ fn legend(ui: &mut Ui, curves: &Curves) {
                 .map_or(String::new(), |ms| format!(" · {ms:.1} ms"));
             ui.label(
                 RichText::new(format!(
-                    "{} frames · per-frame {} · accumulated {}{ms}",
+                    "{} frames · per-frame {} · accumulated {} · bias {:+.2} %{ms}",
                     last.x,
                     significant(curve.mean_luma_rmse().unwrap_or(0.0)),
-                    significant(last.accumulated_rgb_rmse)
+                    significant(last.accumulated_rgb_rmse),
+                    100.0 * last.signed_bias
                 ))
                 .small(),
             );

@@ -67,6 +67,20 @@ pub fn jacobian_colors() -> [Color32; 3] {
     ]
 }
 
+/// The bias view's diverging ramp at t in [−1, 1] (darker blue, 0 white, brighter red), as
+/// bias_view.wgsl's `bias_palette` draws it; t = 4 · (average − reference) / reference.
+pub fn bias_color(t: f32) -> Color32 {
+    let [darker, none, brighter] = BIAS_PALETTE;
+    let x = t.clamp(-1.0, 1.0);
+    linear(if x < 0.0 {
+        mix(none, darker, -x)
+    } else {
+        mix(none, brighter, x)
+    })
+}
+
+const BIAS_PALETTE: [[f32; 3]; 3] = [[0.1, 0.3, 1.0], [1.0, 1.0, 1.0], [1.0, 0.1, 0.05]];
+
 /// The rejection view's spatial part: the fraction of neighbours rejected, black to grey.
 pub fn spatial_count_color(fraction: f32) -> Color32 {
     linear([0.45 * fraction.clamp(0.0, 1.0); 3])
@@ -201,5 +215,15 @@ mod tests {
         for (bit, colour) in gi.into_iter().enumerate() {
             assert_eq!(gi_reason_color(bit as u32), linear(colour), "GI bit {bit}");
         }
+    }
+
+    #[test]
+    fn the_bias_legend_matches_the_shader() {
+        let shader = include_str!("../../../../shaders/bias_view.wgsl");
+        let stops = wgsl_palette(shader, "bias_palette");
+        assert_eq!(stops, BIAS_PALETTE.to_vec());
+        assert_eq!(bias_color(-1.0), linear(BIAS_PALETTE[0]));
+        assert_eq!(bias_color(0.0), Color32::WHITE);
+        assert_eq!(bias_color(7.0), linear(BIAS_PALETTE[2]));
     }
 }

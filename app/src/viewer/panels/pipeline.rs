@@ -150,8 +150,15 @@ pub fn param_widget(ui: &mut Ui, settings: &mut Settings, def: &ParamDef) {
     }
 }
 
-/// Under a pixel-unit parameter (defined at 1080p): what it is at the render height.
+/// Under a pixel-unit parameter (defined at 1080p): what it is at the render height; under a
+/// switch another one overrides: what runs.
 fn effective_value(ui: &mut Ui, settings: &Settings, def: &ParamDef, height: u32) {
+    if def.name == "initial_visibility"
+        && !settings.initial_visibility
+        && settings.traces_initial_visibility()
+    {
+        ui.weak("traced anyway: MIS visibility needs this pixel's own V");
+    }
     if let Some(px) = settings
         .effective_pixels(def.name, height)
         .filter(|_| height > 0)

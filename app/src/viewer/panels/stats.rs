@@ -146,7 +146,19 @@ fn reuse(ui: &mut Ui, s: &StatsSummary) {
         s.fallback_used,
         s.boiling_dropped
     ));
-    ui.label("Rejections (per surface pixel; spatial counts every neighbour)");
+    let rays: Vec<String> = s
+        .shadow_rays_per_pixel
+        .iter()
+        .map(|(pass, n)| format!("{pass} {n:.2}"))
+        .collect();
+    ui.label(format!(
+        "Shadow rays per pixel: {:.2} ({})",
+        s.shadow_rays_per_pixel_total,
+        rays.join(" · ")
+    ))
+    .on_hover_text("Per surface pixel and frame, by pass. With MIS visibility (pairwise) reuse traces two per neighbour and per temporal merge, and shading none.");
+    ui.label("Rejections (per surface pixel; spatial counts every neighbour)")
+        .on_hover_text("Under pairwise MIS the sample reasons (reservoir null, target zero, target ratio, light gone) are counted, not rejected: the candidate stays in the MIS as a domain of zero contribution");
     egui::Grid::new("rejections")
         .num_columns(3)
         .striped(true)

@@ -4,13 +4,15 @@
 
 use egui::Ui;
 use restir_render::shader_constants::{
-    GI_REJECT_REASON_NAMES, REJECT_REASON_NAMES, REJECT_TEMPORAL_REASONS,
+    BIAS_BATCH, BIAS_NEGLIGIBLE, BIAS_SIGNIFICANCE, GI_REJECT_REASON_NAMES, REJECT_REASON_NAMES,
+    REJECT_TEMPORAL_REASONS,
 };
 use restir_render::{DebugView, Settings, Tonemapper, ViewSettings};
 
 use super::accuracy;
 use super::palette::{
-    gi_reason_color, jacobian_colors, ramp, reason_color, source_legend, spatial_count_ramp, swatch,
+    bias_color, gi_reason_color, jacobian_colors, ramp, reason_color, source_legend,
+    spatial_count_ramp, swatch,
 };
 use crate::viewer::state::{Action, DisplayOptions, ViewerState};
 
@@ -89,6 +91,9 @@ fn describe(v: DebugView) -> &'static str {
         DebugView::Difference => {
             "|A - B| luminance between the two sides of the split-screen comparison (Compare section)"
         }
+        DebugView::Bias => {
+            "Running average minus the reference (Accuracy panel), signed: blue darker, red brighter; grey where the difference is within the noise of the average"
+        }
         DebugView::Age => {
             "Frames since the surviving sample was first drawn, 0 to 2 × the M cap; null samples black"
         }
@@ -121,6 +126,10 @@ fn legend(ui: &mut Ui, state: &mut ViewerState) {
             // The reference is the Accuracy panel's; until it is there the view shows |frame|.
             accuracy::reference_status(ui, &state.accuracy);
         }
+        DebugView::Bias => {
+            bias_legend(ui);
+            accuracy::reference_status(ui, &state.accuracy);
+        }
         DebugView::Rejection => rejection_legend(ui, &mut state.view, &state.settings),
         DebugView::Difference => {
             ramp(ui, "0", "1 (at this exposure)");
@@ -148,6 +157,34 @@ fn legend(ui: &mut Ui, state: &mut ViewerState) {
     if state.view.view.is_indirect() && !state.settings.gi {
         ui.weak("ReSTIR GI is off (Indirect section): this view shows the last frame's image.");
     }
+}
+
+/// The bias view: the diverging ramp, and what grey means.
+fn bias_legend(ui: &mut Ui) {
+    let negligible = 100.0 * BIAS_NEGLIGIBLE;
+    ui.horizontal(|ui| {
+        ui.label("−25 %");
+        let (rect, _) = ui.allocate_exact_size(egui::vec2(140.0, 12.0), egui::Sense::hover());
+        let steps = 28;
+        let w = rect.width() / steps as f32;
+        for s in 0..steps {
+            let cell = egui::Rect::from_min_size(
+                egui::pos2(rect.left() + s as f32 * w, rect.top()),
+                egui::vec2(w + 0.5, rect.height()),
+            );
+            let t = 2.0 * (s as f32 + 0.5) / steps as f32 - 1.0;
+            ui.painter().rect_filled(cell, 0.0, bias_color(t));
+        }
+        ui.label("+25 %");
+    });
+    ui.weak(format!(
+        "(average − reference) / reference of the running average. Grey (the scene, \
+         dimmed): within {BIAS_SIGNIFICANCE} standard errors of the average (the spread of \
+         means of {BIAS_BATCH} frames, which holds the frames' correlation) and the \
+         reference's noise, or under {negligible} % of the reference: noise, not bias. All \
+         grey until {} frames have accumulated.",
+        2 * BIAS_BATCH
+    ));
 }
 
 /// The GI rejection reasons and their colours.

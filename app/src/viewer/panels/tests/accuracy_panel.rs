@@ -44,6 +44,7 @@ pub(super) fn measure_frame(s: &mut ViewerState, frame: u64) {
         stability: (n > 1.0).then_some(0.01),
         accumulated_rgb_rmse: 0.02 / n.sqrt(),
         luma_ratio: 0.98,
+        signed_bias: -0.0213,
         pass_ms: vec![("initial", 2.0), ("shade", 1.0)],
     });
 }
@@ -69,8 +70,15 @@ fn progress_is_shown_while_the_reference_renders() {
     assert!(shows(&h, "Curves start once the reference is there"));
     // The error view's legend shows the same progress.
     h.state_mut().view.view = DebugView::Error;
-    let h = harness(view::ui, h.state().clone());
+    let mut state = h.state().clone();
+    let h = harness(view::ui, state.clone());
     assert!(h.query_by_role(Role::ProgressIndicator).is_some());
+    // So does the bias view's, under a legend that says grey is noise.
+    state.view.view = DebugView::Bias;
+    let h = harness(view::ui, state);
+    assert!(h.query_by_role(Role::ProgressIndicator).is_some());
+    assert!(shows(&h, "noise, not bias"));
+    assert!(shows(&h, "+25 %"));
 }
 
 #[test]
@@ -91,6 +99,12 @@ fn a_parameter_change_starts_a_new_curve_and_keeps_the_previous_one() {
     h.run_steps(5);
     assert!(shows(&h, "Reference: 256 spp, loaded from the cache"));
     assert!(shows(&h, "1: restir"));
+    // The signed bias is reported next to the errors, per curve and for the current one.
+    assert!(shows(&h, "-2.13 %"), "the signed bias row");
+    assert!(
+        shows(&h, "bias -2.13 %"),
+        "the signed bias in the curve's legend line"
+    );
     assert_eq!(h.state().accuracy.curves.previous.len(), 0);
     h.get_by_label("Temporal reuse").click();
     h.run_steps(5);

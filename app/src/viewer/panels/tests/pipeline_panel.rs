@@ -127,3 +127,28 @@ fn pixel_unit_parameters_show_their_effective_value() {
         "the spatial radius's effective value is not shown"
     );
 }
+
+#[test]
+fn initial_visibility_says_when_mis_visibility_traces_it_anyway() {
+    let note = "traced anyway: MIS visibility needs this pixel's own V";
+    let panel = |ui: &mut egui::Ui, s: &mut ViewerState| {
+        ui.ctx().memory_mut(|m| m.set_everything_is_visible(true));
+        pipeline::ui(ui, s);
+    };
+    let mut s = state();
+    s.settings.initial_visibility = false;
+    let h = harness(panel, s.clone());
+    assert!(
+        shows(&h, note),
+        "off, but the default MIS visibility traces it"
+    );
+    s.settings.mis_visibility = false;
+    let h = harness(panel, s.clone());
+    assert!(!shows(&h, note), "off and nothing traces it: no note");
+    s.settings.mis_visibility = true;
+    s.settings
+        .set_from_str("bias_correction", "one-over-m")
+        .unwrap();
+    let h = harness(panel, s);
+    assert!(!shows(&h, note), "1/M has no MIS terms: no note");
+}

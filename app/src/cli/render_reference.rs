@@ -1,0 +1,80 @@
+//! The reference that `render --debug-view error|bias` compares with: the same scene, size,
+//! camera, jitter and scene time, from the reference cache (rendered on a renderer of its
+//! own and stored there when it is missing, as the bench does).
+
+use std::io::Write;
+
+use anyhow::bail;
+use restir_render::effects::EffectSet;
+use restir_render::reference_cache::{Progress, ReferenceCache, ReferenceRequest};
+use restir_render::timeline::AnimatedScene;
+use restir_render::{DebugView, Gpu, LinearImage, Renderer, Scene};
+
+use super::render::RenderArgs;
+
+/// Why a view cannot be compared with one reference, if it cannot: the bias view scores a
+/// running average, which is one image only for a still camera at one moment.
+pub fn check_comparable(view: DebugView, args: &RenderArgs, animated: bool) -> anyhow::Result<()> {
+    if view != DebugView::Bias {
+        return Ok(());
+    }
+    if args.orbit != 0.0 || args.cut_at.is_some() {
+        bail!(
+            "--debug-view bias compares a running average with one reference: it needs a still camera (no --orbit, no --cut-at)"
+        );
+    }
+    if animated && args.time.fps != 0.0 {
+        bail!(
+            "--debug-view bias compares a running average with one reference: an animated scene needs --fps 0 (one moment)"
+        );
+    }
+    Ok(())
+}
+
+/// The reference of `renderer`'s last frame (same camera, size, jitter and bounces) and its
+/// own noise (luma RMSE), for `set_reference_image`.
+pub fn reference_of(
+    renderer: &Renderer,
+    gpu: &Gpu,
+    loaded: &Scene,
+    effects: Option<&EffectSet>,
+    args: &RenderArgs,
+) -> anyhow::Result<(LinearImage, f32)> {
+    let mut scene = AnimatedScene::new(loaded.clone());
+    scene.pose_only(args.time.timeline()?.time_of(args.frames.saturating_sub(1)));
+    let settings = renderer.settings().clone();
+    let mut request = ReferenceRequest::new(
+        &args.scene,
+        scene.scene(),
+        renderer.camera(),
+        renderer.size(),
+        args.reference_spp,
+        settings.jitter,
+    )
+    .with_max_bounces(settings.reference_bounces());
+    if let Some(e) = effects {
+        request.effects = e.clone();
+    }
+    let cache = match &args.cache_dir {
+        Some(dir) => ReferenceCache::new(dir),
+        None => ReferenceCache::at_default_dir(),
+    };
+    let (w, h) = renderer.size();
+    let mut reference_renderer = Renderer::new(gpu.clone(), scene.scene(), w, h, settings)?;
+    let mut progress = |p: &Progress| {
+        eprint!(
+            "\rreference: {}/{} spp ({:.1} s)   ",
+            p.samples_done,
+            p.samples_total,
+            p.elapsed.as_secs_f64()
+        );
+        let _ = std::io::stderr().flush();
+        true
+    };
+    let reference = cache.get_or_render(&mut reference_renderer, &request, &mut progress)?;
+    if !reference.from_cache {
+        eprintln!();
+    }
+    let noise = reference.meta.noise_luma_rmse.unwrap_or(0.0) as f32;
+    Ok((reference.image, noise))
+}

@@ -105,15 +105,18 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         for (var i = 0u; i < n_accepted; i++) {
             let q_index = accepted[i];
             let nr = load_neighbour(q_index);
+            // Reuse spreads survivors, so a neighbour often holds this pixel's very sample:
+            // both visibilities are then known (each pixel's survivor is visible from it).
+            let same_sample = !reservoir_is_null(canonical) && nr.light == canonical.light && all(nr.uv == canonical.uv);
             var target_here = target_at(sp, nr.light, nr.uv);
-            if target_here > 0.0 && mis_visibility() && !sample_visible(sp, nr.light, nr.uv, false, &rays) {
+            if target_here > 0.0 && mis_visibility() && !same_sample && !sample_visible(sp, nr.light, nr.uv, false, &rays) {
                 target_here = 0.0;
             }
             let m_i = pairwise_mis_noncanonical(c_total, canonical.m, nr.m, nr.p_hat, target_here);
             reservoir_merge_mis(&r, nr, target_here, m_i, source_with_age(SOURCE_SPATIAL, reservoir_age(nr)), rand_f32(&rng));
             let neighbour_sp = shading_point_from_surface(surfaces[q_index], frame.camera_position);
             var neighbour_at_canonical = target_at(neighbour_sp, canonical.light, canonical.uv);
-            if neighbour_at_canonical > 0.0 && mis_visibility() && !sample_visible(neighbour_sp, canonical.light, canonical.uv, false, &rays) {
+            if neighbour_at_canonical > 0.0 && mis_visibility() && !same_sample && !sample_visible(neighbour_sp, canonical.light, canonical.uv, false, &rays) {
                 neighbour_at_canonical = 0.0;
             }
             m_canonical += pairwise_mis_canonical_term(c_total, canonical.m, nr.m, canonical.p_hat, neighbour_at_canonical);

@@ -191,7 +191,8 @@ impl StatsSummary {
             boiling_dropped: total.get(STAT_BOILING_DROPPED),
             surface_pixels: surface,
             shadow_rays_per_pixel: rays.clone(),
-            shadow_rays_per_pixel_total: rays.values().sum(),
+            // From +0: an empty f64 sum is −0, which the CSV would print as "-0".
+            shadow_rays_per_pixel_total: rays.values().fold(0.0, |a, b| a + b),
         }
     }
 

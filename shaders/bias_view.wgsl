@@ -47,7 +47,6 @@ fn bias_color(index: u32) -> vec3<f32> {
     return bias_palette(4.0 * d / max(truth, 1e-6));
 }
 
-
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if !pixel_in_frame(id) {

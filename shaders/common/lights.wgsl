@@ -22,7 +22,7 @@ struct LightPoint {
     double_sided: bool,
     punctual: u32,        // index into punctual_lights
 #ifdef ANIMATION
-    previous: bool,       // made from last frame's light data (previous_light_point)
+    previous: bool,       // made from last frame's light data (light_point_in_frame)
 #endif
 }
 
@@ -87,15 +87,10 @@ fn light_point(light_id: u32, uv: vec2<f32>) -> LightPoint {
     return light_point_in_frame(light_id, uv, false);
 }
 
-#ifdef ANIMATION
-// `light_point` of the same light (same slot: its identity) as it was last frame: last
-// frame's triangle, emission and punctual record. Pairwise MIS needs it for the canonical
-// sample's target at the previous pixel (temporal.wgsl).
-fn previous_light_point(light_id: u32, uv: vec2<f32>) -> LightPoint {
-    return light_point_in_frame(light_id, uv, true);
-}
-#endif
-
+// A light sample's point this frame, or (`previous`, animated scenes) the same light (same
+// slot: its identity) as it was last frame: last frame's triangle, emission and punctual
+// record. Pairwise MIS needs the latter for the canonical sample's target and visibility
+// at the previous pixel (temporal.wgsl).
 fn light_point_in_frame(light_id: u32, uv: vec2<f32>, previous: bool) -> LightPoint {
     let light = lights[light_id];
     var lp: LightPoint;
@@ -143,8 +138,8 @@ fn light_point_in_frame(light_id: u32, uv: vec2<f32>, previous: bool) -> LightPo
 }
 
 #ifdef PUNCTUAL_LIGHTS
-// The punctual record a light point came from: this frame's, or last frame's for a
-// `previous_light_point`.
+// The punctual record a light point came from: this frame's, or last frame's for a point
+// made with `previous`.
 fn punctual_record(lp: LightPoint) -> PunctualLight {
 #ifdef ANIMATION
     return frame_punctual(lp.punctual, lp.previous);

@@ -100,7 +100,7 @@ fn material_emission(material_index: u32, uv: vec2<f32>) -> vec3<f32> {
     return material_emission_of(materials[material_index], uv);
 }
 
-// The same for a material record (last frame's, for previous_light_point).
+// The same for a material record (last frame's, for a light point made with `previous`).
 fn material_emission_of(m: Material, uv: vec2<f32>) -> vec3<f32> {
     var e = m.emission;
 #ifdef EMISSIVE_TEXTURES

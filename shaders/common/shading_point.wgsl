@@ -111,17 +111,6 @@ fn target_at(sp: ShadingPoint, light: u32, uv: vec2<f32>) -> f32 {
     return target_pdf(light_contribution(sp, light_point(light, uv)));
 }
 
-#ifdef ANIMATION
-// p̂ of sample (light, uv) with last frame's light data: the target the previous frame's
-// pixel had for it (pairwise MIS canonical term, temporal.wgsl).
-fn previous_target_at(sp: ShadingPoint, light: u32, uv: vec2<f32>) -> f32 {
-    if light == NO_LIGHT {
-        return 0.0;
-    }
-    return target_pdf(light_contribution(sp, previous_light_point(light, uv)));
-}
-#endif
-
 // One shadow ray between the shading point and the light point.
 fn light_visible(sp: ShadingPoint, lp: LightPoint, c: LightContribution) -> bool {
 #ifdef SHADOWS

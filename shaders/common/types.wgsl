@@ -68,7 +68,7 @@ struct BvhNode {
 // initial reservoir, summed by reuse and capped by `m_cap`.
 struct Reservoir {
     light: u32,    // light table index, NO_LIGHT for the null sample
-    p_hat: f32,   // p̂ at the pixel that finalised it (only for the target-ratio test)
+    p_hat: f32,   // p̂ (× V with mis_visibility) at the pixel that finalised it: the ratio test, pairwise weights
     uv: vec2<f32>, // barycentrics of the point on a triangle light
     w_sum: f32,
     weight: f32,   // W = w_sum / (M · p̂)

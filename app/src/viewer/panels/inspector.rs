@@ -74,8 +74,9 @@ pub fn inspection(ui: &mut Ui, i: &PixelInspection) {
         d.m_initial, d.m_temporal, d.m_spatial
     ));
     reservoirs(ui, i);
-    rejections(ui, "Temporal", d.temporal_mask, &i.temporal_rejections());
-    rejections(ui, "Spatial", d.spatial_mask, &i.spatial_rejections());
+    let merged = d.flags & DEBUG_FLAG_TEMPORAL_MERGED != 0;
+    di_rejections(ui, "Temporal", d.temporal_mask, merged);
+    di_rejections(ui, "Spatial", d.spatial_mask, false);
     ui.label(format!("Spatial neighbours merged: {}", d.spatial_accepted));
     ui.label(format!("Flags: {}", flag_names(d.flags)));
     if let Some(gi) = &i.gi {
@@ -221,6 +222,40 @@ fn reservoir_grid(ui: &mut Ui, i: &PixelInspection) {
                 ui.end_row();
             }
         });
+}
+
+/// DI's checks: the surface checks reject; the sample checks (reservoir null, target 0,
+/// ratio, light gone) reject under 1/M and are counted, not rejected, under pairwise MIS
+/// (README, "Unbiased reuse"). A temporal candidate that merged despite them was pairwise.
+fn di_rejections(ui: &mut Ui, stage: &str, mask: u32, merged: bool) {
+    let surface = mask & REJECT_SURFACE_CHECKS;
+    let sample = mask & !REJECT_SURFACE_CHECKS;
+    let names = |m: u32| -> Vec<&'static str> {
+        REJECT_REASON_NAMES
+            .iter()
+            .enumerate()
+            .filter(|(b, _)| m & (1 << b) != 0)
+            .map(|(_, n)| *n)
+            .collect()
+    };
+    rejections(ui, stage, surface, &names(surface));
+    if sample == 0 {
+        return;
+    }
+    let how = if merged {
+        "counted, not rejected (pairwise MIS: merged as a domain of zero contribution)"
+    } else {
+        "rejected under 1/M; under pairwise MIS these are counted, not rejected"
+    };
+    let text = format!(
+        "{stage} sample checks: {sample:#010b} {} — {how}",
+        names(sample).join(", ")
+    );
+    ui.label(if merged {
+        RichText::new(text)
+    } else {
+        RichText::new(text).color(ui.visuals().warn_fg_color)
+    });
 }
 
 fn rejections(ui: &mut Ui, stage: &str, mask: u32, names: &[&str]) {

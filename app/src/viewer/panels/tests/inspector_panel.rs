@@ -33,7 +33,7 @@ pub(super) fn synthetic_inspection() -> PixelInspection {
         debug: GpuPixelDebug {
             source: SOURCE_SPATIAL,
             temporal_mask: REJECT_NORMAL | REJECT_DEPTH,
-            spatial_mask: REJECT_MATERIAL,
+            spatial_mask: REJECT_MATERIAL | REJECT_TARGET,
             flags: DEBUG_FLAG_SPATIAL_CAP,
             m_initial: 1.0,
             m_temporal: 1.0,
@@ -93,11 +93,29 @@ fn the_inspector_shows_every_field_of_a_pixel() {
         "3.5000e0",
         "Temporal rejections: 0b00011000 normal, depth",
         "Spatial rejections: 0b00000100 material",
+        "Spatial sample checks: 0b01000000 target_zero",
+        "under pairwise MIS these are counted, not rejected",
         "Spatial neighbours merged: 4",
         "spatial M cap fired",
     ] {
         assert!(shows(&h, text), "the inspector does not show '{text}'");
     }
+    // A temporal candidate merged although a sample check fired: pairwise counted it.
+    let mut merged = synthetic_inspection();
+    merged.debug.temporal_mask = REJECT_TARGET_RATIO;
+    merged.debug.flags |= DEBUG_FLAG_TEMPORAL_MERGED;
+    let mut s = state();
+    s.inspector.pixel = Some((12, 34));
+    s.inspector.last = Some(merged);
+    let h2 = harness(
+        |ui, s: &mut ViewerState| inspector::ui(ui, &mut s.inspector),
+        s,
+    );
+    assert!(shows(&h2, "Temporal rejections: 0b00000000 none"));
+    assert!(shows(
+        &h2,
+        "Temporal sample checks: 0b10000000 target_ratio — counted, not rejected"
+    ));
     // Light ids as their own cells.
     assert!(h.query_by_label("7").is_some() && h.query_by_label("9").is_some());
 }

@@ -169,6 +169,21 @@ pub const VIEW_GI_SOURCE: u32 = 13;
 pub const VIEW_GI_M: u32 = 14;
 pub const VIEW_GI_REJECTION: u32 = 15;
 pub const VIEW_GI_JACOBIAN: u32 = 16;
+// 17 is issue 18's bias view.
+pub const VIEW_BOILING: u32 = 18;
+pub const VIEW_SURVIVOR_CHANGE: u32 = 19;
+/// Frames in the temporal window of the boiling and survivor-change views (the
+/// `temporal window` pass): long enough that the relative standard deviation of a steady
+/// pixel is estimated to ±18 % (1/√(2·15)), short enough that a switched light leaves it
+/// within half a second at 30 fps.
+pub const TEMPORAL_WINDOW_FRAMES: u32 = 16;
+/// The boiling view's palette runs from 0 to this relative standard deviation (σ/mean of
+/// a pixel's luminance over the window); stronger flicker saturates at yellow.
+pub const BOILING_VIEW_MAX: f32 = 1.5;
+/// A pixel *boils* when its σ/mean over the window exceeds this (the palette's middle,
+/// teal): a 16-frame window of a steadily noisy ReSTIR pixel rarely gets there, a pixel
+/// whose survivor comes and goes does (render/tests/temporal_window.rs).
+pub const BOILING_THRESHOLD: f32 = 0.75;
 
 pub const TONEMAP_ACES: u32 = 0;
 pub const TONEMAP_REINHARD: u32 = 1;
@@ -335,6 +350,9 @@ pub fn wgsl_prelude() -> String {
         ("VIEW_GI_M", VIEW_GI_M),
         ("VIEW_GI_REJECTION", VIEW_GI_REJECTION),
         ("VIEW_GI_JACOBIAN", VIEW_GI_JACOBIAN),
+        ("VIEW_BOILING", VIEW_BOILING),
+        ("VIEW_SURVIVOR_CHANGE", VIEW_SURVIVOR_CHANGE),
+        ("TEMPORAL_WINDOW_FRAMES", TEMPORAL_WINDOW_FRAMES),
         ("TONEMAP_ACES", TONEMAP_ACES),
         ("TONEMAP_REINHARD", TONEMAP_REINHARD),
         ("TONEMAP_CLAMP", TONEMAP_CLAMP),
@@ -366,6 +384,7 @@ pub fn wgsl_prelude() -> String {
         ("GI_MIN_DISTANCE_SQ", GI_MIN_DISTANCE_SQ),
         ("GI_MAX_DISTANCE_SQ", GI_MAX_DISTANCE_SQ),
         ("GI_MIN_COS", GI_MIN_COS),
+        ("BOILING_VIEW_MAX", BOILING_VIEW_MAX),
     ] {
         out.push_str(&format!("const {name}: f32 = {value:e};\n"));
     }

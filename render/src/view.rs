@@ -55,10 +55,14 @@ pub enum DebugView {
     GiM,
     GiRejection,
     GiJacobian,
+    /// σ/mean of each pixel's luminance over the temporal window: where the image flickers.
+    Boiling,
+    /// How often the survivor's light changed within the temporal window.
+    SurvivorChange,
 }
 
 impl DebugView {
-    pub const ALL: [DebugView; 17] = [
+    pub const ALL: [DebugView; 19] = [
         DebugView::Final,
         DebugView::Source,
         DebugView::M,
@@ -76,6 +80,8 @@ impl DebugView {
         DebugView::GiM,
         DebugView::GiRejection,
         DebugView::GiJacobian,
+        DebugView::Boiling,
+        DebugView::SurvivorChange,
     ];
 
     pub fn name(self) -> &'static str {
@@ -97,6 +103,8 @@ impl DebugView {
             DebugView::GiM => "gi-m",
             DebugView::GiRejection => "gi-rejection",
             DebugView::GiJacobian => "gi-jacobian",
+            DebugView::Boiling => "boiling",
+            DebugView::SurvivorChange => "survivor-change",
         }
     }
 
@@ -123,6 +131,8 @@ impl DebugView {
             DebugView::GiM => VIEW_GI_M,
             DebugView::GiRejection => VIEW_GI_REJECTION,
             DebugView::GiJacobian => VIEW_GI_JACOBIAN,
+            DebugView::Boiling => VIEW_BOILING,
+            DebugView::SurvivorChange => VIEW_SURVIVOR_CHANGE,
         }
     }
 
@@ -136,6 +146,11 @@ impl DebugView {
                 | DebugView::GiRejection
                 | DebugView::GiJacobian
         )
+    }
+
+    /// Whether the view reads the temporal window (kept only while such a view is shown).
+    pub fn uses_temporal_window(self) -> bool {
+        matches!(self, DebugView::Boiling | DebugView::SurvivorChange)
     }
 }
 

@@ -56,6 +56,7 @@ pub fn after_frame(renderer: &mut Renderer, state: &mut ViewerState) {
     }
     state.render_size = renderer.size();
     state.accumulated_frames = renderer.accumulated_frames();
+    state.window_frames = renderer.temporal_window_frames();
     // Copied only when they change (an effect set carries a sentence per effect).
     if state.scene.effects.as_ref() != renderer.last_effects() {
         state.scene.effects = renderer.last_effects().cloned();

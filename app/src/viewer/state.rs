@@ -259,6 +259,8 @@ pub struct ViewerState {
     /// Render-target size and accumulated frames, for display.
     pub render_size: (u32, u32),
     pub accumulated_frames: u32,
+    /// Frames in the boiling views' temporal window (0 while no such view is shown).
+    pub window_frames: u32,
     pub actions: Vec<Action>,
 }
 
@@ -285,6 +287,7 @@ impl ViewerState {
             panel_open: true,
             render_size: (0, 0),
             accumulated_frames: 0,
+            window_frames: 0,
             actions: Vec::new(),
         }
     }

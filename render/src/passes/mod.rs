@@ -21,6 +21,8 @@ pub mod reference;
 pub mod shade;
 pub mod spatial;
 pub mod temporal;
+pub mod temporal_window;
+pub mod window_view;
 
 pub use compile::{
     ComputePass, PASS_INFO_SLOTS, PASS_INFO_STRIDE, PassLayouts, WORKGROUP, buffer_bind_group,
@@ -29,7 +31,7 @@ pub use compile::{
 pub use pass::PassDef;
 
 /// Every pass, in pipeline order (a layout is created for each; tests validate each).
-pub const ALL: [&PassDef; 14] = [
+pub const ALL: [&PassDef; 16] = [
     &gbuffer::RASTER,
     &gbuffer::RESOLVE,
     &presample::PASS,
@@ -42,6 +44,8 @@ pub const ALL: [&PassDef; 14] = [
     &gi_spatial::PASS,
     &gi_shade::PASS,
     &reference::PASS,
+    &temporal_window::PASS,
     &display::PASS,
     &gi_view::PASS,
+    &window_view::PASS,
 ];

@@ -190,6 +190,7 @@ mod tests {
                             gi_temporal: temporal,
                             gi_spatial: spatial_passes > 0,
                             gi_view: gi,
+                            temporal_window: gi,
                         });
                     }
                 }

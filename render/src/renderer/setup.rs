@@ -171,6 +171,8 @@ impl Renderer {
             last_passes: Vec::new(),
             comparison_scale: 1.0,
             last_update: Default::default(),
+            window: Default::default(),
+            frozen_noise: false,
             gpu,
         })
     }

@@ -4,7 +4,8 @@
 
 use egui::Ui;
 use restir_render::shader_constants::{
-    GI_REJECT_REASON_NAMES, REJECT_REASON_NAMES, REJECT_TEMPORAL_REASONS,
+    BOILING_THRESHOLD, BOILING_VIEW_MAX, GI_REJECT_REASON_NAMES, REJECT_REASON_NAMES,
+    REJECT_TEMPORAL_REASONS, TEMPORAL_WINDOW_FRAMES,
 };
 use restir_render::{DebugView, Settings, Tonemapper, ViewSettings};
 
@@ -103,6 +104,12 @@ fn describe(v: DebugView) -> &'static str {
         DebugView::GiJacobian => {
             "ReSTIR GI: |J| of the surviving sample's last shift on a log scale: blue below 1, white at 1, red above, saturating at the Jacobian window"
         }
+        DebugView::Boiling => {
+            "Where the image flickers: each pixel's σ/mean of luminance over the last 16 frames"
+        }
+        DebugView::SurvivorChange => {
+            "How often each pixel's surviving light changed over the last 16 frames"
+        }
     }
 }
 
@@ -131,6 +138,7 @@ fn legend(ui: &mut Ui, state: &mut ViewerState) {
         DebugView::GiSource => source_legend(ui, str::to_string),
         DebugView::GiM => ramp(ui, "0", &format!("GI M cap ({})", state.settings.gi_m_cap)),
         DebugView::GiRejection => gi_rejection_legend(ui),
+        DebugView::Boiling | DebugView::SurvivorChange => window_legend(ui, state),
         DebugView::GiJacobian => {
             let w = state.settings.gi_jacobian_max.max(1.0);
             let [low, one, high] = jacobian_colors();
@@ -147,6 +155,26 @@ fn legend(ui: &mut Ui, state: &mut ViewerState) {
     }
     if state.view.view.is_indirect() && !state.settings.gi {
         ui.weak("ReSTIR GI is off (Indirect section): this view shows the last frame's image.");
+    }
+}
+
+/// The temporal window views: the palette, the window and how full it is.
+fn window_legend(ui: &mut Ui, state: &ViewerState) {
+    if state.view.view == DebugView::Boiling {
+        ramp(ui, "σ/mean 0", &format!("{BOILING_VIEW_MAX}"));
+        ui.weak(format!(
+            "past {BOILING_THRESHOLD} (the middle, teal) a pixel counts as boiling"
+        ));
+    } else {
+        ramp(ui, "never changed", "every frame");
+    }
+    ui.weak(format!(
+        "window: {} of {TEMPORAL_WINDOW_FRAMES} frames (restarts on a cut or a new scene); black: not yet two frames",
+        state.window_frames
+    ));
+    if state.view.view == DebugView::SurvivorChange && state.mode == restir_render::Mode::Reference
+    {
+        ui.weak("The reference keeps no reservoirs: nothing to change.");
     }
 }
 

@@ -76,7 +76,7 @@ pub struct TourStep {
     pub mode: Mode,
     /// The defaults plus the step's parameters (steps do not inherit each other's).
     pub settings: Settings,
-    /// Split-screen B.
+    /// Split-screen B (an inline B is this step's settings with its own values changed).
     pub compare: Option<CompareTarget>,
     pub debug_view: DebugView,
     /// Exposure in EV; `None`: automatic.

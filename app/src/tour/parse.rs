@@ -150,7 +150,7 @@ fn parse_step(mut t: Table, folder: &Path, previous_scene: &str) -> anyhow::Resu
         .transpose()?;
     Ok(TourStep {
         title: text("title")?.unwrap_or_else(|| "(untitled)".to_string()),
-        caption: text("caption")?.unwrap_or_default().trim().to_string(),
+        caption: paragraphs(&text("caption")?.unwrap_or_default()),
         scene,
         env,
         time: StepTime {
@@ -171,6 +171,17 @@ fn parse_step(mut t: Table, folder: &Path, previous_scene: &str) -> anyhow::Resu
             .transpose()?
             .unwrap_or_default(),
     })
+}
+
+/// A caption as written in a TOML multi-line string, re-flowed: the lines of a paragraph
+/// joined by spaces (the panel wraps them at its width), blank lines kept as breaks.
+fn paragraphs(text: &str) -> String {
+    text.trim()
+        .split("\n\n")
+        .map(|p| p.split_whitespace().collect::<Vec<_>>().join(" "))
+        .filter(|p| !p.is_empty())
+        .collect::<Vec<_>>()
+        .join("\n\n")
 }
 
 fn as_f32(v: &Value) -> Option<f32> {
@@ -267,8 +278,10 @@ fn parse_camera(v: &Value) -> anyhow::Result<Camera> {
     }
 }
 
-/// B: a mode (this step's settings in that mode), a preset file (relative to the tour), or
-/// an inline preset `{ label = "...", mode = "...", name = value, ... }` (defaults plus it).
+/// B: a mode (this step's settings in that mode), a preset file (relative to the tour;
+/// defaults plus the preset, as `--compare`), or an inline preset `{ label = "...", mode
+/// = "...", name = value, ... }`: this step's settings with those values changed ("the
+/// same, but ...").
 fn parse_compare(v: &Value, folder: &Path, a: &Settings) -> anyhow::Result<CompareTarget> {
     match v {
         Value::String(s) if Mode::from_name(s).is_some() => CompareTarget::parse(s, a),
@@ -288,8 +301,7 @@ fn parse_compare(v: &Value, folder: &Path, a: &Settings) -> anyhow::Result<Compa
                 })?,
                 Some(v) => bail!("compare.mode: expected a string, not {}", v.type_str()),
             };
-            let (settings, _) = preset::parse_table(t, &Settings::default())
-                .map_err(|e| anyhow!("compare: {e:#}"))?;
+            let (settings, _) = preset::parse_table(t, a).map_err(|e| anyhow!("compare: {e:#}"))?;
             Ok(CompareTarget {
                 label,
                 mode,

@@ -274,4 +274,59 @@ fn screenshot_ui(ui: &mut Ui, state: &mut ViewerState) {
     if let Some(message) = &state.screenshot_message {
         ui.weak(message);
     }
+    record_ui(ui, state);
+}
+
+/// Record: every rendered frame as PNG (what is shown) or EXR (linear), and/or a GIF.
+fn record_ui(ui: &mut Ui, state: &mut ViewerState) {
+    use crate::recording::SequenceFormat;
+    let rec = &mut state.recording;
+    let mut toggle = false;
+    ui.horizontal(|ui| {
+        let label = if rec.active {
+            "Stop recording"
+        } else {
+            "Record"
+        };
+        toggle = ui
+            .add(egui::Button::new(label).selected(rec.active))
+            .on_hover_text(
+                "Every rendered frame (the split screen as shown) into a new recording-N folder",
+            )
+            .clicked();
+        ui.add_enabled(
+            !rec.active,
+            egui::TextEdit::singleline(&mut rec.dir)
+                .desired_width(120.0)
+                .hint_text("folder"),
+        );
+    });
+    ui.add_enabled_ui(!rec.active, |ui| {
+        ui.horizontal(|ui| {
+            let name = |f: Option<SequenceFormat>| match f {
+                Some(SequenceFormat::Png) => "PNG frames",
+                Some(SequenceFormat::Exr) => "EXR frames (linear)",
+                None => "no frames",
+            };
+            egui::ComboBox::from_label("and")
+                .selected_text(name(rec.sequence))
+                .show_ui(ui, |ui| {
+                    for f in [Some(SequenceFormat::Png), Some(SequenceFormat::Exr), None] {
+                        ui.selectable_value(&mut rec.sequence, f, name(f));
+                    }
+                });
+            ui.checkbox(&mut rec.gif, "GIF");
+        });
+    });
+    if let Some(message) = &rec.message {
+        ui.weak(message);
+    }
+    if toggle {
+        let action = if rec.active {
+            Action::StopRecording
+        } else {
+            Action::StartRecording
+        };
+        state.request(action);
+    }
 }

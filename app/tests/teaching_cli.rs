@@ -90,7 +90,7 @@ fn every_step_of_the_shipped_tour_renders_with_its_settings_and_scene() {
     let tour: toml::Table = text.parse().unwrap();
     let steps = tour["step"].as_array().unwrap();
     assert!(steps.len() >= 10);
-    let mut checked = 0;
+    let (mut checked, mut cameras) = (0, 0);
     for (k, step) in steps.iter().enumerate() {
         let step = step.as_table().unwrap();
         let number = (k + 1).to_string();
@@ -130,6 +130,26 @@ fn every_step_of_the_shipped_tour_renders_with_its_settings_and_scene() {
                 "step {number}"
             );
         }
+        if let Some(camera) = step.get("camera").and_then(|c| c.as_table()) {
+            let wanted: Vec<f64> = camera["position"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|v| v.as_float().or(v.as_integer().map(|i| i as f64)).unwrap())
+                .collect();
+            let shown: Vec<f64> = doc["camera"]["position"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|v| v.as_f64().unwrap())
+                .collect();
+            let apart = wanted.iter().zip(&shown).map(|(a, b)| (a - b).abs());
+            assert!(
+                apart.fold(0.0, f64::max) < 1e-4,
+                "step {number}: camera at {shown:?}"
+            );
+            cameras += 1;
+        }
         // Every key of the step that is a parameter (the stats list them all), and of an
         // inline B in B's block.
         checked += check_settings(&doc["settings"], step, &number);
@@ -142,6 +162,7 @@ fn every_step_of_the_shipped_tour_renders_with_its_settings_and_scene() {
         }
     }
     assert!(checked >= 8, "only {checked} parameters checked");
+    assert!(cameras >= 1, "no step of the shipped tour sets a camera");
 }
 
 #[test]

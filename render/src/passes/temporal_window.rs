@@ -8,7 +8,7 @@ use super::resources::{Allocation, PixelBuffer, RADIANCE, RESERVOIRS, Resource::
 use crate::gpu_types::GpuWindowPixel;
 
 /// One `GpuWindowPixel` per pixel, allocated the first time a window view is shown and
-/// cleared whenever the window restarts (`Renderer`'s `window_valid`).
+/// cleared whenever the window restarts (renderer/window.rs).
 pub const WINDOW: PixelBuffer = PixelBuffer {
     name: "temporal window",
     stride: std::mem::size_of::<GpuWindowPixel>(),

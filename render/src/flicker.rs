@@ -2,7 +2,9 @@
 //! frame to the next, relative to how bright the true image is. For consecutive frames
 //! t−1, t with references R (one per frame for a moving camera or scene, else the same):
 //!
-//!     flicker_t = Σ_p |e_t(p) − e_{t−1}(p)| / Σ_p luma(R_t(p)),   e = luma(frame) − luma(R)
+//! ```text
+//! flicker_t = Σ_p |e_t(p) − e_{t−1}(p)| / Σ_p luma(R_t(p)),   e = luma(frame) − luma(R)
+//! ```
 //!
 //! For a still camera and scene e_t − e_{t−1} is the plain frame-to-frame luminance
 //! change; with motion or a light event it leaves out the true change of the image (as

@@ -7,6 +7,9 @@
 mod bench;
 mod cli;
 mod compare;
+mod probe;
+mod recording;
+mod tour;
 mod viewer;
 
 use clap::{Parser, Subcommand};

@@ -370,3 +370,33 @@ fn the_split_screen_renders_both_configurations_side_by_side() {
         "no divider at x = {half}"
     );
 }
+
+/// `restir-viewer --tour FILE --tour-step 4`: the step's scene opens with the step's view
+/// (the source view, concourse, no split screen) and the Tour section beside it.
+#[test]
+fn a_tour_opens_at_its_step_with_the_steps_view() {
+    let png = out_path("tour.png");
+    let png_arg = png.to_str().expect("a UTF-8 path");
+    let tour = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/tours/restir.toml");
+    let args = [
+        "--tour",
+        tour.to_str().expect("a UTF-8 path"),
+        "--tour-step",
+        "4",
+        "--screenshot-after",
+        "8",
+        png_arg,
+        "--exit",
+    ];
+    let run = run_viewer(&args, &png);
+    assert_window_sized(&run, WINDOW);
+    assert_panel_drawn(&run.png);
+    let scene = scene_area(&run.png);
+    let [initial, temporal, spatial] = source_palette();
+    let share = |c: [u8; 3]| fraction(&scene, |p| close(p, c, 2));
+    let palette = share(initial) + share(temporal) + share(spatial);
+    assert!(
+        palette > 0.5 && share(temporal) + share(spatial) > 0.1,
+        "step 4 shows the source view: palette colours cover {palette:.3} of the image"
+    );
+}

@@ -388,3 +388,26 @@ pub struct GpuGiPixelDebug {
     pub m_spatial: f32,
     pub _pad: u32,
 }
+
+/// One pixel's temporal window (the `temporal window` pass, passes/temporal_window.rs):
+/// its luminance over the last `TEMPORAL_WINDOW_FRAMES` frames (a ring) and which of them
+/// changed the survivor's light, with the two figures the boiling and survivor-change
+/// views paint, computed when the frame was pushed.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuWindowPixel {
+    /// Frame n's luminance is in slot n % TEMPORAL_WINDOW_FRAMES.
+    pub luma: [f32; crate::shader_constants::TEMPORAL_WINDOW_FRAMES as usize],
+    /// Frames pushed since the window restarted.
+    pub count: u32,
+    /// The survivor's light in the last real-time frame (`NO_LIGHT` for the null sample).
+    pub last_light: u32,
+    /// Bit s: the survivor's light changed in the frame held in slot s.
+    pub changes: u32,
+    /// σ / mean of the luminance over the filled slots (sample σ; 0 below two frames or
+    /// for a black pixel).
+    pub rel_std: f32,
+    /// Changes of the survivor's light / transitions inside the window.
+    pub change_fraction: f32,
+    pub _pad: [u32; 3],
+}

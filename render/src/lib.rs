@@ -4,6 +4,7 @@
 
 pub mod effects;
 pub mod environment;
+pub mod flicker;
 pub mod frame_targets;
 pub mod gpu;
 pub mod gpu_scene;

@@ -193,6 +193,20 @@ pub const BIAS_SIGNIFICANCE: f32 = 3.0;
 /// palette anyway, and the reference's noise, known only as an image-wide RMSE, is larger
 /// than that in its brightest pixels.
 pub const BIAS_NEGLIGIBLE: f32 = 0.01;
+pub const VIEW_BOILING: u32 = 18;
+pub const VIEW_SURVIVOR_CHANGE: u32 = 19;
+/// Frames in the temporal window of the boiling and survivor-change views (the
+/// `temporal window` pass): long enough that the relative standard deviation of a steady
+/// pixel is estimated to ±18 % (1/√(2·15)), short enough that a switched light leaves it
+/// within half a second at 30 fps.
+pub const TEMPORAL_WINDOW_FRAMES: u32 = 16;
+/// The boiling view's palette runs from 0 to this relative standard deviation (σ/mean of
+/// a pixel's luminance over the window); stronger flicker saturates at yellow.
+pub const BOILING_VIEW_MAX: f32 = 1.5;
+/// A pixel *boils* when its σ/mean over the window exceeds this (the palette's middle,
+/// teal): a 16-frame window of a steadily noisy ReSTIR pixel rarely gets there, a pixel
+/// whose survivor comes and goes does (render/tests/temporal_window.rs).
+pub const BOILING_THRESHOLD: f32 = 0.75;
 
 pub const TONEMAP_ACES: u32 = 0;
 pub const TONEMAP_REINHARD: u32 = 1;
@@ -364,6 +378,9 @@ pub fn wgsl_prelude() -> String {
         ("VIEW_GI_JACOBIAN", VIEW_GI_JACOBIAN),
         ("VIEW_BIAS", VIEW_BIAS),
         ("BIAS_BATCH", BIAS_BATCH),
+        ("VIEW_BOILING", VIEW_BOILING),
+        ("VIEW_SURVIVOR_CHANGE", VIEW_SURVIVOR_CHANGE),
+        ("TEMPORAL_WINDOW_FRAMES", TEMPORAL_WINDOW_FRAMES),
         ("TONEMAP_ACES", TONEMAP_ACES),
         ("TONEMAP_REINHARD", TONEMAP_REINHARD),
         ("TONEMAP_CLAMP", TONEMAP_CLAMP),
@@ -397,6 +414,7 @@ pub fn wgsl_prelude() -> String {
         ("GI_MIN_COS", GI_MIN_COS),
         ("BIAS_SIGNIFICANCE", BIAS_SIGNIFICANCE),
         ("BIAS_NEGLIGIBLE", BIAS_NEGLIGIBLE),
+        ("BOILING_VIEW_MAX", BOILING_VIEW_MAX),
     ] {
         out.push_str(&format!("const {name}: f32 = {value:e};\n"));
     }

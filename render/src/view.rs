@@ -57,10 +57,14 @@ pub enum DebugView {
     GiM,
     GiRejection,
     GiJacobian,
+    /// σ/mean of each pixel's luminance over the temporal window: where the image flickers.
+    Boiling,
+    /// How often the survivor's light changed within the temporal window.
+    SurvivorChange,
 }
 
 impl DebugView {
-    pub const ALL: [DebugView; 18] = [
+    pub const ALL: [DebugView; 20] = [
         DebugView::Final,
         DebugView::Source,
         DebugView::M,
@@ -79,6 +83,8 @@ impl DebugView {
         DebugView::GiM,
         DebugView::GiRejection,
         DebugView::GiJacobian,
+        DebugView::Boiling,
+        DebugView::SurvivorChange,
     ];
 
     pub fn name(self) -> &'static str {
@@ -101,6 +107,8 @@ impl DebugView {
             DebugView::GiM => "gi-m",
             DebugView::GiRejection => "gi-rejection",
             DebugView::GiJacobian => "gi-jacobian",
+            DebugView::Boiling => "boiling",
+            DebugView::SurvivorChange => "survivor-change",
         }
     }
 
@@ -128,6 +136,8 @@ impl DebugView {
             DebugView::GiM => VIEW_GI_M,
             DebugView::GiRejection => VIEW_GI_REJECTION,
             DebugView::GiJacobian => VIEW_GI_JACOBIAN,
+            DebugView::Boiling => VIEW_BOILING,
+            DebugView::SurvivorChange => VIEW_SURVIVOR_CHANGE,
         }
     }
 
@@ -146,6 +156,11 @@ impl DebugView {
                 | DebugView::GiRejection
                 | DebugView::GiJacobian
         )
+    }
+
+    /// Whether the view reads the temporal window (kept only while such a view is shown).
+    pub fn uses_temporal_window(self) -> bool {
+        matches!(self, DebugView::Boiling | DebugView::SurvivorChange)
     }
 }
 

@@ -63,6 +63,8 @@ fn every_pass_validates_for_every_effect_set() {
         ("gi_spatial.wgsl", "PLANTED_GI_INVERTED_JACOBIAN"),
         ("gi_temporal.wgsl", "PLANTED_GI_INVERTED_JACOBIAN"),
         ("gi_temporal.wgsl", "PLANTED_GI_NO_TEMPORAL_VISIBILITY"),
+        // The boiling view's planted twin (render/tests/temporal_window.rs).
+        ("temporal_window.wgsl", "PLANTED_WINDOW_CURRENT_FRAME_ONLY"),
     ] {
         let mut defines = EffectSet::all().defines();
         defines.insert(planted.to_string());
@@ -351,6 +353,12 @@ fn host_structs_match_wgsl_layouts() {
             m_temporal,
             m_spatial
         ]
+    );
+    check_struct!(
+        m,
+        "WindowPixel",
+        GpuWindowPixel,
+        [luma, count, last_light, changes, rel_std, change_fraction]
     );
 }
 

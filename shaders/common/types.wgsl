@@ -222,3 +222,18 @@ struct GiPixelDebug {
     m_spatial: f32,
     _pad: u32,
 }
+
+// One pixel's temporal window (GpuWindowPixel; the `temporal window` pass writes it, the
+// boiling and survivor-change views read it): its luminance in the last
+// TEMPORAL_WINDOW_FRAMES frames and in which of them the survivor's light changed.
+struct WindowPixel {
+    luma: array<f32, TEMPORAL_WINDOW_FRAMES>,  // a ring: frame n is in slot n % frames
+    count: u32,            // frames pushed since the window restarted
+    last_light: u32,       // the survivor's light in the last real-time frame
+    changes: u32,          // bit s: the survivor's light changed in slot s's frame
+    rel_std: f32,          // σ / mean of the luminance over the filled slots (0 below 2)
+    change_fraction: f32,  // changes / transitions inside the window
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+}

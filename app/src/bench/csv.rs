@@ -124,6 +124,7 @@ pub fn write_results(
     header.extend([
         "mean_luma_rmse",
         "mean_stability_rmse",
+        "temporal_flicker",
         "accumulated_rgb_rmse",
         "accumulated_rgb_rmse_minus_reference_noise",
         "accumulated_rel_mse",
@@ -164,6 +165,7 @@ pub fn write_results(
         cells.extend([
             num(scored.then_some(s.mean_luma_rmse)),
             num(scored.then_some(s.mean_stability)),
+            num(r.flicker),
             num(s.accumulated_rgb_rmse),
             num(without_noise(
                 s.accumulated_rgb_rmse,

@@ -123,6 +123,7 @@ pub fn results(info: &BenchInfo, results: &[ConfigResult]) -> String {
         "time × nee[^t]",
         "per-frame luma RMSE",
         "stability (luma RMSE)",
+        "flicker (\\|Δ luma\\| / reference)",
         accumulated,
         "luma ratio",
         "signed bias",
@@ -142,6 +143,7 @@ pub fn results(info: &BenchInfo, results: &[ConfigResult]) -> String {
                 ratio(r.time_vs_nee),
                 sig(s.map(|s| s.mean_luma_rmse)),
                 sig(s.map(|s| s.mean_stability)),
+                sig(r.flicker),
                 sig(s.and_then(|s| s.accumulated_rgb_rmse)),
                 s.map(|s| format!("{:.4}", s.luma_ratio))
                     .unwrap_or_else(|| "n/a".into()),

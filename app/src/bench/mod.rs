@@ -15,7 +15,8 @@ pub mod env_cost;
 mod equal_time;
 mod event_strip;
 mod events;
-mod lag;
+/// The light-event rule (`event_frames`) is shared with the pixel history (probe.rs).
+pub(crate) mod lag;
 mod markdown;
 mod plots;
 mod references;

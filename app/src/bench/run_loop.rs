@@ -9,10 +9,11 @@
 
 use std::io::Write;
 
-use restir_render::Renderer;
 use restir_render::effects::EffectSet;
+use restir_render::flicker::Flicker;
 use restir_render::stats::{FrameReport, StatsSummary};
 use restir_render::timeline::AnimatedScene;
+use restir_render::{LinearImage, Renderer};
 
 use super::configs::Config;
 use super::equal_time::{Budget, BudgetClock};
@@ -66,6 +67,9 @@ pub struct ConfigResult {
     pub seed_events: Vec<SeedEvent>,
     pub event_frames: Vec<(usize, restir_render::LinearImage)>,
     pub lag: Vec<EventLag>,
+    /// The temporal-stability figure: mean |Δ luma| between consecutive measured frames
+    /// over the reference's luminance (`restir_render::flicker`; none without scoring).
+    pub flicker: Option<f64>,
 }
 
 impl ConfigResult {
@@ -90,6 +94,7 @@ pub struct ConfigRun<'a> {
     records: Vec<FrameRecord>,
     reports: Vec<FrameReport>,
     lag: Option<LagProbe<'a>>,
+    flicker: Flicker,
 }
 
 impl<'a> ConfigRun<'a> {
@@ -141,6 +146,7 @@ impl<'a> ConfigRun<'a> {
             records: Vec::new(),
             reports: Vec::new(),
             lag,
+            flicker: Flicker::new(),
         })
     }
 
@@ -176,6 +182,9 @@ impl<'a> ConfigRun<'a> {
             if let Some(lag) = &mut self.lag {
                 lag.push(index, &image);
             }
+            if let Some(reference) = reference_of(&self.scoring, index) {
+                self.flicker.push(&image, reference)?;
+            }
             self.scoring.push(index, &image)?
         } else {
             FrameScores::default()
@@ -207,8 +216,18 @@ impl<'a> ConfigRun<'a> {
             time_vs_nee: None,
             frame_mse_vs_nee: None,
             budget_mse_vs_nee: None,
+            flicker: self.flicker.mean(),
         };
         Ok((result, self.renderer))
+    }
+}
+
+/// The reference measured frame `index` is scored against.
+fn reference_of<'a>(scoring: &Scoring<'a>, index: usize) -> Option<&'a LinearImage> {
+    match scoring {
+        Scoring::Off => None,
+        Scoring::Still { reference, .. } => Some(reference),
+        Scoring::Moving { references, .. } => references.get(index),
     }
 }
 

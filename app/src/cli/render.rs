@@ -1,37 +1,40 @@
 //! `render`: frames headless, to EXR (linear, untonemapped) or PNG (display pass: tonemapped
-//! image or a debug view), with `--stats` JSON.
+//! image or a debug view), with `--stats` JSON; every frame to a folder or a GIF
+//! (`--out-sequence`, `--gif`), one pixel's history (`--probe`), or one step of a tour
+//! (`--tour FILE --tour-step K`).
 
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
 use anyhow::{Context, bail};
 use clap::Args;
 use restir_render::gpu_scene::SceneUpdateTimes;
-use restir_render::stats::FrameReport;
-use restir_render::timeline::{AnimatedScene, Timeline};
 use restir_render::view::auto_exposure_ev;
-use restir_render::{DebugView, Gpu, LinearImage, Mode, Renderer, Settings, load_scene};
+use restir_render::{DebugView, Gpu, LinearImage, Renderer, ViewSettings, load_scene};
 
-use super::camera_path::{cut_viewpoint, orbit};
+use super::render_job::Job;
+use super::render_loop::{Progress, SideRun};
 use super::render_reference::{check_comparable, reference_of};
 use super::render_stats::{CompareStats, Side, scene_time_stats, side_stats};
 use super::setup::{PipelineArgs, TimeArgs, parse_size};
-use crate::compare::{CompareTarget, divider_column, split_columns};
+use crate::compare::{divider_column, split_columns};
+use crate::probe::{self, ProbeSample};
+use crate::recording::{RecordedFrame, Recorder, RecordingPlan, SequenceFormat};
 
 #[derive(Args, Debug)]
 pub struct RenderArgs {
-    /// A .gltf/.glb file or a built-in scene (`builtin:cornell`, see `scenes`).
+    /// A .gltf/.glb file or a built-in scene (`builtin:cornell`, see `scenes`); required
+    /// unless `--tour` names it.
     #[arg(long)]
-    pub scene: String,
+    pub scene: Option<String>,
     /// Output size, WxH.
     #[arg(long, default_value = "640x360")]
     pub size: String,
     /// Frames to render.
     #[arg(long, default_value_t = 1)]
     pub frames: u32,
-    /// reference | nee | ris | restir
-    #[arg(long, default_value = "restir")]
-    pub mode: String,
+    /// reference | nee | ris | restir [default: restir].
+    #[arg(long)]
+    pub mode: Option<String>,
     /// Samples per pixel per frame of the reference mode.
     #[arg(long)]
     pub spp: Option<u32>,
@@ -46,14 +49,14 @@ pub struct RenderArgs {
     pub env: super::environment::EnvArgs,
     /// Output image: .exr (linear radiance) or .png (what the display shows).
     #[arg(long)]
-    pub out: PathBuf,
+    pub out: Option<PathBuf>,
     /// Write statistics as JSON here.
     #[arg(long)]
     pub stats: Option<PathBuf>,
-    /// final | source | m | rejection | w | normals | albedo | depth | motion | error | bias | ...
-    /// (PNG only; see README "Debug views").
-    #[arg(long, default_value = "final")]
-    pub debug_view: String,
+    /// final | source | m | rejection | w | ... | boiling | survivor-change (PNG only; see
+    /// README "Debug views") [default: final].
+    #[arg(long)]
+    pub debug_view: Option<String>,
     /// Samples per pixel of the reference the error and bias views compare with.
     #[arg(long, default_value_t = 1024)]
     pub reference_spp: u32,
@@ -66,9 +69,10 @@ pub struct RenderArgs {
     /// Jump the camera to a distant viewpoint at this frame (a camera cut).
     #[arg(long)]
     pub cut_at: Option<u32>,
-    /// Exposure in EV for PNG output, or `auto` (log-average luminance to middle grey).
-    #[arg(long, default_value = "auto")]
-    pub exposure: String,
+    /// Exposure in EV for PNG output, or `auto` (log-average luminance to middle grey; for
+    /// a recording, the first frame's) [default: auto].
+    #[arg(long)]
+    pub exposure: Option<String>,
     /// Split screen: this configuration left, B right of the middle. B is a mode
     /// (reference, nee, ris, restir: these settings in that mode) or a preset .toml file.
     #[arg(long, value_name = "B")]
@@ -76,26 +80,36 @@ pub struct RenderArgs {
     /// Scene time (`--time`, `--fps`).
     #[command(flatten)]
     pub time: TimeArgs,
+    /// Write every frame into this folder: frame-00000.png, ... (see --sequence-format).
+    #[arg(long, value_name = "DIR")]
+    pub out_sequence: Option<PathBuf>,
+    /// png (what the display shows) or exr (linear radiance) for --out-sequence.
+    #[arg(long, default_value = "png")]
+    pub sequence_format: String,
+    /// Write every frame as an animated GIF (what the display shows, at the scene's fps).
+    #[arg(long, value_name = "FILE.gif")]
+    pub gif: Option<PathBuf>,
+    /// Record this pixel's history (X,Y from the top left) into --probe-out.
+    #[arg(long, value_name = "X,Y", requires = "probe_out")]
+    pub probe: Option<String>,
+    /// The pixel history as CSV: one row per frame (README "Pixel history").
+    #[arg(long, value_name = "FILE.csv", requires = "probe")]
+    pub probe_out: Option<PathBuf>,
+    /// Render a step of a guided tour (README "Guided tours"): its scene, camera, time,
+    /// mode, parameters, B, view and exposure; flags given here win over the step's.
+    #[arg(long, value_name = "FILE.toml")]
+    pub tour: Option<PathBuf>,
+    /// The tour's step, from 1.
+    #[arg(long, default_value_t = 1, requires = "tour")]
+    pub tour_step: usize,
 }
 
 pub fn run(args: RenderArgs) -> anyhow::Result<()> {
-    let mode = Mode::from_name(&args.mode).with_context(|| {
-        format!(
-            "--mode '{}': expected reference, nee, ris or restir",
-            args.mode
-        )
-    })?;
+    let job = Job::resolve(&args)?;
     let size = parse_size(&args.size)?;
-    let view = DebugView::from_name(&args.debug_view).with_context(|| {
-        let names: Vec<_> = DebugView::ALL.iter().map(|v| v.name()).collect();
-        format!(
-            "--debug-view '{}': expected one of {}",
-            args.debug_view,
-            names.join(", ")
-        )
-    })?;
-    let format = output_format(&args.out)?;
-    if view != DebugView::Final && format == Format::Exr {
+    let view = job.view;
+    let format = args.out.as_deref().map(output_format).transpose()?;
+    if view != DebugView::Final && format == Some(Format::Exr) {
         bail!(
             "--debug-view {} writes colours: use a .png --out",
             view.name()
@@ -104,101 +118,148 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     if args.frames == 0 {
         bail!("--frames must be at least 1");
     }
-    let mut settings = args.pipeline.settings(&[])?;
-    if let Some(spp) = args.spp {
-        settings
-            .set_from_str("reference_spp", &spp.to_string())
-            .map_err(|e| anyhow::anyhow!("--spp: {e}"))?;
+    if args.out.is_none()
+        && args.out_sequence.is_none()
+        && args.gif.is_none()
+        && args.probe_out.is_none()
+    {
+        bail!("nothing to write: give --out, --out-sequence, --gif or --probe-out");
     }
-    let effects = args.pipeline.effects()?;
-    let compare = args
-        .compare
+    let probe = args
+        .probe
         .as_deref()
-        .map(|spec| CompareTarget::parse(spec, &settings))
+        .map(|p| probe::parse_pixel(p, size))
         .transpose()?;
-    if view == DebugView::Difference && compare.is_none() {
+    let effects = args.pipeline.effects()?;
+    if view == DebugView::Difference && job.compare.is_none() {
         bail!("--debug-view difference shows |A − B|: it needs --compare B");
     }
-
-    let timeline = args.time.timeline()?;
-    let mut loaded = load_scene(&args.scene)?;
-    args.env.apply(&mut loaded)?;
-    check_comparable(view, &args, loaded.animation.is_some())?;
-    let gpu = Gpu::new_headless()?;
-    // Each side poses its own copy of the scene along the same timeline.
-    let side = |mode: Mode, settings: Settings| -> anyhow::Result<Side> {
-        let mut scene = AnimatedScene::new(loaded.clone());
-        scene.pose_only(timeline.time_of(0));
-        let mut renderer = Renderer::new(gpu.clone(), scene.scene(), size.0, size.1, settings)?;
-        renderer.set_mode(mode);
-        renderer.set_seed(args.pipeline.seed);
-        renderer.force_effects(effects.clone());
-        let (reports, updates) = render_frames(&mut renderer, &mut scene, timeline, &args)?;
-        let scene_time = scene
-            .is_animated()
-            .then(|| scene_time_stats(timeline, &args, &updates, &renderer, scene.scene()));
-        let image = if args.accumulate {
-            renderer.read_accumulated()
-        } else {
-            renderer.read_radiance()
-        };
-        Ok(Side {
-            renderer,
-            reports,
-            image,
-            scene_time,
-        })
+    let plan = RecordingPlan {
+        sequence: args
+            .out_sequence
+            .clone()
+            .map(|dir| anyhow::Ok((dir, SequenceFormat::parse(&args.sequence_format)?)))
+            .transpose()?,
+        gif: args.gif.clone(),
+        fps: job.timeline.fps,
     };
-    let mut left = side(mode, settings)?;
-    let mut right = compare
+    let mut recorder = Recorder::start(&plan)?;
+
+    let mut loaded = load_scene(&job.scene)?;
+    job.env.apply(&mut loaded)?;
+    check_comparable(&job, &args, loaded.animation.is_some())?;
+    let gpu = Gpu::new_headless()?;
+    let mut view_settings = ViewSettings {
+        view,
+        accumulate: args.accumulate,
+        ..ViewSettings::default()
+    };
+    let fixed_exposure = match job.exposure.as_str() {
+        "auto" => None,
+        text => Some(parse_exposure(text)?),
+    };
+    view_settings.exposure_ev = fixed_exposure.unwrap_or(0.0);
+    let side = |mode, settings| {
+        SideRun::new(
+            &gpu,
+            &loaded,
+            &job,
+            mode,
+            settings,
+            size,
+            args.pipeline.seed,
+            effects.clone(),
+            view_settings,
+        )
+    };
+    let mut left = side(job.mode, job.settings.clone())?;
+    let mut right = job
+        .compare
         .as_ref()
         .map(|b| side(b.mode, b.settings.clone()))
         .transpose()?;
+    if let Some(p) = probe {
+        left.renderer.set_inspected_pixel(Some(p));
+    }
     let divider = divider_column(size.0, 0.5);
+    let mut exposure = fixed_exposure;
+    let mut history = Vec::new();
+    let mut progress = Progress::new(args.frames);
+    for frame in 0..args.frames {
+        left.render(frame, &job, &args)?;
+        if let Some(r) = &mut right {
+            r.render(frame, &job, &args)?;
+        }
+        if let Some(p) = probe {
+            history.extend(probe_sample(&left, &job, frame, p));
+        }
+        if recorder.wants_display() || recorder.wants_linear() {
+            let image = shown_image(&left, right.as_ref(), divider, args.accumulate);
+            let ev = *exposure.get_or_insert_with(|| auto_exposure_ev(&image));
+            let rgba = if recorder.wants_display() {
+                Some(display_rgba8(&mut left, right.as_mut(), view, ev, divider)?)
+            } else {
+                None
+            };
+            recorder.push(&RecordedFrame {
+                width: size.0,
+                height: size.1,
+                rgba: rgba.as_deref(),
+                linear: Some(&image),
+            })?;
+        }
+        progress.frame_done(frame);
+    }
+    progress.finish();
+    if recorder.frames() > 0 {
+        eprintln!("wrote {}", recorder.finish()?);
+    }
+    if let (Some(p), Some(path)) = (probe, &args.probe_out) {
+        probe::write_csv(path, p, &history)?;
+    }
 
     // The image of one side, or the split of both.
-    let image = match &right {
-        None => left.image.clone(),
-        Some(r) => LinearImage {
-            width: size.0,
-            height: size.1,
-            pixels: split_columns(&left.image.pixels, &r.image.pixels, size.0, divider),
-        },
-    };
-    match format {
-        Format::Exr => image.save_exr(&args.out)?,
-        Format::Png => {
-            // Both sides use the exposure of the split image, so equal radiance looks equal.
-            let exposure_ev = exposure_ev(&image, &args.exposure)?;
-            if view.needs_reference() {
-                let (reference, noise) =
-                    reference_of(&left.renderer, &gpu, &loaded, effects.as_ref(), &args)?;
-                left.renderer.set_reference_image(&reference, noise)?;
-                if let Some(r) = &mut right {
-                    r.renderer.set_reference_image(&reference, noise)?;
+    let image = shown_image(&left, right.as_ref(), divider, args.accumulate);
+    if let (Some(out), Some(format)) = (&args.out, format) {
+        match format {
+            Format::Exr => image.save_exr(out)?,
+            Format::Png => {
+                // Both sides use the exposure of the split image, so equal radiance looks equal.
+                let ev = exposure.unwrap_or_else(|| auto_exposure_ev(&image));
+                if view.needs_reference() {
+                    let (reference, noise) =
+                        reference_of(&left, &gpu, &job, effects.as_ref(), &args)?;
+                    left.renderer.set_reference_image(&reference, noise)?;
+                    if let Some(r) = &mut right {
+                        r.renderer.set_reference_image(&reference, noise)?;
+                    }
                 }
+                let rgba = display_rgba8(&mut left, right.as_mut(), view, ev, divider)?;
+                restir_render::image::save_png_rgba8(out, size.0, size.1, &rgba)?;
             }
-            let rgba = match (&mut right, view) {
-                // |A − B| over the whole image, on A's display pass.
-                (Some(r), DebugView::Difference) => {
-                    left.renderer.set_comparison_image(&r.image)?;
-                    display_rgba8(&mut left.renderer, view, exposure_ev, &args)?
-                }
-                (Some(r), _) => {
-                    let a = display_rgba8(&mut left.renderer, view, exposure_ev, &args)?;
-                    let b = display_rgba8(&mut r.renderer, view, exposure_ev, &args)?;
-                    split_columns(&a, &b, size.0 * 4, divider * 4)
-                }
-                (None, _) => display_rgba8(&mut left.renderer, view, exposure_ev, &args)?,
-            };
-            restir_render::image::save_png_rgba8(&args.out, size.0, size.1, &rgba)?;
         }
     }
     if let Some(path) = &args.stats {
+        let side_of = |run: SideRun| Side {
+            image: read_image(&run.renderer, args.accumulate),
+            scene_time: run.scene.is_animated().then(|| {
+                scene_time_stats(
+                    job.timeline,
+                    &args,
+                    &run.updates,
+                    &run.renderer,
+                    run.scene.scene(),
+                )
+            }),
+            renderer: run.renderer,
+            reports: run.reports,
+        };
+        let left = side_of(left);
+        let right = right.map(side_of);
         let mut doc = side_stats(&left);
         // The document's own count is the written image's (the split with --compare).
         doc.summary.nan_inf_pixels = image.non_finite_count() as u64;
-        if let (Some(r), Some(b)) = (&right, &compare) {
+        if let (Some(r), Some(b)) = (&right, &job.compare) {
             doc.compare = Some(Box::new(CompareStats {
                 divider_column: divider,
                 left: side_stats(&left),
@@ -216,60 +277,52 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
 /// One frame's scene update: posing time (ms) and the renderer's update cost.
 pub(super) type FrameUpdate = (f64, SceneUpdateTimes);
 
-fn render_frames(
-    renderer: &mut Renderer,
-    scene: &mut AnimatedScene,
-    timeline: Timeline,
-    args: &RenderArgs,
-) -> anyhow::Result<(Vec<FrameReport>, Vec<FrameUpdate>)> {
-    let mut start_camera = renderer.camera();
-    let center = renderer.scene_bounds().center();
-    let mut camera = start_camera;
-    let mut reports = Vec::with_capacity(args.frames as usize);
-    let mut updates = Vec::new();
-    let started = Instant::now();
-    let mut last_progress = Instant::now();
-    for frame in 0..args.frames {
-        if frame > 0 {
-            let posing = Instant::now();
-            let (change, times) = scene.set_time(renderer, timeline.time_of(frame));
-            if change.camera {
-                // A camera on an animated node: follow it (orbit and cuts start from it).
-                start_camera = scene.scene().default_camera();
-                camera = start_camera;
-            }
-            if change.any() {
-                let total = posing.elapsed().as_secs_f64() * 1e3;
-                updates.push(((total - times.total_ms()).max(0.0), times));
-            }
-        }
-        if args.orbit != 0.0 {
-            camera = orbit(start_camera, center, args.orbit * frame as f32);
-        }
-        if args.cut_at == Some(frame) {
-            camera = cut_viewpoint(camera, renderer.scene_bounds());
-            renderer.request_cut();
-        }
-        renderer.set_camera(camera);
-        renderer.render_frame()?;
-        // Headless: wait for each frame so no counter readback is ever dropped.
-        reports.extend(renderer.collect_reports(true));
-        if last_progress.elapsed().as_secs_f32() > 1.0
-            || frame + 1 == args.frames && args.frames > 1
-        {
-            last_progress = Instant::now();
-            eprint!(
-                "\rframe {}/{} ({:.1} s)",
-                frame + 1,
-                args.frames,
-                started.elapsed().as_secs_f32()
-            );
-        }
+/// The linear image a side shows: the last frame, or the average with `--accumulate`.
+fn read_image(renderer: &Renderer, accumulate: bool) -> LinearImage {
+    if accumulate {
+        renderer.read_accumulated()
+    } else {
+        renderer.read_radiance()
     }
-    if args.frames > 1 && started.elapsed().as_secs_f32() > 1.0 {
-        eprintln!();
+}
+
+/// What is written: one side's image, or A left of the middle and B right of it.
+fn shown_image(
+    left: &SideRun,
+    right: Option<&SideRun>,
+    divider: u32,
+    accumulate: bool,
+) -> LinearImage {
+    let a = read_image(&left.renderer, accumulate);
+    match right {
+        None => a,
+        Some(r) => LinearImage {
+            width: a.width,
+            height: a.height,
+            pixels: split_columns(
+                &a.pixels,
+                &read_image(&r.renderer, accumulate).pixels,
+                a.width,
+                divider,
+            ),
+        },
     }
-    Ok((reports, updates))
+}
+
+/// The probed pixel's row of the frame just rendered (its inspection came with the
+/// report; scene time and light events for an animated scene).
+fn probe_sample(left: &SideRun, job: &Job, frame: u32, pixel: (u32, u32)) -> Option<ProbeSample> {
+    let inspection = left.reports.last()?.inspection.as_ref()?;
+    let animation = left.scene.scene().animation.as_ref();
+    let time = animation.map(|_| job.timeline.time_of(frame));
+    let event = frame > 0
+        && probe::event_between(
+            animation,
+            job.timeline.time_of(frame - 1),
+            job.timeline.time_of(frame),
+        );
+    debug_assert_eq!(inspection.pixel, pixel);
+    Some(ProbeSample::from_inspection(inspection, time, None, event))
 }
 
 #[derive(PartialEq)]
@@ -291,28 +344,44 @@ fn output_format(path: &Path) -> anyhow::Result<Format> {
     }
 }
 
-/// `--exposure`: a number of stops, or `auto` from the image.
-fn exposure_ev(image: &LinearImage, text: &str) -> anyhow::Result<f32> {
-    if text == "auto" {
-        return Ok(auto_exposure_ev(image));
-    }
+/// `--exposure`: a number of stops.
+fn parse_exposure(text: &str) -> anyhow::Result<f32> {
     text.parse::<f32>()
         .ok()
         .filter(|x| x.is_finite())
         .with_context(|| format!("--exposure '{text}': expected a number of stops or auto"))
 }
 
-/// What the display pass shows for the renderer's last frame (or its average).
+/// What the display shows for the last frame at exposure `ev`: one side, the split of
+/// both, or |A − B| over the whole image.
 fn display_rgba8(
-    renderer: &mut Renderer,
+    left: &mut SideRun,
+    right: Option<&mut SideRun>,
     view: DebugView,
-    exposure_ev: f32,
-    args: &RenderArgs,
+    ev: f32,
+    divider: u32,
 ) -> anyhow::Result<Vec<u8>> {
+    let (w, _) = left.renderer.size();
+    match (right, view) {
+        (Some(r), DebugView::Difference) => {
+            let b = r.renderer.read_radiance();
+            left.renderer.set_comparison_image(&b)?;
+            redisplay(&mut left.renderer, ev)
+        }
+        (Some(r), _) => {
+            let a = redisplay(&mut left.renderer, ev)?;
+            let b = redisplay(&mut r.renderer, ev)?;
+            Ok(split_columns(&a, &b, w * 4, divider * 4))
+        }
+        (None, _) => redisplay(&mut left.renderer, ev),
+    }
+}
+
+/// The last frame's display pass again at exposure `ev` (the view is set once, before the
+/// first frame: the boiling views keep their window only while they are shown).
+fn redisplay(renderer: &mut Renderer, ev: f32) -> anyhow::Result<Vec<u8>> {
     let mut settings = *renderer.view();
-    settings.view = view;
-    settings.exposure_ev = exposure_ev;
-    settings.accumulate = args.accumulate;
+    settings.exposure_ev = ev;
     renderer.set_view(settings);
     renderer.redisplay()?;
     Ok(renderer.read_display_rgba8())

@@ -7,15 +7,16 @@ use std::io::Write;
 use anyhow::bail;
 use restir_render::effects::EffectSet;
 use restir_render::reference_cache::{Progress, ReferenceCache, ReferenceRequest};
-use restir_render::timeline::AnimatedScene;
-use restir_render::{DebugView, Gpu, LinearImage, Renderer, Scene};
+use restir_render::{DebugView, Gpu, LinearImage, Renderer};
 
 use super::render::RenderArgs;
+use super::render_job::Job;
+use super::render_loop::SideRun;
 
 /// Why a view cannot be compared with one reference, if it cannot: the bias view scores a
 /// running average, which is one image only for a still camera at one moment.
-pub fn check_comparable(view: DebugView, args: &RenderArgs, animated: bool) -> anyhow::Result<()> {
-    if view != DebugView::Bias {
+pub fn check_comparable(job: &Job, args: &RenderArgs, animated: bool) -> anyhow::Result<()> {
+    if job.view != DebugView::Bias {
         return Ok(());
     }
     if args.orbit != 0.0 || args.cut_at.is_some() {
@@ -23,7 +24,7 @@ pub fn check_comparable(view: DebugView, args: &RenderArgs, animated: bool) -> a
             "--debug-view bias compares a running average with one reference: it needs a still camera (no --orbit, no --cut-at)"
         );
     }
-    if animated && args.time.fps != 0.0 {
+    if animated && job.timeline.fps != 0.0 {
         bail!(
             "--debug-view bias compares a running average with one reference: an animated scene needs --fps 0 (one moment)"
         );
@@ -31,23 +32,21 @@ pub fn check_comparable(view: DebugView, args: &RenderArgs, animated: bool) -> a
     Ok(())
 }
 
-/// The reference of `renderer`'s last frame (same camera, size, jitter and bounces) and its
-/// own noise (luma RMSE), for `set_reference_image`.
+/// The reference of a side's last frame (same scene time, camera, size, jitter and bounces)
+/// and its own noise (luma RMSE), for `set_reference_image`.
 pub fn reference_of(
-    renderer: &Renderer,
+    run: &SideRun,
     gpu: &Gpu,
-    loaded: &Scene,
+    job: &Job,
     effects: Option<&EffectSet>,
     args: &RenderArgs,
 ) -> anyhow::Result<(LinearImage, f32)> {
-    let mut scene = AnimatedScene::new(loaded.clone());
-    scene.pose_only(args.time.timeline()?.time_of(args.frames.saturating_sub(1)));
-    let settings = renderer.settings().clone();
+    let settings = run.renderer.settings().clone();
     let mut request = ReferenceRequest::new(
-        &args.scene,
-        scene.scene(),
-        renderer.camera(),
-        renderer.size(),
+        &job.scene,
+        run.scene.scene(),
+        run.renderer.camera(),
+        run.renderer.size(),
         args.reference_spp,
         settings.jitter,
     )
@@ -59,8 +58,8 @@ pub fn reference_of(
         Some(dir) => ReferenceCache::new(dir),
         None => ReferenceCache::at_default_dir(),
     };
-    let (w, h) = renderer.size();
-    let mut reference_renderer = Renderer::new(gpu.clone(), scene.scene(), w, h, settings)?;
+    let (w, h) = run.renderer.size();
+    let mut reference_renderer = Renderer::new(gpu.clone(), run.scene.scene(), w, h, settings)?;
     let mut progress = |p: &Progress| {
         eprint!(
             "\rreference: {}/{} spp ({:.1} s)   ",

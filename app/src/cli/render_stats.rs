@@ -46,6 +46,8 @@ pub(super) struct StatsFile<'a> {
     adapter_is_cpu: bool,
     mode: Mode,
     size: [u32; 2],
+    /// The last frame's camera.
+    camera: CameraStats,
     effects: String,
     effect_reasons: Vec<(String, String)>,
     passes: Vec<&'static str>,
@@ -55,6 +57,9 @@ pub(super) struct StatsFile<'a> {
     mean_luminance: f64,
     #[serde(skip_serializing_if = "Option::is_none")]
     scene_time: Option<SceneTimeStats>,
+    /// With the boiling or survivor-change view: the temporal window's figures.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    temporal_window: Option<WindowStats>,
     #[serde(flatten)]
     pub(super) summary: StatsSummary,
     /// With `--compare`: a block per side (left = this configuration, right = B).
@@ -69,6 +74,45 @@ pub(super) struct CompareStats<'a> {
     pub(super) left: StatsFile<'a>,
     pub(super) right_config: String,
     pub(super) right: StatsFile<'a>,
+}
+
+/// Where the camera was (position, unit quaternion x y z w, vertical field of view).
+#[derive(Clone, Serialize)]
+pub(super) struct CameraStats {
+    position: [f32; 3],
+    rotation: [f32; 4],
+    yfov_degrees: f32,
+}
+
+/// The temporal window of the boiling views at the last frame, over the pixels that see
+/// a surface (README "Debug views").
+#[derive(Clone, Serialize)]
+pub(super) struct WindowStats {
+    frames: u32,
+    /// Mean over pixels of σ/mean of luminance in the window.
+    mean_boiling: f64,
+    /// Share of pixels whose σ/mean exceeds `BOILING_THRESHOLD`.
+    boiling_share: f64,
+    boiling_threshold: f32,
+    /// Mean over pixels of the share of frames whose survivor's light changed.
+    mean_survivor_change: f64,
+}
+
+fn window_stats(renderer: &Renderer) -> Option<WindowStats> {
+    use restir_render::renderer::TemporalWindow;
+    let window = renderer.read_temporal_window()?;
+    let surface: Vec<bool> = renderer
+        .read_surfaces()
+        .iter()
+        .map(|s| s.depth > 0.0)
+        .collect();
+    Some(WindowStats {
+        frames: window.frames,
+        mean_boiling: TemporalWindow::mean(&window.rel_std, Some(&surface)),
+        boiling_share: window.boiling_share(Some(&surface)),
+        boiling_threshold: restir_render::shader_constants::BOILING_THRESHOLD,
+        mean_survivor_change: TemporalWindow::mean(&window.change_fraction, Some(&surface)),
+    })
 }
 
 /// One side's renderer and what it produced.
@@ -146,6 +190,14 @@ pub(super) fn side_stats(side: &Side) -> StatsFile<'_> {
         adapter_is_cpu: renderer.gpu().is_cpu(),
         mode: renderer.mode(),
         size: [renderer.size().0, height],
+        camera: {
+            let c = renderer.camera();
+            CameraStats {
+                position: c.position.into(),
+                rotation: c.rotation.into(),
+                yfov_degrees: c.yfov.to_degrees(),
+            }
+        },
         effects: effects.to_string(),
         effect_reasons: effects
             .reasons
@@ -168,6 +220,7 @@ pub(super) fn side_stats(side: &Side) -> StatsFile<'_> {
         effective_spatial_radius_px: settings.effective_spatial_radius(height),
         mean_luminance: side.image.mean_luminance(),
         scene_time: side.scene_time.clone(),
+        temporal_window: window_stats(renderer),
         summary: StatsSummary::from_reports(&side.reports, side.image.non_finite_count() as u64),
         compare: None,
     }

@@ -98,19 +98,29 @@ pub fn parse_effects(text: &str) -> anyhow::Result<Option<EffectSet>> {
 }
 
 /// `--time T --fps F` of `render` and `bench`: frame i shows scene time T + i/F.
-#[derive(clap::Args, Debug, Clone, Copy)]
+#[derive(clap::Args, Debug, Clone, Copy, Default)]
 pub struct TimeArgs {
-    /// Scene time of the first frame, in seconds (animated scenes).
-    #[arg(long, default_value_t = 0.0)]
-    pub time: f32,
+    /// Scene time of the first frame, in seconds (animated scenes) [default: 0].
+    #[arg(long)]
+    pub time: Option<f32>,
     /// Scene time advances 1/F seconds per frame; 0 freezes time (a reference of one
-    /// moment is accumulated that way).
-    #[arg(long, default_value_t = 30.0)]
-    pub fps: f32,
+    /// moment is accumulated that way) [default: 30].
+    #[arg(long)]
+    pub fps: Option<f32>,
 }
 
 impl TimeArgs {
     pub fn timeline(&self) -> anyhow::Result<restir_render::timeline::Timeline> {
-        restir_render::timeline::Timeline::new(self.time, self.fps).map_err(anyhow::Error::msg)
+        self.timeline_or(0.0, 30.0)
+    }
+
+    /// The timeline with these defaults for what the flags leave out (a tour step's).
+    pub fn timeline_or(
+        &self,
+        start: f32,
+        fps: f32,
+    ) -> anyhow::Result<restir_render::timeline::Timeline> {
+        restir_render::timeline::Timeline::new(self.time.unwrap_or(start), self.fps.unwrap_or(fps))
+            .map_err(anyhow::Error::msg)
     }
 }

@@ -2,7 +2,7 @@
 //! handed over (the renderer ignores what did not change), after it the renderer's
 //! outputs (reports, inspection, effect set) come back into the state.
 
-use restir_render::renderer::MAX_SIZE;
+use restir_render::renderer::{MAX_SIZE, PixelInspection};
 use restir_render::{Renderer, ViewSettings};
 
 use super::camera::CameraState;
@@ -45,10 +45,16 @@ pub fn redisplay_if_changed(renderer: &mut Renderer, view: &ViewSettings) -> any
     Ok(())
 }
 
-/// Reports, the inspected pixel and frame facts back into the state.
-pub fn after_frame(renderer: &mut Renderer, state: &mut ViewerState) {
+/// Reports, the inspected pixel and frame facts back into the state; `on_inspection`
+/// sees every inspection that came back (the pixel history).
+pub fn after_frame(
+    renderer: &mut Renderer,
+    state: &mut ViewerState,
+    mut on_inspection: impl FnMut(&mut ViewerState, &PixelInspection),
+) {
     for report in renderer.collect_reports(false) {
         if let Some(inspection) = &report.inspection {
+            on_inspection(state, inspection);
             state.inspector.last = Some(inspection.clone());
         }
         state.accuracy.curves.record_report(&report);
@@ -56,6 +62,7 @@ pub fn after_frame(renderer: &mut Renderer, state: &mut ViewerState) {
     }
     state.render_size = renderer.size();
     state.accumulated_frames = renderer.accumulated_frames();
+    state.window_frames = renderer.temporal_window_frames();
     // Copied only when they change (an effect set carries a sentence per effect).
     if state.scene.effects.as_ref() != renderer.last_effects() {
         state.scene.effects = renderer.last_effects().cloned();
@@ -91,6 +98,8 @@ pub fn scene_loaded(renderer: &Renderer, state: &mut ViewerState, spec: String) 
     state.stats.clear();
     state.inspector = InspectorState {
         pixel: state.inspector.pixel,
+        history: crate::probe::PixelHistory::new(state.inspector.history.capacity),
+        history_path: std::mem::take(&mut state.inspector.history_path),
         ..Default::default()
     };
 }

@@ -22,15 +22,25 @@ pub(super) fn clock_for(scene: &Scene, time: &mut TimeState) -> Option<AnimatedS
 impl Viewer {
     /// Moves scene time on (playing, a step, a scrub) and poses the scene there. A paused
     /// scene that changed also becomes the Accuracy panel's scene, so its reference is
-    /// of the moment shown.
-    pub(super) fn advance_time(&mut self, dt: f32) {
+    /// of the moment shown. Returns whether a light event of the scene was passed (the
+    /// pixel history and the tour's lag mark it).
+    pub(super) fn advance_time(&mut self, dt: f32) -> bool {
         let Some(clock) = &mut self.clock else {
-            return;
+            return false;
         };
         let time = &mut self.state.time;
         clock.set_clip_choice(time.clip.map_or(ClipChoice::All, ClipChoice::One));
         time.duration = clock.duration();
+        let before = time.time;
         time.advance(dt);
+        // Unwrapped: a loop back to the start is time moving on, not back.
+        let after = if time.time < before && time.looping {
+            time.time + time.duration
+        } else {
+            time.time
+        };
+        let event = after > before
+            && crate::probe::event_between(clock.scene().animation.as_ref(), before, after);
         let (change, _) = clock.set_time(&mut self.renderer, time.time);
         // The split screen's B shows the same moment.
         if let Some(b) = self.compare.as_mut().filter(|_| change.any()) {
@@ -48,5 +58,6 @@ impl Viewer {
         if change.any() && !time.playing {
             self.scene = Arc::new(clock.scene().clone());
         }
+        event
     }
 }

@@ -27,6 +27,14 @@ impl CompareSide {
         state: &mut ViewerState,
     ) -> bool {
         let compare = &mut state.compare;
+        // A tour's inline B holds while the field shows its label.
+        if compare
+            .target
+            .as_ref()
+            .is_some_and(|t| t.label != compare.spec)
+        {
+            compare.target = None;
+        }
         if !compare.enabled {
             *side = None;
             compare.errors = None;
@@ -39,7 +47,11 @@ impl CompareSide {
             }
             return false;
         }
-        match Self::create(gpu, scene, a, &compare.spec, &state.settings) {
+        let target = match &compare.target {
+            Some(t) => Ok(t.clone()),
+            None => CompareTarget::parse(&compare.spec, &state.settings),
+        };
+        match target.and_then(|t| Self::create(gpu, scene, a, &compare.spec, t)) {
             Ok(s) => {
                 compare.error = None;
                 *side = Some(s);
@@ -62,9 +74,8 @@ impl CompareSide {
         scene: &Scene,
         a: &Renderer,
         spec: &str,
-        a_settings: &restir_render::Settings,
+        target: CompareTarget,
     ) -> anyhow::Result<CompareSide> {
-        let target = CompareTarget::parse(spec, a_settings)?;
         let (w, h) = a.size();
         let mut renderer = Renderer::new(gpu.clone(), scene, w, h, target.settings.clone())?;
         renderer.set_mode(target.mode);

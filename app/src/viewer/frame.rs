@@ -45,7 +45,7 @@ pub struct Viewer {
     pub(super) scene: Arc<Scene>,
     /// An animated scene's clock (its own posed copy of the scene); `None` when static.
     pub(super) clock: Option<AnimatedScene>,
-    accuracy: AccuracyTracker,
+    pub(super) accuracy: AccuracyTracker,
     /// Configuration B of the split screen, while the Compare section has it on.
     pub(super) compare: Option<CompareSide>,
     /// When the two sides were last scored (each score reads both images back).
@@ -65,6 +65,8 @@ pub struct Viewer {
     ui_wakeup: Option<Instant>,
     /// Hidden behind other windows or on another workspace (where the platform says so).
     occluded: bool,
+    /// The pixel history's frame facts and a recording (viewer/tour/driver.rs).
+    pub(super) teaching: super::tour::driver::Teaching,
 }
 
 /// How long a frozen viewer keeps redrawing after rendering a frame, so the frame's
@@ -110,6 +112,10 @@ impl Viewer {
         renderer.set_view(state.view);
         apply::scene_loaded(&renderer, &mut state, launch.scene_spec);
         let clock = clock_for(&scene, &mut state.time);
+        if let Some((tour, step)) = launch.tour {
+            state.tour = Some(super::tour::TourState::new(tour, launch.env_spec));
+            super::tour::go(&mut state, step);
+        }
         window.set_title(&title(&state));
         let egui = EguiLayer::new(
             &window,
@@ -145,6 +151,7 @@ impl Viewer {
             last_render: None,
             ui_wakeup: None,
             occluded: false,
+            teaching: Default::default(),
         })
     }
 
@@ -304,7 +311,7 @@ impl Viewer {
             }
             state.camera.advance_auto();
             let dt = self.last_render.map_or(0.0, |t| t.elapsed().as_secs_f32());
-            self.advance_time(dt);
+            let event = self.advance_time(dt);
             let state = &mut self.state;
             apply::before_frame(&mut self.renderer, state);
             // B starts from the scene as posed now (an animated scene's clock has it).
@@ -318,6 +325,8 @@ impl Viewer {
             self.renderer.render_frame()?;
             self.frames_rendered += 1;
             self.last_render = Some(Instant::now());
+            self.frame_rendered(event);
+            let state = &mut self.state;
             if self
                 .auto_exposure_at
                 .is_some_and(|at| self.frames_rendered >= at)
@@ -332,13 +341,18 @@ impl Viewer {
             }
         }
         self.follow_accuracy(render_now);
-        apply::after_frame(&mut self.renderer, &mut self.state);
+        let (teaching, accuracy) = (&self.teaching, &self.accuracy);
+        apply::after_frame(&mut self.renderer, &mut self.state, |state, i| {
+            let reference = accuracy.reference_luminance(i.pixel);
+            super::tour::driver::push_history(state, teaching, i, reference);
+        });
         Ok(render_now)
     }
 
     /// The accuracy tracker follows the view the frame was rendered with (a moved camera
     /// drops the old reference) before it scores the frame against the reference.
     fn follow_accuracy(&mut self, rendered: bool) {
+        let tour_wants = self.tour_wants_reference();
         let state = &mut self.state;
         let source = SceneSource {
             spec: &state.scene.spec,
@@ -348,27 +362,22 @@ impl Viewer {
         let playing = state.time.playing && state.time.duration > 0.0;
         let wanted = (state.accuracy.panel_open
             || state.view.view.needs_reference()
-            || state.compare.enabled)
+            || state.compare.enabled
+            || tour_wants)
             && !playing;
         self.accuracy
             .update(&mut self.renderer, &source, &mut state.accuracy, wanted);
         if rendered {
             self.accuracy.measure(&self.renderer, &mut state.accuracy);
-            // The labels' errors: two readbacks, so a few times a second, not every frame.
+            // The labels' errors and the tour's numbers: a readback per side, so a few
+            // times a second, not every frame.
             let now = Instant::now();
             let due = self
                 .compare_scored
                 .is_none_or(|t| now - t >= COMPARE_SCORE_INTERVAL);
-            if self.compare.is_none() {
-                state.compare.errors = None;
-            } else if due {
+            if due {
                 self.compare_scored = Some(now);
-                state.compare.errors = self.compare.as_ref().and_then(|b| {
-                    Some((
-                        self.accuracy.luma_rmse(&self.renderer)?,
-                        self.accuracy.luma_rmse(&b.renderer)?,
-                    ))
-                });
+                self.score_sides();
             }
         }
     }
@@ -399,6 +408,16 @@ impl Viewer {
                     self.state.view.exposure_ev = auto_exposure_ev(&linear);
                 }
                 Action::ResetAccumulation => self.renderer.reset_accumulation(),
+                Action::AutoExposureSoon => {
+                    self.auto_exposure_at = Some(self.frames_rendered + AUTO_EXPOSURE_FRAMES);
+                }
+                Action::LoadTourScene { scene, env } => {
+                    self.state.scene.error = None;
+                    self.loader.start_with_environment(scene, env);
+                }
+                Action::ExportPixelHistory => self.export_pixel_history(),
+                Action::StartRecording => self.start_recording(),
+                Action::StopRecording => self.stop_recording(),
             }
         }
         self.state.scene.loading = self.loader.loading().map(str::to_string);
@@ -441,11 +460,14 @@ impl Viewer {
                 self.state.scene.env_error = Some(e);
                 return;
             }
-            Ok(Loaded::Scene(scene)) => Ok(*scene),
+            Ok(Loaded::Scene(scene)) => Ok((*scene, false)),
+            Ok(Loaded::SceneWithEnvironment(scene)) => Ok((*scene, true)),
             Err(e) => Err(e),
         };
-        let uploaded = result.and_then(|mut scene| {
-            scene.environment = self.scene.environment.clone();
+        let uploaded = result.and_then(|(mut scene, own_environment)| {
+            if !own_environment {
+                scene.environment = self.scene.environment.clone();
+            }
             self.renderer
                 .set_scene(&scene)
                 .map_err(|e| format!("{e:#}"))?;
@@ -458,6 +480,7 @@ impl Viewer {
                 // B is rebuilt on the new scene at the next frame.
                 self.compare = None;
                 apply::scene_loaded(&self.renderer, &mut self.state, spec);
+                self.tour_scene_loaded();
                 self.window.set_title(&title(&self.state));
                 self.auto_exposure_at = Some(self.frames_rendered + AUTO_EXPOSURE_FRAMES);
             }

@@ -24,6 +24,7 @@ mod scene_view;
 mod screenshot;
 mod split_view;
 mod state;
+mod tour;
 
 use std::path::PathBuf;
 
@@ -62,6 +63,13 @@ pub struct ViewArgs {
     /// preset .toml file; the Compare section changes it).
     #[arg(long, value_name = "B")]
     pub compare: Option<String>,
+    /// Start a guided tour (README "Guided tours"): its first step's scene, camera, mode,
+    /// parameters, split screen and view; PageDown / PageUp or the Tour section walk on.
+    #[arg(long, value_name = "FILE.toml")]
+    pub tour: Option<PathBuf>,
+    /// The tour's step to start at, from 1.
+    #[arg(long, default_value_t = 1, requires = "tour")]
+    pub tour_step: usize,
     /// Exit (status 0) once the --screenshot-after PNG is written.
     #[arg(long, requires = "screenshot_after")]
     pub exit: bool,
@@ -85,8 +93,12 @@ pub struct Launch {
     pub compare: Option<String>,
     pub exit: bool,
     pub resize_script: bool,
-    /// The environment of `--env`, loaded (a bad file is a command-line error).
+    /// The environment of `--env` (or the tour's first step), loaded (a bad file is a
+    /// command-line error), and what named it.
     pub environment: Option<std::sync::Arc<restir_render::Environment>>,
+    pub env_spec: Option<String>,
+    /// `--tour`, read and checked, and the step to start at (0-based).
+    pub tour: Option<(crate::tour::Tour, usize)>,
 }
 
 impl Launch {
@@ -112,10 +124,21 @@ impl Launch {
             }
             _ => bail!("--screenshot-after takes a frame count and a file: N FILE.png"),
         };
+        let tour = args
+            .tour
+            .as_deref()
+            .map(crate::tour::Tour::load)
+            .transpose()?;
+        let first = tour.as_ref().map(|t| t.step(args.tour_step)).transpose()?;
+        let mut env = args.env.clone();
+        if env.env.is_none() {
+            env.env = first.and_then(|s| s.env.clone());
+        }
         Ok(Launch {
             scene_spec: args
                 .scene
                 .or(args.scene_positional)
+                .or_else(|| first.map(|s| s.scene.clone()))
                 .unwrap_or_else(|| DEFAULT_SCENE.to_string()),
             settings: settings_from(args.preset.as_ref(), &[])?,
             preset: args.preset,
@@ -125,7 +148,9 @@ impl Launch {
             compare: args.compare,
             exit: args.exit,
             resize_script: args.test_resize_script,
-            environment: args.env.load()?,
+            environment: env.load()?,
+            env_spec: env.env,
+            tour: tour.map(|t| (t, args.tour_step - 1)),
         })
     }
 }

@@ -11,6 +11,8 @@ pub enum Loaded {
     /// Boxed: a scene is a few hundred bytes of handles, an environment much less.
     Scene(Box<Scene>),
     Environment(Environment),
+    /// A tour step's scene with the step's environment (or none) attached.
+    SceneWithEnvironment(Box<Scene>),
 }
 
 /// Whether a load request names an environment (by extension, or `builtin:sky`).
@@ -63,7 +65,25 @@ impl SceneLoader {
         });
     }
 
-    fn start_with(&mut self, spec: String, load: fn(&str) -> Result<Loaded, String>) {
+    /// Starts loading a tour step's scene and its environment (`None`: none) together:
+    /// one load, so neither abandons the other.
+    pub fn start_with_environment(&mut self, spec: String, env: Option<String>) {
+        let job = move |s: &str| {
+            let mut scene = load_scene(s).map_err(|e| e.to_string())?;
+            if let Some(env) = &env {
+                let env = load_environment(env).map_err(|e| e.to_string())?;
+                scene.environment = Some(std::sync::Arc::new(env));
+            }
+            Ok(Loaded::SceneWithEnvironment(Box::new(scene)))
+        };
+        self.start_with(spec, job);
+    }
+
+    fn start_with(
+        &mut self,
+        spec: String,
+        load: impl FnOnce(&str) -> Result<Loaded, String> + Send + 'static,
+    ) {
         let (tx, rx) = channel();
         let job = spec.clone();
         std::thread::spawn(move || {

@@ -12,6 +12,9 @@ use restir_render::{Mode, Settings, ViewSettings};
 
 use super::accuracy::AccuracyState;
 use super::camera::CameraState;
+use super::tour::TourState;
+use crate::compare::CompareTarget;
+use crate::probe::PixelHistory;
 
 /// Something the UI asks for that needs the renderer or the file system.
 #[derive(Clone, Debug, PartialEq)]
@@ -27,6 +30,19 @@ pub enum Action {
     AutoExposure,
     /// Restart the running average.
     ResetAccumulation,
+    /// Measure the exposure automatically once a few frames of what is now set rendered
+    /// (a tour step without an exposure of its own).
+    AutoExposureSoon,
+    /// Load a tour step's scene with its environment (or none), in the background.
+    LoadTourScene {
+        scene: String,
+        env: Option<String>,
+    },
+    /// Write the inspected pixel's history as CSV (Pixel inspector).
+    ExportPixelHistory,
+    /// Start or stop recording every rendered frame (View section).
+    StartRecording,
+    StopRecording,
 }
 
 /// How the rendered image maps onto the window.
@@ -53,7 +69,7 @@ impl DisplayOptions {
 }
 
 /// The pixel inspector's selection and what came back for it.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct InspectorState {
     /// The inspected pixel in render-target coordinates.
     pub pixel: Option<(u32, u32)>,
@@ -65,6 +81,26 @@ pub struct InspectorState {
     pub last: Option<PixelInspection>,
     /// A pixel was just picked: the side panel opens the inspector and scrolls to it once.
     pub reveal: bool,
+    /// The pixel's last N frames (the strip chart), and where its CSV export goes.
+    pub history: PixelHistory,
+    pub history_path: String,
+    /// The export's result (the file written, or why not).
+    pub history_message: Option<String>,
+}
+
+impl Default for InspectorState {
+    fn default() -> Self {
+        InspectorState {
+            pixel: None,
+            frozen: false,
+            step: false,
+            last: None,
+            reveal: false,
+            history: PixelHistory::new(PixelHistory::DEFAULT_FRAMES),
+            history_path: "pixel-history.csv".to_string(),
+            history_message: None,
+        }
+    }
 }
 
 /// The sliding window of frame reports the Stats panel summarises.
@@ -124,6 +160,10 @@ pub struct TimeState {
     pub looping: bool,
     /// Advance one frame (1/30 s) on the next rendered frame.
     pub step: bool,
+    /// Frame-locked: while playing, time advances speed/F per rendered frame (as
+    /// `render --fps F`) instead of with the wall clock, so a lag counts the same frames
+    /// on any machine; `None` follows the wall clock.
+    pub frame_fps: Option<f32>,
     /// The loop length; 0 for a static scene.
     pub duration: f32,
     /// The scene's clips, and the one playing alone (`None`: all together).
@@ -139,6 +179,7 @@ impl Default for TimeState {
             speed: 1.0,
             looping: true,
             step: false,
+            frame_fps: None,
             duration: 0.0,
             clips: Vec::new(),
             clip: None,
@@ -160,7 +201,11 @@ impl TimeState {
         if std::mem::take(&mut self.step) {
             self.time += Self::STEP;
         } else if self.playing {
-            self.time += dt.clamp(0.0, 0.1) * self.speed;
+            let dt = match self.frame_fps {
+                Some(fps) if fps > 0.0 => 1.0 / fps,
+                _ => dt.clamp(0.0, 0.1),
+            };
+            self.time += dt * self.speed;
         }
         if self.looping {
             self.time = self.time.rem_euclid(self.duration);
@@ -208,6 +253,9 @@ pub struct CompareState {
     pub error: Option<String>,
     /// Per-frame luma RMSE of each side against the Accuracy reference, when there is one.
     pub errors: Option<(f64, f64)>,
+    /// B as a tour step gave it (an inline preset); `spec` is then its label, and typing
+    /// another spec drops it.
+    pub target: Option<CompareTarget>,
 }
 
 impl Default for CompareState {
@@ -219,6 +267,32 @@ impl Default for CompareState {
             flipped: false,
             error: None,
             errors: None,
+            target: None,
+        }
+    }
+}
+
+/// The View section's Record toggle: every rendered frame into a folder and/or a GIF.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RecordState {
+    pub active: bool,
+    /// Where the frames go (a new `recording-N` folder inside it per recording).
+    pub dir: String,
+    /// PNG frames (what the display shows) or EXR (linear); none: only the GIF.
+    pub sequence: Option<crate::recording::SequenceFormat>,
+    pub gif: bool,
+    /// What the last recording wrote, or why it stopped.
+    pub message: Option<String>,
+}
+
+impl Default for RecordState {
+    fn default() -> Self {
+        RecordState {
+            active: false,
+            dir: ".".to_string(),
+            sequence: Some(crate::recording::SequenceFormat::Png),
+            gif: true,
+            message: None,
         }
     }
 }
@@ -256,9 +330,14 @@ pub struct ViewerState {
     pub screenshot_message: Option<String>,
     /// Whether the side panel is shown (H toggles).
     pub panel_open: bool,
+    /// A guided tour (`--tour`), its current step and live numbers.
+    pub tour: Option<TourState>,
+    pub recording: RecordState,
     /// Render-target size and accumulated frames, for display.
     pub render_size: (u32, u32),
     pub accumulated_frames: u32,
+    /// Frames in the boiling views' temporal window (0 while no such view is shown).
+    pub window_frames: u32,
     pub actions: Vec<Action>,
 }
 
@@ -283,8 +362,11 @@ impl ViewerState {
             screenshot_dir: ".".to_string(),
             screenshot_message: None,
             panel_open: true,
+            tour: None,
+            recording: RecordState::default(),
             render_size: (0, 0),
             accumulated_frames: 0,
+            window_frames: 0,
             actions: Vec::new(),
         }
     }

@@ -23,6 +23,8 @@ pub mod reference;
 pub mod shade;
 pub mod spatial;
 pub mod temporal;
+pub mod temporal_window;
+pub mod window_view;
 
 pub use compile::{
     ComputePass, PASS_INFO_SLOTS, PASS_INFO_STRIDE, PassLayouts, WORKGROUP, buffer_bind_group,
@@ -31,7 +33,7 @@ pub use compile::{
 pub use pass::PassDef;
 
 /// Every pass, in pipeline order (a layout is created for each; tests validate each).
-pub const ALL: [&PassDef; 16] = [
+pub const ALL: [&PassDef; 18] = [
     &gbuffer::RASTER,
     &gbuffer::RESOLVE,
     &presample::PASS,
@@ -45,7 +47,9 @@ pub const ALL: [&PassDef; 16] = [
     &gi_shade::PASS,
     &reference::PASS,
     &moments::PASS,
+    &temporal_window::PASS,
     &display::PASS,
     &gi_view::PASS,
     &bias_view::PASS,
+    &window_view::PASS,
 ];

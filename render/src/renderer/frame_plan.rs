@@ -1,15 +1,16 @@
 //! The frame as an ordered list of passes, read top to bottom like the pipeline diagram
 //! (README): G-buffer → (light tiles) → DI initial → temporal → spatial × P → shade →
-//! (GI initial → temporal → spatial → shade) → moments → display (→ GI view), or G-buffer
-//! (jitter off) → reference → moments → display. A stage the settings switch off is not in
-//! the list, hence never dispatched or compiled.
+//! (GI initial → temporal → spatial → shade) → moments → (temporal window) → display
+//! (→ GI view) (→ bias view) (→ window view), or G-buffer (jitter off) → reference → moments
+//! → (temporal window) → display. A stage the settings switch off is not in the list, hence
+//! never dispatched or compiled.
 
 use std::ops::Range;
 
 use crate::passes::resources::{Chain, RESERVOIRS};
 use crate::passes::{
     PassDef, bias_view, display, gbuffer, gi_initial, gi_shade, gi_spatial, gi_temporal, gi_view,
-    initial, moments, presample, reference, shade, spatial, temporal,
+    initial, moments, presample, reference, shade, spatial, temporal, temporal_window, window_view,
 };
 
 /// One pass of the frame.
@@ -82,6 +83,9 @@ pub struct FrameSwitches {
     pub gi_view: bool,
     /// The bias view is shown (drawn over the display's output).
     pub bias_view: bool,
+    /// The boiling or survivor-change view is shown: the temporal window is kept and the
+    /// view drawn over the display's output.
+    pub temporal_window: bool,
 }
 
 pub fn frame_plan(f: &FrameSwitches) -> Vec<Step> {
@@ -117,6 +121,15 @@ pub fn frame_plan(f: &FrameSwitches) -> Vec<Step> {
     }
     // The frame's radiance is final here (DI, GI, or the reference).
     steps.push(Step::new(&moments::PASS));
+    if f.temporal_window {
+        // The frame's radiance is final here; slot 1 says its reservoirs are this frame's.
+        let slot = if f.realtime {
+            temporal_window::REALTIME_SLOT
+        } else {
+            0
+        };
+        steps.push(Step::new(&temporal_window::PASS).slots(slot..slot + 1));
+    }
     steps.push(Step::new(&display::PASS));
     if f.realtime && f.gi && f.gi_view {
         steps.push(Step::new(&gi_view::PASS));
@@ -124,18 +137,24 @@ pub fn frame_plan(f: &FrameSwitches) -> Vec<Step> {
     if f.bias_view {
         steps.push(Step::new(&bias_view::PASS));
     }
+    if f.temporal_window {
+        steps.push(Step::new(&window_view::PASS));
+    }
     steps
 }
 
-/// Only the display (and GI or bias view) passes, on the last frame's buffers
+/// Only the display (and GI, bias or window view) passes, on the last frame's buffers
 /// (`Renderer::redisplay`).
-pub fn display_only(gi_view: bool, bias_view: bool) -> Vec<Step> {
+pub fn display_only(gi_view: bool, bias_view: bool, window_view: bool) -> Vec<Step> {
     let mut steps = vec![Step::new(&display::PASS)];
     if gi_view {
         steps.push(Step::new(&gi_view::PASS));
     }
     if bias_view {
         steps.push(Step::new(&bias_view::PASS));
+    }
+    if window_view {
+        steps.push(Step::new(&window_view::PASS));
     }
     steps
 }

@@ -18,7 +18,10 @@ const DI_BYTES: u64 = SURFACE_BYTES + DEBUG_BYTES + MAX_STAGES * RESERVOIR_BYTES
 const GI_DEBUG_BYTES: u64 = std::mem::size_of::<GpuGiPixelDebug>() as u64;
 const GI_RESERVOIR_BYTES: u64 = std::mem::size_of::<GpuGiReservoir>() as u64;
 const MAX_GI_STAGES: u64 = 3;
-pub const INSPECT_BYTES: u64 = DI_BYTES + GI_DEBUG_BYTES + MAX_GI_STAGES * GI_RESERVOIR_BYTES;
+const GI_BYTES: u64 = GI_DEBUG_BYTES + MAX_GI_STAGES * GI_RESERVOIR_BYTES;
+/// Last, the pixel's radiance this frame (what the image shows there before tonemapping).
+const RADIANCE_BYTES: u64 = 16;
+pub const INSPECT_BYTES: u64 = DI_BYTES + GI_BYTES + RADIANCE_BYTES;
 
 /// One stage's reservoir at the inspected pixel.
 #[derive(Clone, Debug, PartialEq)]
@@ -98,6 +101,8 @@ pub struct PixelInspection {
     pub debug: GpuPixelDebug,
     pub stages: Vec<StageReservoir>,
     pub gi: Option<GiInspection>,
+    /// The pixel's linear radiance this frame (the value the pixel history plots).
+    pub radiance: [f32; 3],
 }
 
 fn bit_names(mask: u32) -> Vec<&'static str> {
@@ -238,14 +243,22 @@ impl InspectCapture {
         );
     }
 
-    /// Copies the pixel's surface and final debug record.
+    /// Copies the pixel's surface, final debug record and radiance.
     pub fn copy_pixel_records(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         surfaces: &wgpu::Buffer,
         debug: &wgpu::Buffer,
+        radiance: &wgpu::Buffer,
     ) {
         let index = self.index;
+        encoder.copy_buffer_to_buffer(
+            radiance,
+            index * RADIANCE_BYTES,
+            &self.staging,
+            DI_BYTES + GI_BYTES,
+            RADIANCE_BYTES,
+        );
         encoder.copy_buffer_to_buffer(
             surfaces,
             index * SURFACE_BYTES,
@@ -340,6 +353,9 @@ impl PendingInspection {
                 }
             })
             .collect();
+        let at = (DI_BYTES + GI_BYTES) as usize;
+        let radiance: [f32; 4] =
+            bytemuck::pod_read_unaligned(&bytes[at..at + RADIANCE_BYTES as usize]);
         Some(PixelInspection {
             frame,
             pixel: self.pixel,
@@ -347,6 +363,7 @@ impl PendingInspection {
             debug,
             stages,
             gi,
+            radiance: [radiance[0], radiance[1], radiance[2]],
         })
     }
 }

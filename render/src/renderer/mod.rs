@@ -16,9 +16,11 @@ mod reports;
 pub mod resolve;
 mod setup;
 mod uniforms;
+mod window;
 
 pub use inspect::{GiInspection, GiStageReservoir, PixelInspection, StageReservoir};
 pub use setup::check_size;
+pub use window::TemporalWindow;
 
 use std::collections::HashMap;
 
@@ -106,6 +108,10 @@ pub struct Renderer {
     /// The uploaded reference's own luma RMSE (the bias view counts it as noise).
     reference_noise: f32,
     last_update: SceneUpdateTimes,
+    /// The temporal window of the boiling views: whether it holds a continuous run.
+    window: window::WindowState,
+    /// Every frame draws frame 0's random numbers (`freeze_noise`).
+    frozen_noise: bool,
 }
 
 impl Renderer {
@@ -261,6 +267,7 @@ impl Renderer {
 
     fn invalidate_history(&mut self) {
         self.history_valid = false;
+        self.window.restart();
         self.prev_camera = None;
         self.prev_view_proj = None;
         self.last_final = None;

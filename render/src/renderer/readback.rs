@@ -45,7 +45,7 @@ impl Renderer {
         read_rgba8_texture(&self.gpu, &self.targets.display)
     }
 
-    fn pixel_records<T: bytemuck::Pod>(&self, buffer: &wgpu::Buffer) -> Vec<T> {
+    pub(super) fn pixel_records<T: bytemuck::Pod>(&self, buffer: &wgpu::Buffer) -> Vec<T> {
         read_buffer(
             &self.gpu,
             buffer,

@@ -17,7 +17,7 @@ use crate::gpu::{Gpu, GpuError};
 use crate::passes::gbuffer::RasterPass;
 use crate::passes::gi_initial::{GI_DEBUG, GI_RESERVOIRS};
 use crate::passes::pass::Dispatch;
-use crate::passes::resources::{DEBUG, RESERVOIRS};
+use crate::passes::resources::{DEBUG, RADIANCE, RESERVOIRS};
 use crate::passes::{ComputePass, PASS_INFO_SLOTS, PASS_INFO_STRIDE, PassDef, PassLayouts};
 use crate::settings::Settings;
 use crate::shader_constants::{MAX_SPATIAL_PASSES, REFERENCE_SAMPLES_PER_DISPATCH};
@@ -183,6 +183,7 @@ impl Renderer {
             .map_or(0.0, |p| (p.position - camera.position).length());
         if self.cut_requested || jump > settings.camera_cut * self.scene.scale {
             self.history_valid = false;
+            self.window.restart();
         }
         self.cut_requested = false;
 
@@ -224,6 +225,7 @@ impl Renderer {
             gi_spatial: settings.gi_spatial && settings.gi_spatial_neighbours > 0,
             gi_view: self.view.view.is_indirect(),
             bias_view: self.view.view == DebugView::Bias,
+            temporal_window: self.view.view.uses_temporal_window(),
         };
         let plan = frame_plan(&switches);
         if switches.light_tiles
@@ -242,6 +244,12 @@ impl Renderer {
         self.write_display_uniform(&settings);
         let resolved = resolve(&plan, &self.carried, true, show_accumulation);
         self.targets.ensure(&self.gpu, &resolved.needs);
+        super::window::begin_window_frame(
+            &mut self.window,
+            &self.gpu,
+            &self.targets,
+            switches.temporal_window,
+        );
 
         let frame_group = self.frame_bind_group.clone();
         let scene_group = self.scene.bind_group.clone();
@@ -286,6 +294,7 @@ impl Renderer {
                 rec.encoder(),
                 &self.targets.surfaces[resolved.surfaces],
                 self.targets.pixels(&DEBUG),
+                self.targets.pixels(&RADIANCE),
             );
             if switches.gi {
                 c.copy_gi_debug(rec.encoder(), self.targets.pixels(&GI_DEBUG));
@@ -347,7 +356,11 @@ impl Renderer {
         let shown_accumulation = self.shows_accumulation();
         let variant = self.variants.entry(active.key.clone()).or_default();
         let gi_view = settings.gi && self.mode != Mode::Reference && self.view.view.is_indirect();
-        let plan = frame_plan::display_only(gi_view, self.view.view == DebugView::Bias);
+        let plan = frame_plan::display_only(
+            gi_view,
+            self.view.view == DebugView::Bias,
+            self.view.view.uses_temporal_window(),
+        );
         for step in &plan {
             variant.compile(&self.gpu, &self.layouts, &active.defines, step.pass)?;
         }

@@ -191,6 +191,7 @@ mod tests {
                             gi_spatial: spatial_passes > 0,
                             gi_view: gi,
                             bias_view: !gi,
+                            temporal_window: gi,
                         });
                     }
                 }

@@ -173,6 +173,8 @@ impl Renderer {
             comparison_scale: 1.0,
             reference_noise: 0.0,
             last_update: Default::default(),
+            window: Default::default(),
+            frozen_noise: false,
             gpu,
         })
     }

@@ -39,7 +39,12 @@ impl Renderer {
             inv_view_proj: view_proj.inverse().to_cols_array_2d(),
             prev_view_proj: self.prev_view_proj.unwrap_or(view_proj).to_cols_array_2d(),
             camera_position: camera.position.into(),
-            frame_index: self.frame_index as u32,
+            // Frozen noise: every frame seeds its random streams as frame 0 did.
+            frame_index: if self.frozen_noise {
+                0
+            } else {
+                self.frame_index as u32
+            },
             prev_camera_position: self
                 .prev_camera
                 .map_or(camera.position, |c| c.position)

@@ -18,6 +18,12 @@ pub fn parse(text: &str, base: &Settings) -> anyhow::Result<(Settings, Vec<Strin
             e.message().lines().next().unwrap_or("")
         )
     })?;
+    parse_table(table, base)
+}
+
+/// The parameters of an already parsed table on top of `base` (a preset file, a tour
+/// step: tours are presets plus captions, app/src/tour/). Every key must be a parameter.
+pub fn parse_table(table: toml::Table, base: &Settings) -> anyhow::Result<(Settings, Vec<String>)> {
     let mut settings = base.clone();
     let mut warnings = Vec::new();
     for (key, value) in table {

@@ -154,11 +154,21 @@ impl AccuracyTracker {
         };
     }
 
-    /// Per-frame luma RMSE of `renderer`'s last frame against the reference, if there is
-    /// one of its size (the split screen scores both sides with it).
-    pub fn luma_rmse(&self, renderer: &Renderer) -> Option<f64> {
+    /// Per-frame luma RMSE and signed bias ((mean luma − reference's) / reference's) of
+    /// `renderer`'s last frame, from one readback (the tour's live numbers).
+    pub fn scores(&self, renderer: &Renderer) -> Option<(f64, f64)> {
         let reference = self.reference.as_ref()?;
-        restir_render::metrics::luma_rmse(&renderer.read_radiance(), reference).ok()
+        let frame = renderer.read_radiance();
+        let rmse = restir_render::metrics::luma_rmse(&frame, reference).ok()?;
+        let ratio = restir_render::metrics::luma_ratio(&frame, reference).ok()?;
+        Some((rmse, ratio - 1.0))
+    }
+
+    /// The reference's luminance at `pixel` (the pixel history's reference line).
+    pub fn reference_luminance(&self, pixel: (u32, u32)) -> Option<f32> {
+        let reference = self.reference.as_ref()?;
+        (pixel.0 < reference.width && pixel.1 < reference.height)
+            .then(|| reference.luminance_at(pixel.0, pixel.1))
     }
 
     /// After a rendered frame: scores it against the reference when the panel is open

@@ -19,6 +19,7 @@ pub fn ui(ui: &mut Ui, inspector: &mut InspectorState) {
         if inspector.pixel.is_some() && ui.small_button("Clear").clicked() {
             inspector.pixel = None;
             inspector.last = None;
+            inspector.history.clear();
         }
     });
     ui.horizontal(|ui| {

@@ -9,9 +9,11 @@ pub mod environment;
 pub mod inspector;
 pub mod palette;
 pub mod pipeline;
+pub mod pixel_history;
 pub mod scene;
 pub mod stats;
 pub mod time;
+pub mod tour;
 pub mod view;
 
 #[cfg(test)]
@@ -50,6 +52,9 @@ fn sections(ui: &mut Ui, state: &mut ViewerState) {
             .id_salt(("section", title))
             .default_open(open)
     };
+    if state.tour.is_some() {
+        section("Tour", true).show(ui, |ui| tour::ui(ui, state));
+    }
     section("Pipeline", true).show(ui, |ui| pipeline::ui(ui, state));
     section("View", true).show(ui, |ui| view::ui(ui, state));
     section("Compare", false).show(ui, |ui| compare::ui(ui, state));
@@ -69,7 +74,10 @@ fn sections(ui: &mut Ui, state: &mut ViewerState) {
     let reveal = std::mem::take(&mut state.inspector.reveal);
     let inspector = section("Pixel inspector", false)
         .open(reveal.then_some(true))
-        .show(ui, |ui| inspector::ui(ui, &mut state.inspector));
+        .show(ui, |ui| {
+            inspector::ui(ui, &mut state.inspector);
+            pixel_history::ui(ui, state);
+        });
     if reveal {
         inspector
             .header_response
@@ -78,8 +86,9 @@ fn sections(ui: &mut Ui, state: &mut ViewerState) {
 }
 
 /// Keys that work anywhere while no text field has focus: H (hide/show the panel), F12
-/// (screenshot), P (freeze), N (step one frame while frozen), Escape (drop the inspected
-/// pixel; deliberately not a quit key in a viewer kept open all day).
+/// (screenshot), P (freeze), N (step one frame while frozen), PageDown / PageUp (the
+/// tour's next / previous step), Escape (drop the inspected pixel; deliberately not a
+/// quit key in a viewer kept open all day).
 pub fn shortcuts(ctx: &egui::Context, state: &mut ViewerState) {
     if ctx.text_edit_focused() {
         return;
@@ -99,5 +108,11 @@ pub fn shortcuts(ctx: &egui::Context, state: &mut ViewerState) {
     }
     if pressed(egui::Key::Escape) {
         state.inspector.pixel = None;
+    }
+    if pressed(egui::Key::PageDown) {
+        super::tour::advance(state, 1);
+    }
+    if pressed(egui::Key::PageUp) {
+        super::tour::advance(state, -1);
     }
 }

@@ -42,6 +42,14 @@ pub fn ui(ui: &mut Ui, time: &mut TimeState) {
             .text("Speed")
             .max_decimals(2),
     );
+    let mut locked = time.frame_fps.is_some();
+    if ui
+        .checkbox(&mut locked, "Frame-locked (1/30 s per frame)")
+        .on_hover_text("While playing, advance time by one 30 fps frame per rendered frame, as `render --fps 30` does, so a lag counts the same frames on any machine; off follows the wall clock")
+        .changed()
+    {
+        time.frame_fps = locked.then_some(30.0);
+    }
     if time.clips.len() > 1 {
         let selected = time
             .clip

@@ -4,8 +4,8 @@
 
 use egui::Ui;
 use restir_render::shader_constants::{
-    BIAS_BATCH, BIAS_NEGLIGIBLE, BIAS_SIGNIFICANCE, GI_REJECT_REASON_NAMES, REJECT_REASON_NAMES,
-    REJECT_TEMPORAL_REASONS,
+    BIAS_BATCH, BIAS_NEGLIGIBLE, BIAS_SIGNIFICANCE, BOILING_THRESHOLD, BOILING_VIEW_MAX,
+    GI_REJECT_REASON_NAMES, REJECT_REASON_NAMES, REJECT_TEMPORAL_REASONS, TEMPORAL_WINDOW_FRAMES,
 };
 use restir_render::{DebugView, Settings, Tonemapper, ViewSettings};
 
@@ -108,6 +108,12 @@ fn describe(v: DebugView) -> &'static str {
         DebugView::GiJacobian => {
             "ReSTIR GI: |J| of the surviving sample's last shift on a log scale: blue below 1, white at 1, red above, saturating at the Jacobian window"
         }
+        DebugView::Boiling => {
+            "Where the image flickers: each pixel's σ/mean of luminance over the last 16 frames"
+        }
+        DebugView::SurvivorChange => {
+            "How often each pixel's surviving light changed over the last 16 frames"
+        }
     }
 }
 
@@ -140,6 +146,7 @@ fn legend(ui: &mut Ui, state: &mut ViewerState) {
         DebugView::GiSource => source_legend(ui, str::to_string),
         DebugView::GiM => ramp(ui, "0", &format!("GI M cap ({})", state.settings.gi_m_cap)),
         DebugView::GiRejection => gi_rejection_legend(ui),
+        DebugView::Boiling | DebugView::SurvivorChange => window_legend(ui, state),
         DebugView::GiJacobian => {
             let w = state.settings.gi_jacobian_max.max(1.0);
             let [low, one, high] = jacobian_colors();
@@ -185,6 +192,26 @@ fn bias_legend(ui: &mut Ui) {
          grey until {} frames have accumulated.",
         2 * BIAS_BATCH
     ));
+}
+
+/// The temporal window views: the palette, the window and how full it is.
+fn window_legend(ui: &mut Ui, state: &ViewerState) {
+    if state.view.view == DebugView::Boiling {
+        ramp(ui, "σ/mean 0", &format!("{BOILING_VIEW_MAX}"));
+        ui.weak(format!(
+            "past {BOILING_THRESHOLD} (the middle, teal) a pixel counts as boiling"
+        ));
+    } else {
+        ramp(ui, "never changed", "every frame");
+    }
+    ui.weak(format!(
+        "window: {} of {TEMPORAL_WINDOW_FRAMES} frames (restarts on a cut or a new scene); black: not yet two frames",
+        state.window_frames
+    ));
+    if state.view.view == DebugView::SurvivorChange && state.mode == restir_render::Mode::Reference
+    {
+        ui.weak("The reference keeps no reservoirs: nothing to change.");
+    }
 }
 
 /// The GI rejection reasons and their colours.
@@ -282,5 +309,60 @@ fn screenshot_ui(ui: &mut Ui, state: &mut ViewerState) {
     });
     if let Some(message) = &state.screenshot_message {
         ui.weak(message);
+    }
+    record_ui(ui, state);
+}
+
+/// Record: every rendered frame as PNG (what is shown) or EXR (linear), and/or a GIF.
+fn record_ui(ui: &mut Ui, state: &mut ViewerState) {
+    use crate::recording::SequenceFormat;
+    let rec = &mut state.recording;
+    let mut toggle = false;
+    ui.horizontal(|ui| {
+        let label = if rec.active {
+            "Stop recording"
+        } else {
+            "Record"
+        };
+        toggle = ui
+            .add(egui::Button::new(label).selected(rec.active))
+            .on_hover_text(
+                "Every rendered frame (the split screen as shown) into a new recording-N folder",
+            )
+            .clicked();
+        ui.add_enabled(
+            !rec.active,
+            egui::TextEdit::singleline(&mut rec.dir)
+                .desired_width(120.0)
+                .hint_text("folder"),
+        );
+    });
+    ui.add_enabled_ui(!rec.active, |ui| {
+        ui.horizontal(|ui| {
+            let name = |f: Option<SequenceFormat>| match f {
+                Some(SequenceFormat::Png) => "PNG frames",
+                Some(SequenceFormat::Exr) => "EXR frames (linear)",
+                None => "no frames",
+            };
+            egui::ComboBox::from_label("and")
+                .selected_text(name(rec.sequence))
+                .show_ui(ui, |ui| {
+                    for f in [Some(SequenceFormat::Png), Some(SequenceFormat::Exr), None] {
+                        ui.selectable_value(&mut rec.sequence, f, name(f));
+                    }
+                });
+            ui.checkbox(&mut rec.gif, "GIF");
+        });
+    });
+    if let Some(message) = &rec.message {
+        ui.weak(message);
+    }
+    if toggle {
+        let action = if rec.active {
+            Action::StopRecording
+        } else {
+            Action::StartRecording
+        };
+        state.request(action);
     }
 }

@@ -58,39 +58,54 @@ const SCENES: &[(&str, Generator)] = &[
     }),
 ];
 
+/// A room with a light count: `many-lights:N`, `many-lights-diffuse:N`,
+/// `dynamic:many-lights:N`.
+type Room = fn(&str, usize) -> Scene;
+const FAMILIES: [(&str, Room); 3] = [
+    ("many-lights:", |name, n| {
+        many_lights_room(name, n, glossy_floor())
+    }),
+    ("many-lights-diffuse:", |name, n| {
+        many_lights_room(name, n, diffuse_floor())
+    }),
+    ("dynamic:many-lights:", dynamic::orbiting_lights),
+];
+
+/// The N of a family's `:N`, checked.
+fn light_count(count: &str) -> Result<usize, String> {
+    let n: usize = count
+        .parse()
+        .map_err(|_| format!("'{count}' is not a light count"))?;
+    if !(1..=MAX_LIGHT_COUNT).contains(&n) {
+        return Err(format!("light count must be in 1..={MAX_LIGHT_COUNT}"));
+    }
+    Ok(n)
+}
+
+/// Whether `name` (without `builtin:`) names a built-in scene, without building it (a
+/// tour file's scenes are checked when it is read).
+pub fn is_builtin_name(name: &str) -> bool {
+    SCENES.iter().any(|(n, _)| *n == name)
+        || FAMILIES.iter().any(|(prefix, _)| {
+            name.strip_prefix(prefix)
+                .is_some_and(|count| light_count(count).is_ok())
+        })
+}
+
 /// Build a built-in scene. `name` has no `builtin:` prefix; `many-lights:N` takes a light
 /// count in 1..=MAX_LIGHT_COUNT.
 pub fn builtin_scene(name: &str) -> Result<Scene, SceneError> {
     if let Some((_, build)) = SCENES.iter().find(|(n, _)| *n == name) {
         return Ok(build(name));
     }
-    // `many-lights:N`, `many-lights-diffuse:N`, `dynamic:many-lights:N`: N lights.
-    type Room = fn(&str, usize) -> Scene;
-    let families: [(&str, Room); 3] = [
-        ("many-lights:", |name, n| {
-            many_lights_room(name, n, glossy_floor())
-        }),
-        ("many-lights-diffuse:", |name, n| {
-            many_lights_room(name, n, diffuse_floor())
-        }),
-        ("dynamic:many-lights:", dynamic::orbiting_lights),
-    ];
-    for (prefix, room) in families {
+    for (prefix, room) in FAMILIES {
         let Some(count) = name.strip_prefix(prefix) else {
             continue;
         };
-        let error = |detail: String| SceneError::Builtin {
+        let n = light_count(count).map_err(|detail| SceneError::Builtin {
             name: name.to_string(),
             detail,
-        };
-        let n: usize = count
-            .parse()
-            .map_err(|_| error(format!("'{count}' is not a light count")))?;
-        if !(1..=MAX_LIGHT_COUNT).contains(&n) {
-            return Err(error(format!(
-                "light count must be in 1..={MAX_LIGHT_COUNT}"
-            )));
-        }
+        })?;
         return Ok(room(name, n));
     }
     Err(SceneError::Builtin {

@@ -63,6 +63,7 @@ pub(super) fn synthetic_inspection() -> PixelInspection {
             },
         ],
         gi: None,
+        radiance: [0.5, 0.25, 0.125],
     }
 }
 

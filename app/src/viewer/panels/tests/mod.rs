@@ -59,3 +59,4 @@ mod other_panels;
 mod pipeline_panel;
 mod side_panel;
 mod time_panel;
+mod tour_panel;

@@ -14,8 +14,8 @@ pub use records::oct_encode;
 pub use update::SceneUpdateTimes;
 
 use records::{
-    geometry_kind, gpu_materials, light_areas, light_geometry, light_slots, triangle_records,
-    wrap_code,
+    geometry_kind, gpu_materials, light_areas, light_geometry, light_slots, texture_records,
+    triangle_records,
 };
 
 use std::time::Instant;
@@ -54,6 +54,10 @@ pub struct SceneInfo {
     /// The environment: name, size, strength, rotation, share of the light power and
     /// the time its distribution took to build; `None` without one.
     pub environment: Option<EnvironmentInfo>,
+    /// What the loader did with each extension the file lists (`Scene::extensions`).
+    pub extensions: Vec<crate::scene::ExtensionUse>,
+    /// The file has no camera: the start camera frames the bounds (`Camera::framing`).
+    pub camera_automatic: bool,
 }
 
 #[derive(Clone, Debug, serde::Serialize)]
@@ -209,17 +213,7 @@ impl GpuScene {
             &lights.triangle_light,
         );
 
-        let mut texels: Vec<u32> = Vec::new();
-        let mut textures = Vec::with_capacity(scene.textures.len());
-        for t in &scene.textures {
-            textures.push(GpuTexture {
-                offset: texels.len() as u32,
-                width: t.width,
-                height: t.height,
-                wrap: wrap_code(t.wrap_u) | (wrap_code(t.wrap_v) << 4),
-            });
-            texels.extend(t.texels.iter().map(|c| u32::from_le_bytes(*c)));
-        }
+        let (textures, texels) = texture_records(scene);
         let materials = gpu_materials(scene);
         let light_geometry = light_geometry(&lights, &triangles);
         let buffers = SceneBuffers {
@@ -312,6 +306,8 @@ impl GpuScene {
                     .map_or(0.0, |l| l.select_pdf),
                 distribution_build_ms: e.build_ms,
             }),
+            extensions: scene.extensions.clone(),
+            camera_automatic: scene.camera_is_automatic(),
         };
         let light_areas = if scene.animation.is_some() {
             light_areas(scene, &bvh.triangle_order, &lights)

@@ -55,7 +55,7 @@ pub struct GpuMaterial {
     pub _pad: u32,
 }
 
-/// Where a texture's RGBA8 texels start in the shared texel buffer.
+/// Where a texture's RGBA8 texels start in the shared texel buffer, and how its uvs move.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
 pub struct GpuTexture {
@@ -64,6 +64,10 @@ pub struct GpuTexture {
     pub height: u32,
     /// `wrap_u | wrap_v << 4`, each 0 repeat, 1 clamp, 2 mirrored repeat.
     pub wrap: u32,
+    /// `KHR_texture_transform` of the slot reading this record: uv' = M · (u, v, 1), M's
+    /// three columns (WGSL `mat3x2<f32>`). Each distinct (texture, transform) pair of the
+    /// scene's materials is its own record over the same texels.
+    pub uv_transform: [[f32; 2]; 3],
 }
 
 pub const LIGHT_KIND_TRIANGLE: u32 = 0;

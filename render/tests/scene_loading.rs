@@ -13,6 +13,8 @@ use serde_json::{Value, json};
 
 #[path = "scene_loading/animation.rs"]
 mod animation;
+#[path = "scene_loading/extensions.rs"]
+mod extensions;
 #[path = "scene_loading/files.rs"]
 mod files;
 #[path = "scene_loading/fuzz.rs"]

@@ -197,7 +197,12 @@ fn host_structs_match_wgsl_layouts() {
             emissive_texture
         ]
     );
-    check_struct!(m, "Texture", GpuTexture, [offset, width, height, wrap]);
+    check_struct!(
+        m,
+        "Texture",
+        GpuTexture,
+        [offset, width, height, wrap, uv_transform]
+    );
     check_struct!(
         m,
         "Light",

@@ -37,9 +37,15 @@ fn texel(t: Texture, x: i32, y: i32) -> vec4<f32> {
 
 // Bilinear filtering of the base level (no mips: every pass reads the same value, which
 // keeps the raster and ray-traced paths consistent).
+// The record's KHR_texture_transform moves the uv first (identity for most records).
 fn sample_texture(index: u32, uv: vec2<f32>, srgb: bool) -> vec4<f32> {
     let t = textures[index];
-    let p = uv * vec2<f32>(f32(t.width), f32(t.height)) - 0.5;
+#ifdef PLANTED_NO_UV_TRANSFORM
+    let st = uv;
+#else
+    let st = t.uv_transform * vec3<f32>(uv, 1.0);
+#endif
+    let p = st * vec2<f32>(f32(t.width), f32(t.height)) - 0.5;
     let base = floor(p);
     let f = p - base;
     let x = i32(base.x);

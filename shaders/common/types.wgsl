@@ -35,6 +35,7 @@ struct Texture {
     width: u32,
     height: u32,
     wrap: u32,    // wrap_u | wrap_v << 4: 0 repeat, 1 clamp, 2 mirrored repeat
+    uv_transform: mat3x2<f32>,  // KHR_texture_transform: uv' = uv_transform * vec3(uv, 1)
 }
 
 struct Light {

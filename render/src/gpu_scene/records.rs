@@ -5,7 +5,7 @@ use glam::Vec3;
 
 use crate::gpu_types::*;
 use crate::scene::lights::LightTable;
-use crate::scene::{AlphaMode, Scene, Wrap};
+use crate::scene::{AlphaMode, Scene, TextureRef, UvTransform, Wrap};
 
 /// Octahedral encoding into two snorm16, bit-identical to `oct_encode` in math.wgsl.
 pub fn oct_encode(n: Vec3) -> u32 {
@@ -82,8 +82,69 @@ pub(super) fn triangle_records(
     (triangles, shading)
 }
 
+/// The texture records and the shared texel buffer: record `i` is scene texture `i`
+/// untransformed, then one record per distinct (texture, transform) pair of
+/// [`transformed_slots`], over the same texels with that transform.
+pub(super) fn texture_records(scene: &Scene) -> (Vec<GpuTexture>, Vec<u32>) {
+    let mut texels: Vec<u32> = Vec::new();
+    let mut records = Vec::with_capacity(scene.textures.len());
+    for t in &scene.textures {
+        records.push(GpuTexture {
+            offset: texels.len() as u32,
+            width: t.width,
+            height: t.height,
+            wrap: wrap_code(t.wrap_u) | (wrap_code(t.wrap_v) << 4),
+            uv_transform: UvTransform::IDENTITY.columns,
+        });
+        texels.extend(t.texels.iter().map(|c| u32::from_le_bytes(*c)));
+    }
+    for r in transformed_slots(scene) {
+        if let Some(&base) = records.get(r.texture as usize) {
+            records.push(GpuTexture {
+                uv_transform: r.transform.columns,
+                ..base
+            });
+        }
+    }
+    (records, texels)
+}
+
+/// Every distinct (texture, non-identity transform) of the materials' slots, in material
+/// and slot order: the same list on upload and on every material update.
+fn transformed_slots(scene: &Scene) -> Vec<TextureRef> {
+    let mut slots: Vec<TextureRef> = Vec::new();
+    for m in &scene.materials {
+        for (_, r) in m.texture_slots() {
+            let Some(r) = r.filter(|r| !r.transform.is_identity()) else {
+                continue;
+            };
+            if !slots.iter().any(|s| same_record(s, &r)) {
+                slots.push(r);
+            }
+        }
+    }
+    slots
+}
+
+fn same_record(a: &TextureRef, b: &TextureRef) -> bool {
+    a.texture == b.texture && a.transform == b.transform
+}
+
+/// The record a slot samples (see [`texture_records`]).
+fn record_index(scene: &Scene, transformed: &[TextureRef], r: TextureRef) -> u32 {
+    if r.transform.is_identity() {
+        return r.texture;
+    }
+    transformed
+        .iter()
+        .position(|s| same_record(s, &r))
+        .map_or(r.texture, |i| (scene.textures.len() + i) as u32)
+}
+
 pub(super) fn gpu_materials(scene: &Scene) -> Vec<GpuMaterial> {
-    let tex_index = |r: Option<crate::scene::TextureRef>| r.map_or(NO_TEXTURE, |r| r.texture);
+    let transformed = transformed_slots(scene);
+    let tex_index =
+        |r: Option<TextureRef>| r.map_or(NO_TEXTURE, |r| record_index(scene, &transformed, r));
     scene
         .materials
         .iter()

@@ -4,9 +4,11 @@
 
 mod animations;
 mod data;
+pub mod extensions;
 mod materials;
 mod pointer_channels;
 mod primitives;
+mod quantized;
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::Path;
@@ -17,16 +19,8 @@ use gltf::khr_lights_punctual::Kind;
 use super::animation::{CameraBinding, MeshBinding};
 use super::load::{SceneError, one_line, validate};
 use super::{Camera, Material, PunctualKind, PunctualLight, Scene};
+use extensions::{ExtensionStatus, ExtensionUse};
 use primitives::{PrimitiveId, append_primitive};
-
-/// Extensions whose meaning this loader implements; a file that *requires* any other one
-/// cannot be shown correctly and is refused.
-const SUPPORTED_EXTENSIONS: &[&str] = &[
-    "KHR_animation_pointer",
-    "KHR_lights_punctual",
-    "KHR_materials_emissive_strength",
-    "KHR_materials_specular",
-];
 
 /// Load a .gltf or .glb file. The returned scene has passed `load::validate`.
 pub fn load_gltf(path: &Path) -> Result<Scene, SceneError> {
@@ -65,7 +59,7 @@ fn load_unvalidated(path: &Path, file: &str) -> Result<Scene, SceneError> {
         what: "the file".to_string(),
         error: source,
     })?;
-    let (gltf::Gltf { document, blob }, pointers) = open_document(file, &bytes)?;
+    let (gltf::Gltf { document, blob }, pointers, extensions) = open_document(file, &bytes)?;
     let base = path.parent().unwrap_or(Path::new("."));
     let buffers = data::load_buffers(file, &document, base, blob)?;
 
@@ -75,6 +69,7 @@ fn load_unvalidated(path: &Path, file: &str) -> Result<Scene, SceneError> {
             .map_or_else(|| file.to_string(), |n| n.to_string_lossy().into_owned()),
         materials: materials::load_materials(file, &document),
         textures: materials::load_textures(file, &document, base, &buffers)?,
+        extensions,
         ..Scene::default()
     };
     let mut walker = Walker {
@@ -108,13 +103,21 @@ fn warn_rest_pose_only(file: &str, doc: &gltf::Document) {
     }
 }
 
-/// Parse JSON/GLB, refuse unsupported required extensions, then run the crate's schema
-/// validation. The crate's own required-extension check is skipped because it does not know
-/// KHR_materials_specular, which this loader reads.
+/// Parse JSON/GLB, report the extensions and refuse unsupported required ones
+/// (`extensions`), then run the crate's schema validation. The crate's own
+/// required-extension check is skipped because it does not know all the extensions this
+/// loader reads (KHR_materials_specular, KHR_mesh_quantization).
 fn open_document(
     file: &str,
     bytes: &[u8],
-) -> Result<(gltf::Gltf, Vec<pointer_channels::PointerChannel>), SceneError> {
+) -> Result<
+    (
+        gltf::Gltf,
+        Vec<pointer_channels::PointerChannel>,
+        Vec<ExtensionUse>,
+    ),
+    SceneError,
+> {
     let parse_error = |e: gltf::Error| SceneError::Parse {
         file: file.to_string(),
         detail: one_line(e.to_string()),
@@ -125,22 +128,15 @@ fn open_document(
         None => gltf::Gltf::from_slice_without_validation(bytes).map_err(parse_error)?,
     };
     let mut json = gltf.document.into_json();
-    if let Some(ext) = json
-        .extensions_required
-        .iter()
-        .find(|e| !SUPPORTED_EXTENSIONS.contains(&e.as_str()))
-    {
+    let report = extensions::report(&json.extensions_used, &json.extensions_required);
+    if let Some(detail) = extensions::refusal(&report) {
         return Err(SceneError::Unsupported {
             file: file.to_string(),
-            detail: format!("required extension {ext} (supported: {SUPPORTED_EXTENSIONS:?})"),
+            detail,
         });
     }
-    for ext in json
-        .extensions_used
-        .iter()
-        .filter(|e| !SUPPORTED_EXTENSIONS.contains(&e.as_str()))
-    {
-        log::warn!("{file}: ignoring optional extension {ext}");
+    for e in report.iter().filter(|e| e.status != ExtensionStatus::Used) {
+        log::info!("{file}: {e}");
     }
     json.extensions_required.clear();
     check_crate_assumptions(file, &json)?;
@@ -151,6 +147,7 @@ fn open_document(
             blob: gltf.blob,
         },
         pointers,
+        report,
     ))
 }
 

@@ -135,14 +135,10 @@ fn check_references(scene: &Scene, file: &str) -> Result<(), SceneError> {
     }
     let texture_count = scene.textures.len();
     for m in &scene.materials {
-        let slots = [
-            m.base_color_texture,
-            m.metallic_roughness_texture,
-            m.emissive_texture,
-        ];
-        if let Some(r) = slots
+        if let Some(r) = m
+            .texture_slots()
             .iter()
-            .flatten()
+            .filter_map(|(_, r)| *r)
             .find(|r| r.texture as usize >= texture_count)
         {
             return Err(SceneError::invalid(
@@ -261,7 +257,7 @@ mod tests {
             (|s| s.triangles[0].indices[2] = 3, "vertex 3"),
             (|s| s.triangles[0].material = 1, "material 1"),
             (
-                |s| s.materials[0].emissive_texture = Some(crate::scene::TextureRef { texture: 0 }),
+                |s| s.materials[0].emissive_texture = Some(crate::scene::TextureRef::new(0)),
                 "texture 0",
             ),
         ];

@@ -9,8 +9,10 @@ pub mod camera;
 pub mod gltf_loader;
 pub mod lights;
 pub mod load;
+mod uv_transform;
 
 pub use camera::Camera;
+pub use gltf_loader::extensions::{ExtensionStatus, ExtensionUse};
 pub use load::load_scene;
 
 use glam::{Vec2, Vec3, Vec4};
@@ -31,6 +33,8 @@ pub struct Scene {
     pub environment: Option<std::sync::Arc<crate::environment::Environment>>,
     /// What moves and changes with scene time; `None` for a static scene.
     pub animation: Option<animation::SceneAnimation>,
+    /// What the loader did with each extension the file lists (empty for built-ins).
+    pub extensions: Vec<ExtensionUse>,
 }
 
 /// A world-space vertex. `normal` is zero when the source had none: shaders then use the
@@ -90,6 +94,25 @@ impl Default for Material {
 }
 
 impl Material {
+    /// Every texture slot by its glTF name: the one list the loader, validation and the
+    /// uv-set choice go through (a new slot is added here).
+    pub fn texture_slots(&self) -> [(&'static str, Option<TextureRef>); 3] {
+        [
+            ("baseColorTexture", self.base_color_texture),
+            ("metallicRoughnessTexture", self.metallic_roughness_texture),
+            ("emissiveTexture", self.emissive_texture),
+        ]
+    }
+
+    /// The uv set the vertices of this material's primitives carry: the one every slot
+    /// reads, else the base colour slot's (the loader warns), else the first slot's, else 0.
+    pub fn uv_set(&self) -> u32 {
+        let slots = self.texture_slots();
+        self.base_color_texture
+            .or_else(|| slots.iter().find_map(|(_, r)| *r))
+            .map_or(0, |r| r.tex_coord)
+    }
+
     /// A matte Lambertian material (specular lobe off).
     pub fn diffuse(name: &str, base_color: Vec3) -> Self {
         Self {
@@ -127,11 +150,29 @@ pub enum AlphaMode {
     Blend,
 }
 
-/// A texture slot of a material. Only TEXCOORD_0 is supported; the loader rejects others.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// A texture slot of a material: the texture, the uv set the file names for it and its
+/// `KHR_texture_transform` (identity without one).
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TextureRef {
     pub texture: u32,
+    /// The TEXCOORD_n set this slot reads (the transform's `texCoord` override applied).
+    /// Vertices store one uv set: the loader reads the one the material's slots agree on.
+    pub tex_coord: u32,
+    pub transform: UvTransform,
 }
+
+impl TextureRef {
+    /// Texture `texture` read through TEXCOORD_0, untransformed.
+    pub fn new(texture: u32) -> TextureRef {
+        TextureRef {
+            texture,
+            tex_coord: 0,
+            transform: UvTransform::IDENTITY,
+        }
+    }
+}
+
+pub use uv_transform::UvTransform;
 
 /// RGBA8 texels as stored in the file (colour textures stay sRGB-encoded; the shader
 /// decodes them according to the slot that reads them).
@@ -237,6 +278,12 @@ impl Scene {
     pub fn triangle_positions(&self, t: usize) -> [Vec3; 3] {
         let tri = &self.triangles[t];
         tri.indices.map(|i| self.vertices[i as usize].position)
+    }
+
+    /// True when the scene has no camera of its own (a file without one): the start
+    /// camera is then [`Camera::framing`] of the bounds.
+    pub fn camera_is_automatic(&self) -> bool {
+        self.camera.is_none()
     }
 
     /// The camera to start with: the file's, else one framing the scene bounds.

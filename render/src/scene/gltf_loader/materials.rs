@@ -7,7 +7,7 @@ use glam::{Vec3, Vec4};
 use gltf::texture::WrappingMode;
 
 use super::super::load::{SceneError, one_line};
-use super::super::{AlphaMode, Material, Texture, TextureRef, Wrap};
+use super::super::{AlphaMode, Material, Texture, TextureRef, UvTransform, Wrap};
 use super::data;
 
 /// Every material of the document, in order. Normal and occlusion textures are ignored: this
@@ -23,20 +23,10 @@ fn material(file: &str, m: &gltf::Material) -> Material {
         .unwrap_or_else(|| format!("material {}", m.index().unwrap_or(0)));
     let pbr = m.pbr_metallic_roughness();
     let slot = |info: Option<gltf::texture::Info>, slot: &str| {
-        info.map(|info| {
-            if info.tex_coord() != 0 {
-                log::warn!(
-                    "{file}: material '{name}' {slot} uses TEXCOORD_{}; only TEXCOORD_0 is read, using it instead",
-                    info.tex_coord()
-                );
-            }
-            TextureRef {
-                texture: info.texture().index() as u32,
-            }
-        })
+        info.map(|info| texture_ref(file, &name, slot, &info))
     };
     let strength = m.emissive_strength().unwrap_or(1.0);
-    Material {
+    let material = Material {
         base_color: Vec4::from_array(pbr.base_color_factor()),
         base_color_texture: slot(pbr.base_color_texture(), "baseColorTexture"),
         metallic: pbr.metallic_factor(),
@@ -55,6 +45,53 @@ fn material(file: &str, m: &gltf::Material) -> Material {
             gltf::material::AlphaMode::Blend => AlphaMode::Blend,
         },
         name,
+    };
+    warn_on_disagreeing_uv_sets(file, &material);
+    material
+}
+
+/// A slot's texture, uv set and `KHR_texture_transform`. A transform with a non-finite value
+/// is dropped with a warning (the texture is still read, untransformed).
+fn texture_ref(file: &str, material: &str, slot: &str, info: &gltf::texture::Info) -> TextureRef {
+    let mut r = TextureRef::new(info.texture().index() as u32);
+    r.tex_coord = info.tex_coord();
+    if let Some(t) = info.texture_transform() {
+        r.tex_coord = t.tex_coord().unwrap_or(r.tex_coord);
+        match UvTransform::from_khr(t.offset(), t.rotation(), t.scale()) {
+            Some(m) => r.transform = m,
+            None => log::warn!(
+                "{file}: material '{material}' {slot}: KHR_texture_transform has a non-finite \
+                 value (offset {:?}, rotation {}, scale {:?}); the texture is read untransformed",
+                t.offset(),
+                t.rotation(),
+                t.scale()
+            ),
+        }
+    }
+    r
+}
+
+/// Vertices carry one uv set per primitive: when the slots of a material name different
+/// sets, one warning names them and the base colour slot's set is read (`Material::uv_set`).
+fn warn_on_disagreeing_uv_sets(file: &str, material: &Material) {
+    let used: Vec<String> = material
+        .texture_slots()
+        .iter()
+        .filter_map(|(slot, r)| r.map(|r| format!("{slot} TEXCOORD_{}", r.tex_coord)))
+        .collect();
+    let sets: std::collections::BTreeSet<u32> = material
+        .texture_slots()
+        .iter()
+        .filter_map(|(_, r)| r.map(|r| r.tex_coord))
+        .collect();
+    if sets.len() > 1 {
+        log::warn!(
+            "{file}: material '{}' reads different uv sets ({}); only one is stored per \
+             vertex, TEXCOORD_{} is used for every slot",
+            material.name,
+            used.join(", "),
+            material.uv_set()
+        );
     }
 }
 

@@ -9,6 +9,7 @@ use gltf::mesh::Mode;
 use super::super::load::SceneError;
 use super::super::{Scene, Triangle, Vertex};
 use super::data::check_accessor;
+use super::quantized::read_floats;
 
 /// Where a primitive sits in the file, for error messages.
 pub(super) struct PrimitiveId<'a> {
@@ -54,7 +55,11 @@ pub(super) fn append_primitive(
             ),
         });
     }
-    let local = read_vertices(file, id, primitive, buffers)?;
+    let uv_set = scene
+        .materials
+        .get(material as usize)
+        .map_or(0, |m| m.uv_set());
+    let local = read_vertices(file, id, primitive, buffers, uv_set)?;
     let indices = match primitive.indices() {
         Some(accessor) => {
             let what = format!("{id} indices");
@@ -124,14 +129,17 @@ pub(super) fn append_primitive(
     Ok(local)
 }
 
-/// POSITION (required, float VEC3), NORMAL (optional, zero when absent) and TEXCOORD_0
-/// (optional, float or normalized integers) in the primitive's local space.
+/// POSITION (required), NORMAL (optional, zero when absent) and TEXCOORD_`uv_set`
+/// (optional) in the primitive's local space, as floats: `KHR_mesh_quantization`'s integer
+/// types are dequantized by the accessor's `normalized` flag (see `quantized`).
 fn read_vertices(
     file: &str,
     id: &PrimitiveId,
     primitive: &gltf::Primitive,
     buffers: &[Vec<u8>],
+    uv_set: u32,
 ) -> Result<Vec<Vertex>, SceneError> {
+    use DataType::{F32, I8, I16, U8, U16};
     let fail = |detail: String| SceneError::invalid(file, format!("{id}: {detail}"));
     let positions = primitive
         .get(&gltf::Semantic::Positions)
@@ -139,7 +147,7 @@ fn read_vertices(
     let count = positions.count();
     let checked = |semantic: gltf::Semantic, types: &[DataType], dims: Dimensions| {
         let Some(accessor) = primitive.get(&semantic) else {
-            return Ok(false);
+            return Ok(None);
         };
         check_accessor(
             file,
@@ -156,44 +164,55 @@ fn read_vertices(
                 accessor.count()
             )));
         }
-        Ok(true)
+        Ok(Some(accessor))
     };
-    checked(
+    let unreadable = |semantic: &str| fail(format!("{semantic} unreadable"));
+    let positions = checked(
         gltf::Semantic::Positions,
-        &[DataType::F32],
+        &[F32, I8, U8, I16, U16],
         Dimensions::Vec3,
-    )?;
-    let has_normals = checked(gltf::Semantic::Normals, &[DataType::F32], Dimensions::Vec3)?;
-    let has_uvs = checked(
-        gltf::Semantic::TexCoords(0),
-        &[DataType::F32, DataType::U8, DataType::U16],
-        Dimensions::Vec2,
-    )?;
-
-    let reader = primitive.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
-    let mut vertices: Vec<Vertex> = reader
-        .read_positions()
-        .ok_or_else(|| fail("POSITION unreadable".into()))?
+    )?
+    .ok_or_else(|| fail("has no POSITION".into()))?;
+    let mut vertices: Vec<Vertex> = read_floats::<3>(&positions, buffers)
+        .ok_or_else(|| unreadable("POSITION"))?
+        .into_iter()
         .map(|p| Vertex {
             position: Vec3::from_array(p),
             ..Vertex::default()
         })
         .collect();
-    if has_normals {
-        let normals = reader
-            .read_normals()
-            .ok_or_else(|| fail("NORMAL unreadable".into()))?;
+    if let Some(normals) = checked(gltf::Semantic::Normals, &[F32, I8, I16], Dimensions::Vec3)? {
+        if normals.data_type() != F32 && !normals.normalized() {
+            return Err(fail(format!(
+                "NORMAL (accessor {}) is {:?} but not normalized; KHR_mesh_quantization \
+                 allows integer normals only as normalized values",
+                normals.index(),
+                normals.data_type()
+            )));
+        }
+        let normals = read_floats::<3>(&normals, buffers).ok_or_else(|| unreadable("NORMAL"))?;
         for (v, n) in vertices.iter_mut().zip(normals) {
             v.normal = Vec3::from_array(n);
         }
     }
-    if has_uvs {
-        let uvs = reader
-            .read_tex_coords(0)
-            .ok_or_else(|| fail("TEXCOORD_0 unreadable".into()))?;
-        for (v, uv) in vertices.iter_mut().zip(uvs.into_f32()) {
-            v.uv = Vec2::from_array(uv);
+    let uvs = checked(
+        gltf::Semantic::TexCoords(uv_set),
+        &[F32, I8, U8, I16, U16],
+        Dimensions::Vec2,
+    )?;
+    match uvs {
+        Some(uvs) => {
+            let uvs = read_floats::<2>(&uvs, buffers)
+                .ok_or_else(|| unreadable(&format!("TEXCOORD_{uv_set}")))?;
+            for (v, uv) in vertices.iter_mut().zip(uvs) {
+                v.uv = Vec2::from_array(uv);
+            }
         }
+        None if uv_set != 0 => log::warn!(
+            "{file}: {id}: its material reads TEXCOORD_{uv_set}, which the primitive lacks; \
+             uvs are 0"
+        ),
+        None => {}
     }
     Ok(vertices)
 }

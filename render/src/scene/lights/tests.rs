@@ -139,9 +139,9 @@ fn triangle_powers_exclusions_and_bvh_mapping() {
         ..red_black.clone()
     };
     let mut textured = Material::emitter("textured", Vec3::splat(4.0), false);
-    textured.emissive_texture = Some(TextureRef { texture: 0 });
+    textured.emissive_texture = Some(TextureRef::new(0));
     let mut dark = Material::emitter("black texture", Vec3::ONE, false);
-    dark.emissive_texture = Some(TextureRef { texture: 1 });
+    dark.emissive_texture = Some(TextureRef::new(1));
     let materials = vec![
         Material::diffuse("wall", Vec3::ONE), // 0: not emissive
         Material::emitter("one-sided", Vec3::new(1.0, 2.0, 3.0), false), // 1

@@ -59,7 +59,8 @@ fn settle(segment: &[f64]) -> Option<Settling> {
     let mut tail: Vec<f64> = segment[segment.len() - SETTLED_FRAMES..].to_vec();
     tail.sort_by(f64::total_cmp);
     let level = tail[SETTLED_FRAMES / 2];
-    if !(level > 0.0) {
+    // Not positive, or NaN: no level to settle at.
+    if level.is_nan() || level <= 0.0 {
         return None;
     }
     let off = |x: f64| (x - level).abs() > TOLERANCE * level;

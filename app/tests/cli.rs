@@ -529,3 +529,83 @@ fn render_takes_scene_time_and_reports_the_update_cost() {
         assert_one_line_error(&render("builtin:cornell", &[arg], &png), &[flag]);
     }
 }
+
+/// `render --stats` reports the file's extensions (what the loader did with each) and
+/// whether the camera was chosen automatically; a required Draco file is refused in one
+/// line that says how to decompress it.
+#[test]
+fn render_stats_report_the_files_extensions_and_automatic_camera() {
+    let dir = temp_dir("extensions");
+    let bin: Vec<u8> = bytemuck_cast(TRIANGLE_BIN);
+    let scene = write_gltf(
+        &dir,
+        "ext",
+        |d| {
+            d["extensionsUsed"] = serde_json::json!([
+                "KHR_texture_transform",
+                "EXT_meshopt_compression",
+                "EXT_other"
+            ]);
+            d["materials"] = serde_json::json!([{ "emissiveFactor": [1.0, 1.0, 1.0] }]);
+            d["meshes"][0]["primitives"][0]["material"] = 0.into();
+        },
+        &bin,
+    );
+    let stats = dir.join("stats.json");
+    let res = render(
+        scene.to_str().unwrap(),
+        &["--frames", "1", "--stats", stats.to_str().unwrap()],
+        &dir.join("out.exr"),
+    );
+    assert!(
+        res.status.success(),
+        "{}",
+        String::from_utf8_lossy(&res.stderr)
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+    assert_eq!(json["scene"]["camera_automatic"], true);
+    let extensions = json["scene"]["extensions"]
+        .as_array()
+        .expect("extensions array");
+    let pairs: Vec<(&str, &str)> = extensions
+        .iter()
+        .map(|e| (e["name"].as_str().unwrap(), e["status"].as_str().unwrap()))
+        .collect();
+    assert_eq!(
+        pairs,
+        [
+            ("KHR_texture_transform", "used"),
+            ("EXT_meshopt_compression", "partly_used"),
+            ("EXT_other", "ignored")
+        ]
+    );
+    assert!(
+        extensions[1]["detail"]
+            .as_str()
+            .unwrap()
+            .contains("fallback")
+    );
+    let required = write_gltf(
+        &dir,
+        "draco",
+        |d| {
+            d["extensionsUsed"] = serde_json::json!(["KHR_draco_mesh_compression"]);
+            d["extensionsRequired"] = serde_json::json!(["KHR_draco_mesh_compression"]);
+        },
+        &bin,
+    );
+    let out = render(
+        required.to_str().unwrap(),
+        &["--frames", "1"],
+        &dir.join("d.exr"),
+    );
+    assert_one_line_error(
+        &out,
+        &[
+            "draco.gltf",
+            "uses KHR_draco_mesh_compression",
+            "npx @gltf-transform/cli copy",
+        ],
+    );
+}

@@ -92,6 +92,7 @@ pub fn scene_loaded(renderer: &Renderer, state: &mut ViewerState, spec: String) 
     let motion = state.camera.motion;
     state.camera = CameraState::new(renderer.camera(), renderer.scene_bounds());
     state.camera.motion = motion;
+    state.camera.automatic = renderer.scene_info().camera_automatic;
     state.scene.info = Some(renderer.scene_info().clone());
     state.scene.spec = spec;
     state.scene.error = None;

@@ -6,6 +6,7 @@
 use glam::{Quat, Vec2, Vec3};
 use restir_render::Camera;
 use restir_render::scene::Aabb;
+use restir_render::scene::camera::frame_from_direction;
 
 use crate::cli::camera_path::orbit;
 
@@ -90,6 +91,10 @@ pub struct CameraState {
     pub speed: f32,
     pub viewpoints: Vec<Viewpoint>,
     pub motion: AutoMotion,
+    /// The scene's bounds, for F (frame the scene).
+    pub bounds: Aabb,
+    /// The scene camera was chosen automatically (the file has none); the panel says so.
+    pub automatic: bool,
 }
 
 impl CameraState {
@@ -112,7 +117,15 @@ impl CameraState {
             speed: scale * 0.25,
             viewpoints: Vec::new(),
             motion: AutoMotion::default(),
+            bounds,
+            automatic: false,
         }
+    }
+
+    /// F: keeps the view direction and moves to where the whole scene is in view at
+    /// `aspect`, looking at its centre.
+    pub fn frame_scene(&mut self, aspect: f32) {
+        self.camera = frame_from_direction(&self.camera, self.bounds, aspect);
     }
 
     /// Applies one frame of input; true when the camera moved or turned.

@@ -95,6 +95,7 @@ impl Viewer {
             CameraState::new(renderer.camera(), renderer.scene_bounds()),
             display,
         );
+        state.camera.automatic = renderer.scene_info().camera_automatic;
         state.view.view = launch.debug_view;
         if let Some(b) = &launch.compare {
             state.compare.enabled = true;

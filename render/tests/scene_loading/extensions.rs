@@ -55,9 +55,7 @@ fn emissive_quad(name: &str, transform: Option<Value>) -> (Value, Vec<u8>) {
 fn render_quadrants(scene: &Scene, planted: &[&str]) -> [[f32; 3]; 4] {
     let gpu = Gpu::new_headless().unwrap_or_else(|e| panic!("GPU tests need a wgpu adapter: {e}"));
     let mut settings = Settings::default();
-    settings
-        .apply_assignments(["jitter=false"].into_iter())
-        .unwrap();
+    settings.apply_assignments(["jitter=false"]).unwrap();
     let mut r = Renderer::new(gpu, scene, 10, 10, settings).unwrap_or_else(|e| panic!("{e:#}"));
     r.plant_for_tests(planted);
     r.set_mode(Mode::Nee);
@@ -141,7 +139,7 @@ fn texture_transform_and_texcoord_override_reach_the_material() {
 fn quantized_quad(name: &str) -> (Value, Vec<u8>) {
     let (mut doc, mut bin) = quad_document(Some(&format!("{name}.bin")));
     let push_view = |doc: &mut Value, bin: &mut Vec<u8>, bytes: Vec<u8>| -> usize {
-        while bin.len() % 4 != 0 {
+        while !bin.len().is_multiple_of(4) {
             bin.push(0);
         }
         let views = doc["bufferViews"].as_array_mut().unwrap();

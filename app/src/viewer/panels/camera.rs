@@ -6,7 +6,13 @@ use egui::Ui;
 use crate::viewer::camera::CameraState;
 
 pub fn ui(ui: &mut Ui, camera: &mut CameraState) {
-    ui.weak("WASD move · Q/E or Ctrl/Space down/up · right-drag look · wheel speed · Shift faster");
+    ui.weak(
+        "WASD move · Q/E or Ctrl/Space down/up · right-drag look · wheel speed · Shift faster · \
+         F frames the scene",
+    );
+    if camera.automatic {
+        ui.label("Scene camera: chosen automatically (the file has no camera)");
+    }
     ui.horizontal(|ui| {
         // The label names the three fields for screen readers (and the UI tests' checks).
         let label = ui.label("Position").id;

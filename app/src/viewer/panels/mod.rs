@@ -86,7 +86,7 @@ fn sections(ui: &mut Ui, state: &mut ViewerState) {
 }
 
 /// Keys that work anywhere while no text field has focus: H (hide/show the panel), F12
-/// (screenshot), P (freeze), N (step one frame while frozen), PageDown / PageUp (the
+/// (screenshot), F (frame the scene from the current direction), P (freeze), N (step one frame while frozen), PageDown / PageUp (the
 /// tour's next / previous step), Escape (drop the inspected pixel; deliberately not a
 /// quit key in a viewer kept open all day).
 pub fn shortcuts(ctx: &egui::Context, state: &mut ViewerState) {
@@ -99,6 +99,15 @@ pub fn shortcuts(ctx: &egui::Context, state: &mut ViewerState) {
     }
     if pressed(egui::Key::F12) {
         state.request(Action::Screenshot);
+    }
+    if pressed(egui::Key::F) {
+        let (w, h) = state.render_size;
+        let aspect = if w > 0 && h > 0 {
+            w as f32 / h as f32
+        } else {
+            16.0 / 9.0
+        };
+        state.camera.frame_scene(aspect);
     }
     if pressed(egui::Key::P) {
         state.inspector.frozen = !state.inspector.frozen;

@@ -1,5 +1,5 @@
-//! The Scene panel: what is loaded (counts, light power range, the compiled effect set
-//! and why), the built-in scene picker and opening a glTF file by path or drag-and-drop;
+//! The Scene panel: what is loaded (counts, light power range, the file's glTF extensions
+//! and what the loader did with each, the compiled effect set and why), the built-in scene picker and opening a glTF file by path or drag-and-drop;
 //! the environment part is `environment.rs`.
 
 use egui::Ui;
@@ -39,6 +39,7 @@ pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
                 ),
             ],
         );
+        extensions(ui, &info.extensions);
     }
     let mut pick = None;
     egui::ComboBox::from_label("Built-in scene")
@@ -60,6 +61,18 @@ pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
     status(ui, state);
     super::environment::ui(ui, state);
     effects(ui, state);
+}
+
+/// The file's glTF extensions and what the loader did with each (used, partly used and
+/// what is ignored, or ignored), wrapped: the details can be long.
+fn extensions(ui: &mut Ui, extensions: &[restir_render::scene::ExtensionUse]) {
+    if extensions.is_empty() {
+        return;
+    }
+    ui.label(format!("glTF extensions ({})", extensions.len()));
+    for e in extensions {
+        ui.add(egui::Label::new(format!("• {e}")).wrap());
+    }
 }
 
 /// A two-column grid of facts.

@@ -160,3 +160,82 @@ fn the_compare_section_picks_b_and_shows_both_errors() {
     h.run();
     assert!(h.state().compare.flipped);
 }
+
+#[test]
+fn the_scene_panel_lists_the_files_extensions() {
+    use restir_render::scene::{ExtensionStatus, ExtensionUse};
+    let mut s = state();
+    s.scene.info = Some(scene_info(vec![
+        ExtensionUse {
+            name: "KHR_texture_transform".into(),
+            required: false,
+            status: ExtensionStatus::Used,
+        },
+        ExtensionUse {
+            name: "KHR_materials_volume".into(),
+            required: false,
+            status: ExtensionStatus::PartlyUsed("thickness and attenuation ignored".into()),
+        },
+    ]));
+    let h = harness(scene::ui, s);
+    assert!(shows(&h, "glTF extensions (2)"));
+    assert!(shows(&h, "KHR_texture_transform: used"));
+    assert!(shows(
+        &h,
+        "KHR_materials_volume: partly used — thickness and attenuation ignored"
+    ));
+    // A scene without extensions shows no such list.
+    let mut s = state();
+    s.scene.info = Some(scene_info(Vec::new()));
+    assert!(!shows(&harness(scene::ui, s), "glTF extensions"));
+}
+
+#[test]
+fn the_camera_panel_says_when_the_camera_was_chosen_automatically() {
+    let mut s = state();
+    assert!(!shows(
+        &harness(|ui, s| camera::ui(ui, &mut s.camera), s),
+        "chosen automatically"
+    ));
+    let mut s2 = state();
+    s2.camera.automatic = true;
+    assert!(shows(
+        &harness(|ui, s| camera::ui(ui, &mut s.camera), s2),
+        "chosen automatically (the file has no camera)"
+    ));
+    // F frames the scene from the current direction: direction kept, bounds in view.
+    s = state();
+    let before = s.camera.camera;
+    s.camera.camera.position = glam::Vec3::new(0.0, 0.0, 50.0);
+    let mut h = harness(|ui, s| super::shortcuts(ui.ctx(), s), s);
+    h.key_press(egui::Key::F);
+    h.run();
+    let after = h.state().camera.camera;
+    assert_eq!(after.rotation, before.rotation);
+    assert!(
+        after.position.z < 10.0 && after.position.z > 1.0,
+        "{after:?}"
+    );
+}
+
+fn scene_info(
+    extensions: Vec<restir_render::scene::ExtensionUse>,
+) -> restir_render::gpu_scene::SceneInfo {
+    restir_render::gpu_scene::SceneInfo {
+        name: "quad.gltf".into(),
+        triangles: 2,
+        emissive_triangles: 0,
+        punctual_lights: 0,
+        light_table_entries: 0,
+        power_range: None,
+        total_power: 0.0,
+        bvh_nodes: 1,
+        bvh_depth: 1,
+        bvh_build_ms: 0.1,
+        bounds_min: [0.0; 3],
+        bounds_max: [1.0; 3],
+        environment: None,
+        extensions,
+        camera_automatic: true,
+    }
+}

@@ -38,7 +38,16 @@ fn the_side_panel_keeps_its_width_whatever_it_shows() {
             light_share: 0.62,
             distribution_build_ms: 190.0,
         }),
+        extensions: vec![restir_render::scene::ExtensionUse {
+            name: "KHR_materials_specular".into(),
+            required: true,
+            status: restir_render::scene::ExtensionStatus::PartlyUsed(
+                "specularTexture, specularColorFactor and specularColorTexture ignored".into(),
+            ),
+        }],
+        camera_automatic: true,
     });
+    s.camera.automatic = true;
     s.scene.effects = Some(restir_render::effects::EffectSet::all());
     s.scene.passes = vec![
         "gbuffer raster",

@@ -101,24 +101,7 @@ pub fn frame_from_direction(camera: &Camera, bounds: Aabb, aspect: f32) -> Camer
     // A corner at offset o from the centre, with the camera at centre − forward · D, has
     // depth D + o·forward; it is in view when |o·right| ≤ tan_h · depth and likewise up.
     let mut distance = 0f32;
-    for i in 0..8 {
-        let corner = Vec3::new(
-            if i & 1 == 0 {
-                bounds.min.x
-            } else {
-                bounds.max.x
-            },
-            if i & 2 == 0 {
-                bounds.min.y
-            } else {
-                bounds.max.y
-            },
-            if i & 4 == 0 {
-                bounds.min.z
-            } else {
-                bounds.max.z
-            },
-        );
+    for corner in bounds.corners() {
         let o = corner - center;
         let along = o.dot(forward);
         distance = distance

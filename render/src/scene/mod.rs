@@ -258,6 +258,17 @@ impl Aabb {
         (self.min + self.max) * 0.5
     }
 
+    /// The eight corners (bit 0 of the index picks max x, bit 1 max y, bit 2 max z).
+    pub fn corners(&self) -> [Vec3; 8] {
+        std::array::from_fn(|i| {
+            Vec3::new(
+                if i & 1 == 0 { self.min.x } else { self.max.x },
+                if i & 2 == 0 { self.min.y } else { self.max.y },
+                if i & 4 == 0 { self.min.z } else { self.max.z },
+            )
+        })
+    }
+
     /// Half the surface area (enough for SAH ratios).
     pub fn half_area(&self) -> f32 {
         let e = self.extent();

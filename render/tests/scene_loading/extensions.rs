@@ -243,6 +243,14 @@ fn quantized_attributes_are_dequantized_then_transformed() {
     let uvs: Vec<Vec2> = scene.vertices.iter().map(|v| v.uv).collect();
     assert_eq!(uvs, [Vec2::ZERO, Vec2::X, Vec2::new(1.0, 0.2), Vec2::Y]);
     assert_eq!(scene.materials[0].uv_set(), 1);
+    // Slots that disagree: the base colour slot's set wins (the loader warns).
+    let (mut doc, bin) = quantized_quad("q2");
+    doc["materials"][0]["emissiveFactor"] = json!([1.0, 1.0, 1.0]);
+    doc["materials"][0]["emissiveTexture"] = json!({ "index": 0, "texCoord": 0 });
+    let mixed = load_gltf(&write_gltf(&dir, "q2", &doc, &bin)).unwrap();
+    assert_eq!(mixed.materials[0].emissive_texture.unwrap().tex_coord, 0);
+    assert_eq!(mixed.materials[0].uv_set(), 1);
+    assert_eq!(mixed.vertices[2].uv, Vec2::new(1.0, 0.2));
     // The report: both extensions used; quantization was required and is accepted.
     let report: Vec<String> = scene.extensions.iter().map(|e| e.to_string()).collect();
     assert_eq!(

@@ -12,13 +12,7 @@ fn slab(extent: Vec3) -> Aabb {
 }
 
 fn corners(b: Aabb) -> [Vec3; 8] {
-    std::array::from_fn(|i| {
-        Vec3::new(
-            if i & 1 == 0 { b.min.x } else { b.max.x },
-            if i & 2 == 0 { b.min.y } else { b.max.y },
-            if i & 4 == 0 { b.min.z } else { b.max.z },
-        )
-    })
+    b.corners()
 }
 
 fn view_projection(c: &Camera, aspect: f32) -> Mat4 {

@@ -58,6 +58,7 @@ impl Camera {
         }
         let e = bounds.extent();
         let (x_face, z_face, top) = (e.y * e.z, e.x * e.y, e.x * e.z);
+        // A tie goes to +Z, glTF's front (the open side of the Blender Cornell boxes).
         let side = if x_face > z_face { Vec3::X } else { Vec3::Z };
         let elevation: f32 = if top > 3.0 * x_face.max(z_face) {
             60f32

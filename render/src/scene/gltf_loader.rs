@@ -26,6 +26,8 @@ const SUPPORTED_EXTENSIONS: &[&str] = &[
     "KHR_lights_punctual",
     "KHR_materials_emissive_strength",
     "KHR_materials_specular",
+    "KHR_materials_transmission",
+    "KHR_materials_unlit",
 ];
 
 /// Load a .gltf or .glb file. The returned scene has passed `load::validate`.

@@ -146,7 +146,7 @@ pub const STREAM_COUNT: u32 = 16;
 /// lavapipe (Mesa 22) bounds the total loop iterations of one shader invocation (one
 /// counter shared by all loops, 65535): a single invocation tracing a few hundred BVH rays
 /// silently stops early. Small chunks keep every invocation far below that bound.
-pub const REFERENCE_SAMPLES_PER_DISPATCH: u32 = 2;
+pub const REFERENCE_SAMPLES_PER_DISPATCH: u32 = 8;
 
 /// The most path vertices the reference shades (the `max_bounces` range). Each bounce adds a
 /// shadow ray and a BSDF ray per sample: at 8 bounces and REFERENCE_SAMPLES_PER_DISPATCH

@@ -3,6 +3,10 @@
 #include "common/frame_bindings.wgsl"
 #include "common/stats_bindings.wgsl"
 #include "common/material.wgsl"
+#ifdef TRANSPARENCY
+#include "common/transparency.wgsl"
+#include "common/camera_ray.wgsl"
+#endif
 
 @group(2) @binding(0) var visibility: texture_2d<u32>;
 @group(2) @binding(1) var<storage, read_write> surfaces: array<Surface>;
@@ -19,11 +23,38 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let vis = textureLoad(visibility, vec2<i32>(id.xy), 0);
     var s: Surface;
     s.motion = vec2<f32>(NO_MOTION);
+    s.throughput = vec3<f32>(1.0);
     if vis.x == 0u {
         surfaces[index] = s;
         return;
     }
-    let hs = hit_surface(vis.x - 1u, bitcast<f32>(vis.y), bitcast<f32>(vis.z), frame.camera_position);
+    var tri = vis.x - 1u;
+    var bu = bitcast<f32>(vis.y);
+    var bv = bitcast<f32>(vis.z);
+    var emission_in_front = vec3<f32>(0.0);
+#ifdef TRANSPARENCY
+    // Glass and partial coverage (transparency.wgsl): the camera ray goes on from the
+    // rasterised layer; the surface is where it stops, the layers passed tint it. Only
+    // partial coverage draws a random choice, so clear glass is as stable as a wall.
+    if is_transparent_triangle(tri) {
+        s.transparent_first = 1u;
+        let dir = camera_ray_direction(vec2<f32>(id.xy) + 0.5 - frame.jitter);
+        var rng = rng_seed(id.xy, STREAM_TRANSPARENCY);
+        let walk = walk_layers(frame.camera_position, dir, Hit(1.0, tri, bu, bv), true, &rng);
+        s.throughput = walk.weight;
+        emission_in_front = walk.emission;
+        if walk.hit.t < 0.0 {
+            // Nothing behind the glass: the background, tinted (shade.wgsl).
+            s.emission = emission_in_front;
+            surfaces[index] = s;
+            return;
+        }
+        tri = walk.hit.triangle;
+        bu = walk.hit.u;
+        bv = walk.hit.v;
+    }
+#endif
+    let hs = hit_surface(tri, bu, bv, frame.camera_position);
     let m = eval_material(hs.material, hs.uv);
     s.position = hs.position;
     s.depth = length(hs.position - frame.camera_position);
@@ -33,15 +64,13 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     s.base_color_metallic = pack4x8unorm(vec4<f32>(m.base_color, m.metallic));
     s.roughness = m.roughness;
     s.specular = m.specular;
-    s.emission = emission_toward_viewer(hs);
+    s.emission = emission_in_front + s.throughput * emission_toward_viewer(hs);
 #ifdef MOTION
     var prev_position = hs.position;
 #ifdef ANIMATION
     // The same triangle and barycentrics on last frame's geometry: a moving object's
     // surface reprojects to where it was, not to whatever was behind it.
-    let pt = prev_triangles[vis.x - 1u];
-    let bu = bitcast<f32>(vis.y);
-    let bv = bitcast<f32>(vis.z);
+    let pt = prev_triangles[tri];
     prev_position = pt.p0 * (1.0 - bu - bv) + pt.p1 * bu + pt.p2 * bv;
 #endif
     let prev_clip = frame.prev_view_proj * vec4<f32>(prev_position, 1.0);
@@ -57,7 +86,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
 #endif
     if !is_finite_vec3(s.position) || !is_finite_f32(s.depth) || !is_finite_vec3(s.emission) {
         count_stat(STAT_NONFINITE + PASS_GBUFFER);
-        s = Surface();
+        s = Surface();  // throughput 0: black, not the background
         s.motion = vec2<f32>(NO_MOTION);
     }
     surfaces[index] = s;

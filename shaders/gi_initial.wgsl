@@ -38,10 +38,11 @@ fn direct_light_estimate(sp: ShadingPoint, rng: ptr<function, u32>) -> vec3<f32>
             chosen = c;
         }
     }
-    if !(chosen_target > 0.0) || !light_visible(sp, chosen_point, chosen) {
+    if !(chosen_target > 0.0) {
         return vec3<f32>(0.0);
     }
-    return chosen.value * (w_sum / chosen_target);
+    let transmittance = light_transmittance(sp, chosen_point, chosen).value;
+    return chosen.value * transmittance * (w_sum / chosen_target);
 }
 
 @compute @workgroup_size(8, 8)
@@ -61,13 +62,15 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         if bs.pdf > 0.0 && dot(bs.wi, sp.geo_normal) > 0.0 {
             let ray = Ray(offset_ray_origin(sp.position, sp.geo_normal), bs.wi, FLT_MAX);
             // Back faces of single-sided surfaces are hit too (they occlude and reflect).
-            let hit = trace_closest(ray, false);
+            // Through transparent layers, the secondary vertex is where the walk stops.
+            let walk = walk_layers(sp.position, bs.wi, trace_closest(ray, false), false, &rng);
+            let hit = walk.hit;
             if hit.t >= 0.0 {
-                let hs = hit_surface(hit.triangle, hit.u, hit.v, sp.position);
+                let hs = hit_surface(hit.triangle, hit.u, hit.v, walk.origin);
                 let m = eval_material(hs.material, hs.uv);
                 let brdf = make_brdf(m.base_color, m.metallic, m.roughness, m.specular);
-                let secondary = ShadingPoint(hs.position, hs.normal, hs.geo_normal, -bs.wi, brdf, hs.material, hit.t);
-                let radiance = direct_light_estimate(secondary, &rng);
+                let secondary = ShadingPoint(hs.position, hs.normal, hs.geo_normal, -bs.wi, brdf, hs.material, length(hs.position - sp.position));
+                let radiance = walk.weight * direct_light_estimate(secondary, &rng);
                 let p_hat = gi_target_at(sp, hs.position, radiance);
                 let w = gi_initial_weight(p_hat, bs.pdf, 1.0);
                 gi_reservoir_update(&r, hs.position, oct_encode(hs.geo_normal), radiance, w, p_hat, gi_pack(SOURCE_INITIAL, 0u, 0u), rand_f32(&rng));

@@ -28,7 +28,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             if len2 > 0.0 && dot(sp.geo_normal, d) > 0.0 {
                 let wi = d * inverseSqrt(len2);
                 let cos_theta = gi_receiver_cosine(sp.position, sp.normal, r.position);
-                color = eval_brdf(sp.brdf, sp.normal, sp.wo, wi) * r.radiance * (cos_theta * r.weight);
+                color = s.throughput * eval_brdf(sp.brdf, sp.normal, sp.wo, wi) * r.radiance * (cos_theta * r.weight);
             }
         }
     }

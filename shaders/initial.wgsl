@@ -69,7 +69,9 @@ fn stream_bsdf_candidates(sp: ShadingPoint, r: ptr<function, Reservoir>, rng: pt
         if !(bs.pdf > 0.0) {
             continue;
         }
-        let found = bsdf_ray_light(sp, bs.wi);
+        // The candidate's target is unshadowed, so the tint of glass in front of the
+        // emitter (found.transmittance) does not enter it.
+        let found = bsdf_ray_light(sp, bs.wi).id;
         if found.light == NO_LIGHT {
             continue;
         }
@@ -110,7 +112,12 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             if (params.flags & PARAM_FLAG_INITIAL_VISIBILITY) != 0u && !reservoir_is_null(r) {
                 let lp = light_point(r.light, r.uv);
                 add_stat(STAT_SHADOW_RAYS + PASS_INITIAL, 1u);
-                if !light_visible(sp, lp, light_contribution(sp, lp)) {
+                let v = light_visibility(sp, lp, light_contribution(sp, lp));
+                if v > 0.0 {
+                    // The target here is p̂·V (V < 1 only through glass): the stored p̂ is
+                    // what every pairwise term compares with.
+                    r.p_hat *= v;
+                } else {
                     r = reservoir_empty();
                 }
             }

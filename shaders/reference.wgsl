@@ -11,6 +11,7 @@
 #include "common/shading_point.wgsl"
 #include "common/camera_ray.wgsl"
 #include "common/path_trace.wgsl"
+#include "common/transparency.wgsl"
 
 @group(2) @binding(0) var<storage, read_write> radiance: array<vec4<f32>>;
 @group(2) @binding(1) var<storage, read_write> accumulation: array<vec4<f32>>;
@@ -33,7 +34,8 @@ fn bsdf_sample_estimate(sp: ShadingPoint, rng: ptr<function, u32>) -> vec3<f32> 
     if !(bs.pdf > 0.0) {
         return vec3<f32>(0.0);
     }
-    return bsdf_found_emission(sp, bs.pdf, bsdf_ray_light(sp, bs.wi));
+    let found = bsdf_ray_light(sp, bs.wi);
+    return found.transmittance * bsdf_found_emission(sp, bs.pdf, found.id);
 }
 
 @compute @workgroup_size(8, 8)
@@ -49,41 +51,74 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let first = chunk * REFERENCE_SAMPLES_PER_DISPATCH;
     let last = min(spp, first + REFERENCE_SAMPLES_PER_DISPATCH);
     let jitter = (params.flags & PARAM_FLAG_JITTER) != 0u;
+    var camera_ray = jitter;
+#ifdef TRANSPARENCY
+    // Jitter off, but the pixel centre meets a transparent layer: the G-buffer's surface is
+    // one frame's choice of layer, so each sample traces the centre ray and draws its own.
+    camera_ray = camera_ray || surfaces[index].transparent_first != 0u;
+#endif
     for (var i = first; i < last; i++) {
         var sp: ShadingPoint;
         var sample_value: vec3<f32>;
-        if jitter {
-            // The pixel-area integral: a jittered camera ray through the BVH.
-            let dir = camera_ray_direction(vec2<f32>(id.xy) + rand_vec2(&rng));
-            let hit = trace_closest(Ray(frame.camera_position, dir, FLT_MAX), true);
+        // What the shading at sp is worth: < 1 behind glass (transparency.wgsl).
+        var throughput = vec3<f32>(1.0);
+        if camera_ray {
+            // The pixel-area integral: a jittered camera ray through the BVH, on through
+            // transparent layers (each sample draws its own choices).
+            var at = vec2<f32>(0.5);
+            if jitter {
+                at = rand_vec2(&rng);
+            }
+            let dir = camera_ray_direction(vec2<f32>(id.xy) + at);
+            var hit = trace_closest(Ray(frame.camera_position, dir, FLT_MAX), true);
+#ifdef TRANSPARENCY
+            let walk = walk_layers(frame.camera_position, dir, hit, true, &rng);
+            hit = walk.hit;
+            throughput = walk.weight;
+            sum += walk.emission;
+#endif
             if hit.t < 0.0 {
 #ifdef ENVIRONMENT
-                sum += env_background(dir);
+                sum += throughput * env_background(dir);
 #endif
                 continue;
             }
             let hs = hit_surface(hit.triangle, hit.u, hit.v, frame.camera_position);
             let m = eval_material(hs.material, hs.uv);
             let brdf = make_brdf(m.base_color, m.metallic, m.roughness, m.specular);
-            sp = ShadingPoint(hs.position, hs.normal, hs.geo_normal, -dir, brdf, hs.material, hit.t);
+            sp = ShadingPoint(hs.position, hs.normal, hs.geo_normal, -dir, brdf, hs.material, length(hs.position - frame.camera_position));
             sample_value = emission_toward_viewer(hs);
         } else {
             // Jitter off: the surface the rasterised G-buffer sees at the pixel centre, so
             // a comparison with the real-time modes measures lighting error alone (a ray
             // and the rasteriser may disagree on a pixel centre exactly on an edge).
+            // Behind glass the G-buffer's own choice of layer is taken as well, so this
+            // averages over that choice only as far as the frames do (see README).
             let s = surfaces[index];
             if !surface_is_valid(s) {
+#ifdef TRANSPARENCY
+                sum += s.emission;
+#endif
 #ifdef ENVIRONMENT
-                sum += env_background(camera_ray_direction(vec2<f32>(id.xy) + 0.5));
+                sum += s.throughput * env_background(camera_ray_direction(vec2<f32>(id.xy) + 0.5));
 #endif
                 continue;
             }
             sp = shading_point_from_surface(s, frame.camera_position);
+#ifdef TRANSPARENCY
+            // s.emission already holds the layers in front, weighted: shading is added
+            // with the throughput below.
+            throughput = s.throughput;
+            sum += s.emission;
+            sample_value = vec3<f32>(0.0);
+#else
             sample_value = s.emission;
+#endif
         }
         if params.max_bounces > 1u {
             // Indirect light too: a BSDF-sampled path (common/path_trace.wgsl).
             sample_value += path_estimate(sp, min(params.max_bounces, MAX_BOUNCES), &rng);
+            sample_value *= throughput;
             if is_finite_vec3(sample_value) {
                 sum += sample_value;
             } else {
@@ -107,6 +142,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
 #endif
 #endif
 #endif
+        sample_value *= throughput;
         if is_finite_vec3(sample_value) {
             sum += sample_value;
         } else {

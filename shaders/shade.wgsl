@@ -43,18 +43,19 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             // With visibility in the target (mis_visibility) every survivor was traced
             // from this very point when it was picked (initial visibility, temporal and
             // spatial reuse): the same ray again would give the same answer.
-            var visible = d.p_hat > 0.0;
+            var transmittance = select(vec3<f32>(0.0), vec3<f32>(1.0), d.p_hat > 0.0);
             var trace = (params.flags & PARAM_FLAG_MIS_VISIBILITY) == 0u;
 #ifdef TEST_TRACE_SURVIVOR
             trace = true;  // test only: trace the ray the shortcut saves (it must change nothing)
 #endif
-            if visible && trace {
+#ifdef TRANSPARENCY
+            trace = true;  // visibility reuse knows that light gets through, not its tint
+#endif
+            if d.p_hat > 0.0 && trace {
                 add_stat(STAT_SHADOW_RAYS + PASS_SHADE, 1u);
-                visible = light_visible(sp, lp, c);
+                transmittance = light_transmittance(sp, lp, c).value;
             }
-            if visible {
-                color += c.value * r.weight;
-            }
+            color += s.throughput * (c.value * transmittance) * r.weight;
 #ifdef ENVIRONMENT
             if lp.kind == LIGHT_POINT_ENVIRONMENT {
                 d.flags |= DEBUG_FLAG_ENVIRONMENT_SAMPLE;
@@ -70,7 +71,11 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     else {
         // The camera ray leaves the scene: the sky, through the jittered sample position
         // the rasteriser used (pixel p sampled p + 0.5 − jitter).
-        color = env_background(camera_ray_direction(vec2<f32>(id.xy) + 0.5 - frame.jitter));
+        color = s.emission + s.throughput * env_background(camera_ray_direction(vec2<f32>(id.xy) + 0.5 - frame.jitter));
+    }
+#else
+    else {
+        color = s.emission;  // glass seen against nothing
     }
 #endif
     if !is_finite_vec3(color) {

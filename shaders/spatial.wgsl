@@ -109,16 +109,27 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             // both visibilities are then known (each pixel's survivor is visible from it).
             let same_sample = !reservoir_is_null(canonical) && nr.light == canonical.light && all(nr.uv == canonical.uv);
             var target_here = target_at(sp, nr.light, nr.uv);
-            if target_here > 0.0 && mis_visibility() && !same_sample && !sample_visible(sp, nr.light, nr.uv, false, &rays) {
-                target_here = 0.0;
+            if target_here > 0.0 && mis_visibility() && !same_sample {
+                target_here *= sample_visibility(sp, nr.light, nr.uv, false, &rays);
             }
+#ifdef TRANSPARENCY
+            // Through glass V is a tint, not 1: the same sample's p̂·V here is already stored.
+            if same_sample && mis_visibility() {
+                target_here = canonical.p_hat;
+            }
+#endif
             let m_i = pairwise_mis_noncanonical(c_total, canonical.m, nr.m, nr.p_hat, target_here);
             reservoir_merge_mis(&r, nr, target_here, m_i, source_with_age(SOURCE_SPATIAL, reservoir_age(nr)), rand_f32(&rng));
             let neighbour_sp = shading_point_from_surface(surfaces[q_index], frame.camera_position);
             var neighbour_at_canonical = target_at(neighbour_sp, canonical.light, canonical.uv);
-            if neighbour_at_canonical > 0.0 && mis_visibility() && !same_sample && !sample_visible(neighbour_sp, canonical.light, canonical.uv, false, &rays) {
-                neighbour_at_canonical = 0.0;
+            if neighbour_at_canonical > 0.0 && mis_visibility() && !same_sample {
+                neighbour_at_canonical *= sample_visibility(neighbour_sp, canonical.light, canonical.uv, false, &rays);
             }
+#ifdef TRANSPARENCY
+            if same_sample && mis_visibility() {
+                neighbour_at_canonical = nr.p_hat;
+            }
+#endif
             m_canonical += pairwise_mis_canonical_term(c_total, canonical.m, nr.m, canonical.p_hat, neighbour_at_canonical);
         }
         reservoir_merge_mis(&r, canonical, canonical.p_hat, m_canonical, canonical.source, rand_f32(&rng));

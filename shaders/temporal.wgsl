@@ -85,8 +85,8 @@ fn merge_pairwise(sp: ShadingPoint, current: Reservoir, cand: TemporalCandidate,
     if !target_ratio_in_window(target_here, prev.p_hat) {
         target_here = 0.0;
     }
-    if target_here > 0.0 && mis_visibility() && !sample_visible(sp, prev.light, prev.uv, false, rays) {
-        target_here = 0.0;
+    if target_here > 0.0 && mis_visibility() {
+        target_here *= sample_visibility(sp, prev.light, prev.uv, false, rays);
     }
     let m_temporal = pairwise_mis_noncanonical(c_total, current.m, m_prev, prev.p_hat, target_here);
 
@@ -106,8 +106,8 @@ fn merge_pairwise(sp: ShadingPoint, current: Reservoir, cand: TemporalCandidate,
     if !target_ratio_in_window(current.p_hat, prev_at_current) {
         prev_at_current = 0.0;
     }
-    if prev_at_current > 0.0 && mis_visibility() && !sample_visible(prev_sp, current.light, current.uv, previous, rays) {
-        prev_at_current = 0.0;
+    if prev_at_current > 0.0 && mis_visibility() {
+        prev_at_current *= sample_visibility(prev_sp, current.light, current.uv, previous, rays);
     }
     let m_current = confidence_share(current.m, c_total)
         + pairwise_mis_canonical_term(c_total, current.m, m_prev, current.p_hat, prev_at_current);

@@ -29,6 +29,10 @@ pub struct SceneFeatures {
     pub base_color_textured_materials: usize,
     pub metallic_roughness_textured_materials: usize,
     pub alpha_masked_materials: usize,
+    /// Materials light passes through (alpha BLEND or transmission).
+    pub transparent_materials: usize,
+    /// KHR_materials_unlit materials.
+    pub unlit_materials: usize,
     /// False only when occlusion is provably impossible (see `can_occlude`).
     pub can_occlude: bool,
     /// An environment lights the scene and shows where camera rays miss (issue 13).
@@ -69,6 +73,8 @@ impl SceneFeatures {
                 m.metallic_roughness_texture.is_some() && specular(m)
             }),
             alpha_masked_materials: count(&|m| matches!(m.alpha_mode, AlphaMode::Mask(_))),
+            transparent_materials: count(&|m| m.is_transparent()),
+            unlit_materials: count(&|m| m.unlit),
             can_occlude: can_occlude(scene),
             environment: scene.environment.is_some(),
             animated: scene.animation.is_some(),
@@ -133,6 +139,8 @@ pub enum Effect {
     BaseColorTextures,
     MetallicRoughnessTextures,
     AlphaMask,
+    Transparency,
+    Unlit,
     Shadows,
     Motion,
     BsdfCandidates,
@@ -142,7 +150,7 @@ pub enum Effect {
 }
 
 impl Effect {
-    pub const ALL: [Effect; 14] = [
+    pub const ALL: [Effect; 16] = [
         Effect::AreaLights,
         Effect::EmissiveTextures,
         Effect::PunctualLights,
@@ -151,6 +159,8 @@ impl Effect {
         Effect::BaseColorTextures,
         Effect::MetallicRoughnessTextures,
         Effect::AlphaMask,
+        Effect::Transparency,
+        Effect::Unlit,
         Effect::Shadows,
         Effect::Motion,
         Effect::BsdfCandidates,
@@ -170,6 +180,8 @@ impl Effect {
             Effect::BaseColorTextures => "BASE_COLOR_TEXTURES",
             Effect::MetallicRoughnessTextures => "METALLIC_ROUGHNESS_TEXTURES",
             Effect::AlphaMask => "ALPHA_MASK",
+            Effect::Transparency => "TRANSPARENCY",
+            Effect::Unlit => "UNLIT",
             Effect::Shadows => "SHADOWS",
             Effect::Motion => "MOTION",
             Effect::BsdfCandidates => "BSDF_CANDIDATES",
@@ -190,6 +202,8 @@ impl Effect {
             Effect::BaseColorTextures => "base-color-textures",
             Effect::MetallicRoughnessTextures => "metallic-roughness-textures",
             Effect::AlphaMask => "alpha-mask",
+            Effect::Transparency => "transparency",
+            Effect::Unlit => "unlit",
             Effect::Shadows => "shadows",
             Effect::Motion => "motion",
             Effect::BsdfCandidates => "bsdf-candidates",
@@ -253,6 +267,7 @@ impl EffectSet {
         if self.contains(Effect::BaseColorTextures)
             || self.contains(Effect::MetallicRoughnessTextures)
             || self.contains(Effect::EmissiveTextures)
+            || self.contains(Effect::Transparency)
         {
             d.insert("ANY_TEXTURES".to_string());
         }
@@ -333,6 +348,24 @@ impl EffectSet {
             f.alpha_masked_materials > 0,
             format!("{} materials use alphaMode MASK", f.alpha_masked_materials),
             "no alpha-masked material".into(),
+        );
+        decide(
+            Effect::Transparency,
+            f.transparent_materials > 0,
+            format!(
+                "{} materials let light through (alphaMode BLEND or KHR_materials_transmission)",
+                f.transparent_materials
+            ),
+            "every material is opaque".into(),
+        );
+        decide(
+            Effect::Unlit,
+            f.unlit_materials > 0,
+            format!(
+                "{} materials are unlit (KHR_materials_unlit)",
+                f.unlit_materials
+            ),
+            "no unlit material".into(),
         );
         let has_lights = f.emissive_triangles > 0 || f.punctual_lights > 0 || f.environment;
         // The convexity proof covers segments between surface points; a ray toward the

@@ -38,6 +38,12 @@ pub struct GpuTriangleShading {
 
 pub const MATERIAL_DOUBLE_SIDED: u32 = 1;
 pub const MATERIAL_ALPHA_MASK: u32 = 2;
+/// Alpha BLEND: base-colour alpha is coverage (transparency.wgsl).
+pub const MATERIAL_ALPHA_BLEND: u32 = 4;
+/// Light can pass through (BLEND or transmission > 0): rays treat the surface as a layer.
+pub const MATERIAL_TRANSPARENT: u32 = 8;
+/// KHR_materials_unlit: seen as its base colour, black to every other light path.
+pub const MATERIAL_UNLIT: u32 = 16;
 
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
@@ -52,7 +58,9 @@ pub struct GpuMaterial {
     pub base_color_texture: u32,
     pub metallic_roughness_texture: u32,
     pub emissive_texture: u32,
-    pub _pad: u32,
+    pub transmission_texture: u32,
+    pub transmission: f32,
+    pub _pad: [u32; 3],
 }
 
 /// Where a texture's RGBA8 texels start in the shared texel buffer, and how its uvs move.
@@ -178,9 +186,17 @@ pub struct GpuSurface {
     /// Where this surface point was in the previous frame, in pixels (x, y);
     /// negative when it was behind the previous camera.
     pub motion: [f32; 2],
-    /// Radiance the surface emits toward the camera.
+    /// Radiance toward the camera: the surface's emission (or unlit colour) and that of
+    /// the transparent layers in front of it, each weighted by what lies before it.
     pub emission: [f32; 3],
-    pub _pad: f32,
+    /// 1 when the rasterised surface was a transparent layer (the reference then draws
+    /// its own choice of layer per sample).
+    pub transparent_first: u32,
+    /// What the camera path through transparent layers is worth (1 with none in front):
+    /// shading here is multiplied by it. Also set where the pixel sees no surface, for
+    /// the background behind glass.
+    pub throughput: [f32; 3],
+    pub _pad2: f32,
 }
 
 /// Per-pixel debug record (issue "part 2": selection source, M per stage, masks).

@@ -132,6 +132,12 @@ pub const STREAM_SPATIAL: u32 = 4;
 pub const STREAM_GI_INITIAL: u32 = 12;
 pub const STREAM_GI_TEMPORAL: u32 = 13;
 pub const STREAM_GI_SPATIAL: u32 = 14;
+/// The G-buffer's choice at each transparent layer (solid or pass, transparency.wgsl).
+pub const STREAM_TRANSPARENCY: u32 = 15;
+/// The most transparent layers a ray passes before the next one counts as opaque: every
+/// ray type (camera, path, shadow) stops at the same count, so all modes agree on the
+/// model, and a ray through a stack of glass still terminates.
+pub const MAX_TRANSPARENT_LAYERS: u32 = 8;
 /// `rng_seed` mixes frame_index × STREAM_COUNT + stream: a stream ≥ STREAM_COUNT would
 /// replay another stream of a later frame (GI once drew DI's next-frame numbers).
 pub const STREAM_COUNT: u32 = 16;
@@ -270,6 +276,9 @@ pub fn wgsl_prelude() -> String {
         ("NO_TEXTURE", gpu_types::NO_TEXTURE),
         ("MATERIAL_DOUBLE_SIDED", gpu_types::MATERIAL_DOUBLE_SIDED),
         ("MATERIAL_ALPHA_MASK", gpu_types::MATERIAL_ALPHA_MASK),
+        ("MATERIAL_ALPHA_BLEND", gpu_types::MATERIAL_ALPHA_BLEND),
+        ("MATERIAL_TRANSPARENT", gpu_types::MATERIAL_TRANSPARENT),
+        ("MATERIAL_UNLIT", gpu_types::MATERIAL_UNLIT),
         ("LIGHT_KIND_TRIANGLE", gpu_types::LIGHT_KIND_TRIANGLE),
         ("LIGHT_KIND_PUNCTUAL", gpu_types::LIGHT_KIND_PUNCTUAL),
         ("LIGHT_KIND_ENVIRONMENT", gpu_types::LIGHT_KIND_ENVIRONMENT),
@@ -352,6 +361,8 @@ pub fn wgsl_prelude() -> String {
         ("STREAM_GI_INITIAL", STREAM_GI_INITIAL),
         ("STREAM_GI_TEMPORAL", STREAM_GI_TEMPORAL),
         ("STREAM_GI_SPATIAL", STREAM_GI_SPATIAL),
+        ("STREAM_TRANSPARENCY", STREAM_TRANSPARENCY),
+        ("MAX_TRANSPARENT_LAYERS", MAX_TRANSPARENT_LAYERS),
         ("STREAM_COUNT", STREAM_COUNT),
         ("MAX_SPATIAL_NEIGHBOURS", MAX_SPATIAL_NEIGHBOURS),
         (
@@ -435,6 +446,7 @@ mod stream_tests {
             STREAM_GI_INITIAL,
             STREAM_GI_TEMPORAL,
             STREAM_GI_SPATIAL,
+            STREAM_TRANSPARENCY,
         ];
         streams.extend((0..MAX_SPATIAL_PASSES).map(|p| STREAM_SPATIAL + p));
         let count = streams.len();

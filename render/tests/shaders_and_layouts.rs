@@ -194,7 +194,9 @@ fn host_structs_match_wgsl_layouts() {
             flags,
             base_color_texture,
             metallic_roughness_texture,
-            emissive_texture
+            emissive_texture,
+            transmission_texture,
+            transmission
         ]
     );
     check_struct!(
@@ -244,7 +246,9 @@ fn host_structs_match_wgsl_layouts() {
             roughness,
             specular,
             motion,
-            emission
+            emission,
+            transparent_first,
+            throughput
         ]
     );
     check_struct!(

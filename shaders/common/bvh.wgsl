@@ -72,10 +72,27 @@ fn hit_is_accepted(tri_index: u32, u: f32, v: f32, ray: Ray, cull_single_sided_b
     return true;
 }
 
-// The one traversal loop. `any_hit`: return at the first accepted hit (shadow rays);
-// otherwise shrink t_max to the nearest hit and visit the nearer child first.
-fn trace(ray: Ray, any_hit: bool, cull_single_sided_back: bool) -> Hit {
+const TRACE_CLOSEST: u32 = 0u;
+const TRACE_ANY: u32 = 1u;
+// Every hit in (0, t_max), in no particular order: the product of layer transmittances is
+// the same in any order, so a shadow ray through glass needs no sorting and no restart.
+const TRACE_TRANSMITTANCE: u32 = 2u;
+
+// What a TRACE_TRANSMITTANCE ray collects: the product of pass_through of every
+// transparent layer on the segment (0 at an opaque hit or past MAX_TRANSPARENT_LAYERS), and
+// whether one of those layers emits (a BSDF ray would have stopped there: see
+// light_sample_mis).
+struct Transmittance {
+    value: vec3<f32>,
+    crossed_emitter: bool,
+}
+
+// The one traversal loop. TRACE_ANY returns at the first accepted hit (shadow rays);
+// TRACE_CLOSEST shrinks t_max to the nearest hit and visits the nearer child first;
+// TRACE_TRANSMITTANCE (transparency.wgsl's model) goes through transparent layers.
+fn trace(ray: Ray, mode: u32, cull_single_sided_back: bool, transmittance: ptr<function, Transmittance>) -> Hit {
     var best = Hit(-1.0, 0u, 0.0, 0.0);
+    var layers = 0u;
     var t_max = ray.t_max;
     let inv_dir = safe_inverse_dir(ray.dir);
     var stack: array<u32, BVH_STACK_SIZE>;
@@ -89,7 +106,21 @@ fn trace(ray: Ray, any_hit: bool, cull_single_sided_back: bool) -> Hit {
                 let h = intersect_triangle(Ray(ray.origin, ray.dir, t_max), triangles[tri_index]);
                 if h.x > 0.0 && h.x < t_max && hit_is_accepted(tri_index, h.y, h.z, ray, cull_single_sided_back) {
                     best = Hit(h.x, tri_index, h.y, h.z);
-                    if any_hit {
+#ifdef TRANSPARENCY
+                    if mode == TRACE_TRANSMITTANCE {
+                        let layer = triangle_layer(tri_index, h.y, h.z);
+                        layers++;
+                        (*transmittance).value *= layer.pass_through;
+                        (*transmittance).crossed_emitter = (*transmittance).crossed_emitter || triangles[tri_index].light != NO_LIGHT;
+                        if layers > MAX_TRANSPARENT_LAYERS || !any((*transmittance).value > vec3<f32>(0.0)) {
+                            (*transmittance).value = vec3<f32>(0.0);
+                            return best;
+                        }
+                        continue;
+                    }
+#endif
+                    if mode != TRACE_CLOSEST {
+                        (*transmittance).value = vec3<f32>(0.0);
                         return best;
                     }
                     t_max = h.x;
@@ -128,10 +159,27 @@ fn trace(ray: Ray, any_hit: bool, cull_single_sided_back: bool) -> Hit {
 }
 
 fn trace_closest(ray: Ray, cull_single_sided_back: bool) -> Hit {
-    return trace(ray, false, cull_single_sided_back);
+    var unused = Transmittance(vec3<f32>(1.0), false);
+    return trace(ray, TRACE_CLOSEST, cull_single_sided_back, &unused);
 }
 
-// Any hit in (0, t_max): the shadow-ray query.
+// Any hit in (0, t_max), transparent layers included (rays that must find a surface, not
+// light: none at present outside trace_transmittance's opaque test).
 fn trace_any(ray: Ray) -> bool {
-    return trace(ray, true, false).t > 0.0;
+    var unused = Transmittance(vec3<f32>(1.0), false);
+    return trace(ray, TRACE_ANY, false, &unused).t > 0.0;
+}
+
+// How much light gets along the segment: 1 or 0 in an opaque scene, the product of the
+// layers' pass_through with transparency (shadow rays, visibility in the MIS terms).
+fn trace_transmittance(ray: Ray) -> Transmittance {
+    var tr = Transmittance(vec3<f32>(1.0), false);
+#ifdef TRANSPARENCY
+    _ = trace(ray, TRACE_TRANSMITTANCE, false, &tr);
+#else
+    if trace(ray, TRACE_ANY, false, &tr).t > 0.0 {
+        tr.value = vec3<f32>(0.0);
+    }
+#endif
+    return tr;
 }

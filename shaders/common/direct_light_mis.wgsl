@@ -13,14 +13,20 @@ fn light_sample_mis(sp: ShadingPoint, rng: ptr<function, u32>, bsdf_in_weight: b
     let y = sample_light(rng);
     let lp = light_point(y.light, y.uv);
     let c = light_contribution(sp, lp);
-    if !(target_pdf(c) > 0.0) || !light_visible(sp, lp, c) {
+    if !(target_pdf(c) > 0.0) {
+        return vec3<f32>(0.0);
+    }
+    let tr = light_transmittance(sp, lp, c);
+    if !any(tr.value > vec3<f32>(0.0)) {
         return vec3<f32>(0.0);
     }
     var p_bsdf = 0.0;
-    if bsdf_in_weight && bsdf_can_hit(lp.kind) {
+    // A BSDF ray stops at the first emitter (transparency.wgsl): behind a glowing layer
+    // this light point is the light strategy's alone.
+    if bsdf_in_weight && bsdf_can_hit(lp.kind) && !tr.crossed_emitter {
         p_bsdf = brdf_pdf(sp.brdf, sp.normal, sp.wo, c.wi) * c.cos_light / c.dist2;
     }
-    return c.value / (lp.source_pdf + p_bsdf);
+    return tr.value * c.value / (lp.source_pdf + p_bsdf);
 }
 
 // The emission a BSDF-sampled direction found (`found`: the emitter its ray hit first, or

@@ -81,5 +81,8 @@ fn gi_shift(r: GiReservoir, seen_from: vec3<f32>, reused_at: vec3<f32>) -> GiShi
 fn gi_reconnection_visible(sp: ShadingPoint, r: GiReservoir) -> bool {
     let n_s = oct_decode(r.normal);
     let toward = select(-n_s, n_s, dot(n_s, sp.position - r.position) > 0.0);
-    return !trace_any(segment_ray(sp.position, sp.geo_normal, r.position, toward));
+    // Through glass: free when light gets through. The sample's radiance keeps the tint of
+    // the glass its own path crossed (a documented GI approximation, README "Indirect").
+    let tr = trace_transmittance(segment_ray(sp.position, sp.geo_normal, r.position, toward));
+    return any(tr.value > vec3<f32>(0.0));
 }

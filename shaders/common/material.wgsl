@@ -95,6 +95,14 @@ fn eval_material(material_index: u32, uv: vec2<f32>) -> MaterialSample {
 #ifndef METALLIC
     out.metallic = 0.0;
 #endif
+#ifdef UNLIT
+    // Unlit: the look is radiance (material_unlit_color); nothing is reflected.
+    if (m.flags & MATERIAL_UNLIT) != 0u {
+        out.base_color = vec3<f32>(0.0);
+        out.metallic = 0.0;
+        out.specular = 0.0;
+    }
+#endif
 #ifndef SPECULAR
     out.specular = 0.0;
 #endif
@@ -116,6 +124,62 @@ fn material_emission_of(m: Material, uv: vec2<f32>) -> vec3<f32> {
 #endif
     return e;
 }
+
+#ifdef UNLIT
+// KHR_materials_unlit: base colour × texture, seen directly as radiance (README
+// "Conventions"). Not a light: no light table entry, so nothing else receives it.
+fn material_unlit_color(material_index: u32, uv: vec2<f32>) -> vec3<f32> {
+    let m = materials[material_index];
+    var c = m.base_color.rgb;
+#ifdef BASE_COLOR_TEXTURES
+    if m.base_color_texture != NO_TEXTURE {
+        c *= sample_texture(m.base_color_texture, uv, true).rgb;
+    }
+#endif
+    return c;
+}
+#endif
+
+#ifdef TRANSPARENCY
+// A transparent surface as a thin layer (README "Conventions", transparency): of the light
+// reaching it, the share `solid` meets the surface as if it were opaque (it is shaded with
+// its BRDF, and it blocks), and `pass_through` goes straight on, unrefracted:
+//   coverage a (alpha BLEND, else 1), transmission t (KHR_materials_transmission × its texture):
+//   solid = a·(1 − t),   pass_through = (1 − a) + a·t·base_colour.
+// Shadow rays multiply pass_through along the segment; camera and path rays pick `solid`
+// with probability `solid`, else go on with weight pass_through / (1 − solid) (≤ 1), so
+// both estimate the same transport. No Fresnel reflection off glass (a documented limit).
+struct Layer {
+    solid: f32,
+    pass_through: vec3<f32>,
+}
+
+fn material_layer(material_index: u32, uv: vec2<f32>) -> Layer {
+    let m = materials[material_index];
+    if (m.flags & MATERIAL_TRANSPARENT) == 0u {
+        return Layer(1.0, vec3<f32>(0.0));
+    }
+#ifdef PLANTED_OPAQUE_GLASS
+    return Layer(1.0, vec3<f32>(0.0));  // test only: glass and BLEND as opaque (the old loader)
+#endif
+    let ms = eval_material(material_index, uv);
+    var coverage = 1.0;
+    if (m.flags & MATERIAL_ALPHA_BLEND) != 0u {
+        coverage = clamp(ms.alpha, 0.0, 1.0);
+    }
+    var t = m.transmission;
+    if m.transmission_texture != NO_TEXTURE {
+        t *= sample_texture(m.transmission_texture, uv, false).r;
+    }
+    t = clamp(t, 0.0, 1.0);
+    let tint = clamp(ms.base_color, vec3<f32>(0.0), vec3<f32>(1.0));
+    return Layer(coverage * (1.0 - t), vec3<f32>(1.0 - coverage) + coverage * t * tint);
+}
+
+fn triangle_layer(tri_index: u32, u: f32, v: f32) -> Layer {
+    return material_layer(triangles[tri_index].material, triangle_uv(tri_index, u, v));
+}
+#endif
 
 // Geometric normal of a triangle by its counter-clockwise winding (the emitting side).
 fn triangle_normal(tri: Triangle) -> vec3<f32> {
@@ -162,5 +226,10 @@ fn emission_toward_viewer(hs: HitSurface) -> vec3<f32> {
     if !hs.front_facing && (m.flags & MATERIAL_DOUBLE_SIDED) == 0u {
         return vec3<f32>(0.0);
     }
+#ifdef UNLIT
+    if (m.flags & MATERIAL_UNLIT) != 0u {
+        return material_unlit_color(hs.material, hs.uv) + material_emission(hs.material, hs.uv);
+    }
+#endif
     return material_emission(hs.material, hs.uv);
 }

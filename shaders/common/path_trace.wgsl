@@ -45,30 +45,27 @@ fn path_estimate(first: ShadingPoint, bounces: u32, rng: ptr<function, u32>) -> 
         if !is_finite_vec3(weight) {
             break;
         }
-        let hit = trace_closest(Ray(offset_ray_origin(sp.position, sp.geo_normal), bs.wi, FLT_MAX), false);
-        var found = LightSampleId(NO_LIGHT, vec2<f32>(0.0));
-        if hit.t > 0.0 {
-            found = LightSampleId(triangles[hit.triangle].light, vec2<f32>(hit.u, hit.v));
-        }
-#ifdef ENVIRONMENT
-        else {
-            found = LightSampleId(env.light, env_direction_to_uv(bs.wi));
-        }
-#endif
+        let origin = offset_ray_origin(sp.position, sp.geo_normal);
+        let first = trace_closest(Ray(origin, bs.wi, FLT_MAX), false);
+        // The emitter this direction finds through clear layers (the BSDF strategy's
+        // sample of direct light), then where the path goes on (transparency.wgsl).
+        let found = find_light_from(origin, bs.wi, first);
         if frame.light_count > 0u {
-            sum += throughput * bsdf_found_emission(sp, bs.pdf, found);
+            sum += throughput * found.transmittance * bsdf_found_emission(sp, bs.pdf, found.id);
         }
-        throughput *= weight;
+        let walk = walk_layers(sp.position, bs.wi, first, false, rng);
+        let hit = walk.hit;
+        throughput *= weight * walk.weight;
         if hit.t <= 0.0 || bounce == bounces || !any(throughput > vec3<f32>(0.0)) {
             break;
         }
         // The next vertex, seen from this one (normals flipped to its side, as for a
         // camera ray; BSDF rays do not cull back faces, so a path may leave a thin
         // single-sided surface from behind).
-        let hs = hit_surface(hit.triangle, hit.u, hit.v, sp.position);
+        let hs = hit_surface(hit.triangle, hit.u, hit.v, walk.origin);
         let m = eval_material(hs.material, hs.uv);
         let brdf = make_brdf(m.base_color, m.metallic, m.roughness, m.specular);
-        sp = ShadingPoint(hs.position, hs.normal, hs.geo_normal, -bs.wi, brdf, hs.material, sp.depth + hit.t);
+        sp = ShadingPoint(hs.position, hs.normal, hs.geo_normal, -bs.wi, brdf, hs.material, sp.depth + length(hs.position - sp.position));
     }
     return sum;
 }

@@ -4,7 +4,7 @@
 // where it is used (notes §2.3).
 #include "common/lights.wgsl"
 #include "common/brdf.wgsl"
-#include "common/bvh.wgsl"
+#include "common/transparency.wgsl"
 
 struct ShadingPoint {
     position: vec3<f32>,
@@ -111,8 +111,9 @@ fn target_at(sp: ShadingPoint, light: u32, uv: vec2<f32>) -> f32 {
     return target_pdf(light_contribution(sp, light_point(light, uv)));
 }
 
-// One shadow ray between the shading point and the light point.
-fn light_visible(sp: ShadingPoint, lp: LightPoint, c: LightContribution) -> bool {
+// One shadow ray between the shading point and the light point: 1 or 0 in an opaque
+// scene, the tint of the transparent layers between them otherwise (bvh.wgsl).
+fn light_transmittance(sp: ShadingPoint, lp: LightPoint, c: LightContribution) -> Transmittance {
 #ifdef SHADOWS
     var ray: Ray;
     var distant = lp.kind == LIGHT_POINT_DIRECTION;
@@ -126,10 +127,22 @@ fn light_visible(sp: ShadingPoint, lp: LightPoint, c: LightContribution) -> bool
         let light_n = select(-lp.normal, lp.normal, dot(lp.normal, sp.position - lp.position) > 0.0);
         ray = segment_ray(sp.position, sp.geo_normal, lp.position, light_n);
     }
-    return !trace_any(ray);
+    return trace_transmittance(ray);
 #else
-    return true;
+    return Transmittance(vec3<f32>(1.0), false);
 #endif
+}
+
+// The visibility factor V of a target p̂·V (visibility in the target, the pairwise MIS
+// terms): the luminance of the transmittance. In an opaque scene it is exactly 0 or 1; with
+// glass it is a valid target factor (> 0 wherever light gets through), used alike in every
+// term, while shading multiplies by the full colour (shade.wgsl).
+fn light_visibility(sp: ShadingPoint, lp: LightPoint, c: LightContribution) -> f32 {
+    return luminance(light_transmittance(sp, lp, c).value);
+}
+
+fn light_visible(sp: ShadingPoint, lp: LightPoint, c: LightContribution) -> bool {
+    return light_visibility(sp, lp, c) > 0.0;
 }
 
 // Whether a BSDF ray can find this kind of light (and so the BSDF pdf enters its MIS
@@ -143,16 +156,8 @@ fn bsdf_can_hit(kind: u32) -> bool {
     return kind == LIGHT_POINT_AREA;
 }
 
-// The light a BSDF ray from sp along wi finds: the emitter it hits first, or the
-// environment when it leaves the scene; NO_LIGHT for anything else.
-fn bsdf_ray_light(sp: ShadingPoint, wi: vec3<f32>) -> LightSampleId {
-    let hit = trace_closest(Ray(offset_ray_origin(sp.position, sp.geo_normal), wi, FLT_MAX), false);
-    if hit.t < 0.0 {
-#ifdef ENVIRONMENT
-        return LightSampleId(env.light, env_direction_to_uv(wi));
-#else
-        return LightSampleId(NO_LIGHT, vec2<f32>(0.0));
-#endif
-    }
-    return LightSampleId(triangles[hit.triangle].light, vec2<f32>(hit.u, hit.v));
+// The light a BSDF ray from sp along wi finds (transparency.wgsl): the emitter it hits
+// first through clear layers, or the environment; NO_LIGHT for anything else.
+fn bsdf_ray_light(sp: ShadingPoint, wi: vec3<f32>) -> FoundLight {
+    return find_light_through(offset_ray_origin(sp.position, sp.geo_normal), wi);
 }

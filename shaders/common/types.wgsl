@@ -23,11 +23,15 @@ struct Material {
     roughness: f32,
     specular: f32,
     alpha_cutoff: f32,
-    flags: u32,                      // MATERIAL_DOUBLE_SIDED | MATERIAL_ALPHA_MASK
+    flags: u32,                      // MATERIAL_* bits (gpu_types.rs)
     base_color_texture: u32,         // NO_TEXTURE when absent
     metallic_roughness_texture: u32,
     emissive_texture: u32,
-    _pad: u32,
+    transmission_texture: u32,       // R = transmission (linear)
+    transmission: f32,               // KHR_materials_transmission factor, 0 when absent
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 struct Texture {
@@ -99,8 +103,10 @@ struct Surface {
     roughness: f32,
     specular: f32,
     motion: vec2<f32>,        // previous-frame pixel position of this point
-    emission: vec3<f32>,      // radiance emitted toward the camera
-    _pad: f32,
+    emission: vec3<f32>,      // radiance toward the camera (this surface and layers before it)
+    transparent_first: u32,   // 1: the rasterised surface was a transparent layer (reference.wgsl)
+    throughput: vec3<f32>,    // weight of the camera path through transparent layers (1: none)
+    _pad2: f32,
 }
 
 struct PixelDebug {

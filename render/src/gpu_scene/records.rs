@@ -158,6 +158,15 @@ pub(super) fn gpu_materials(scene: &Scene) -> Vec<GpuMaterial> {
                 flags |= MATERIAL_ALPHA_MASK;
                 alpha_cutoff = cutoff;
             }
+            if m.alpha_mode == AlphaMode::Blend {
+                flags |= MATERIAL_ALPHA_BLEND;
+            }
+            if m.is_transparent() {
+                flags |= MATERIAL_TRANSPARENT;
+            }
+            if m.unlit {
+                flags |= MATERIAL_UNLIT;
+            }
             GpuMaterial {
                 base_color: m.base_color.into(),
                 emission: m.emission.into(),
@@ -169,7 +178,9 @@ pub(super) fn gpu_materials(scene: &Scene) -> Vec<GpuMaterial> {
                 base_color_texture: tex_index(m.base_color_texture),
                 metallic_roughness_texture: tex_index(m.metallic_roughness_texture),
                 emissive_texture: tex_index(m.emissive_texture),
-                _pad: 0,
+                transmission_texture: tex_index(m.transmission_texture),
+                transmission: m.transmission,
+                _pad: [0; 3],
             }
         })
         .collect()

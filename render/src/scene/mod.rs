@@ -73,6 +73,15 @@ pub struct Material {
     pub specular: f32,
     pub double_sided: bool,
     pub alpha_mode: AlphaMode,
+    /// KHR_materials_transmission `transmissionFactor` (0 when absent): the share of the
+    /// covered surface that is thin glass, passing light straight through tinted by the
+    /// base colour (README "Conventions", transparency).
+    pub transmission: f32,
+    /// KHR_materials_transmission `transmissionTexture` (R channel, linear).
+    pub transmission_texture: Option<TextureRef>,
+    /// KHR_materials_unlit: the camera sees the base colour as radiance; the surface neither
+    /// reflects nor emits light for anything else.
+    pub unlit: bool,
 }
 
 impl Default for Material {
@@ -89,6 +98,9 @@ impl Default for Material {
             specular: 1.0,
             double_sided: false,
             alpha_mode: AlphaMode::Opaque,
+            transmission: 0.0,
+            transmission_texture: None,
+            unlit: false,
         }
     }
 }
@@ -96,11 +108,12 @@ impl Default for Material {
 impl Material {
     /// Every texture slot by its glTF name: the one list the loader, validation and the
     /// uv-set choice go through (a new slot is added here).
-    pub fn texture_slots(&self) -> [(&'static str, Option<TextureRef>); 3] {
+    pub fn texture_slots(&self) -> [(&'static str, Option<TextureRef>); 4] {
         [
             ("baseColorTexture", self.base_color_texture),
             ("metallicRoughnessTexture", self.metallic_roughness_texture),
             ("emissiveTexture", self.emissive_texture),
+            ("transmissionTexture", self.transmission_texture),
         ]
     }
 
@@ -139,6 +152,13 @@ impl Material {
     pub fn is_emissive(&self) -> bool {
         self.emission.max_element() > 0.0
     }
+
+    /// True when light can pass through the surface: alpha blending (coverage below 1
+    /// somewhere) or transmission. Alpha MASK is not transparency: its texels are either
+    /// surface or hole.
+    pub fn is_transparent(&self) -> bool {
+        self.alpha_mode == AlphaMode::Blend || self.transmission > 0.0
+    }
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -146,7 +166,8 @@ pub enum AlphaMode {
     Opaque,
     /// Texels with alpha below the cutoff are holes (for camera and shadow rays).
     Mask(f32),
-    /// Treated as opaque: this renderer has no transparency.
+    /// Coverage by alpha: a fraction 1 − alpha of the light passes untouched (camera,
+    /// path and shadow rays alike; README "Conventions", transparency).
     Blend,
 }
 

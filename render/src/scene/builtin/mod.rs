@@ -6,6 +6,7 @@ mod concourse;
 mod cornell;
 pub mod dynamic;
 mod hard;
+mod lamps;
 mod many_lights;
 mod plane_light;
 mod rng;
@@ -38,6 +39,7 @@ const SCENES: &[(&str, Generator)] = &[
         many_lights_room(name, DEFAULT_LIGHT_COUNT, diffuse_floor())
     }),
     ("plane-light", plane_light::plane_light),
+    ("lamps", lamps::lamps),
     ("hard:tiny-bright", hard::tiny_bright),
     ("hard:touching", hard::touching),
     ("hard:back-facing", hard::back_facing),

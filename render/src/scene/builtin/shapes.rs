@@ -77,6 +77,11 @@ impl SceneBuilder {
         (self.scene.materials.len() - 1) as u32
     }
 
+    pub(super) fn texture(&mut self, texture: crate::scene::Texture) -> u32 {
+        self.scene.textures.push(texture);
+        (self.scene.textures.len() - 1) as u32
+    }
+
     /// One triangle as given (counter-clockwise = front). Degenerate input is kept as is.
     pub(super) fn triangle(&mut self, p: [Vec3; 3], material: u32) {
         let normal = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero();

@@ -51,8 +51,7 @@ enum Support {
 }
 
 /// The extensions this loader knows. Everything else is ignored when optional and refused
-/// when required. (Transmission, unlit, ior and volume are shaded by issue 19's shading
-/// half: thin-walled transmission, no refraction.)
+/// when required. Transmission is the thin-layer model of README's conventions.
 const TABLE: &[(&str, Support)] = &[
     (
         "KHR_animation_pointer",
@@ -69,7 +68,10 @@ const TABLE: &[(&str, Support)] = &[
     ("KHR_texture_transform", Support::Full),
     ("KHR_mesh_quantization", Support::Full),
     ("KHR_materials_unlit", Support::Full),
-    ("KHR_materials_transmission", Support::Full),
+    (
+        "KHR_materials_transmission",
+        Support::Partial("thin-walled: no refraction, no reflection off the glass"),
+    ),
     (
         "KHR_materials_ior",
         Support::Partial("ior ignored, F0 from KHR_materials_specular"),

@@ -26,6 +26,7 @@ fn material(file: &str, m: &gltf::Material) -> Material {
         info.map(|info| texture_ref(file, &name, slot, &info))
     };
     let strength = m.emissive_strength().unwrap_or(1.0);
+    let transmission = m.transmission();
     let material = Material {
         base_color: Vec4::from_array(pbr.base_color_factor()),
         base_color_texture: slot(pbr.base_color_texture(), "baseColorTexture"),
@@ -44,6 +45,15 @@ fn material(file: &str, m: &gltf::Material) -> Material {
             gltf::material::AlphaMode::Mask => AlphaMode::Mask(m.alpha_cutoff().unwrap_or(0.5)),
             gltf::material::AlphaMode::Blend => AlphaMode::Blend,
         },
+        transmission: transmission
+            .as_ref()
+            .map_or(0.0, |t| t.transmission_factor())
+            .clamp(0.0, 1.0),
+        transmission_texture: slot(
+            transmission.and_then(|t| t.transmission_texture()),
+            "transmissionTexture",
+        ),
+        unlit: m.unlit(),
         name,
     };
     warn_on_disagreeing_uv_sets(file, &material);

@@ -62,27 +62,68 @@ fn validate_previous(pixel: vec2<i32>, s: Surface, sp: ShadingPoint) -> Temporal
     if c.target_here <= 0.0 && check_enabled(REJECT_TARGET) {
         c.mask |= REJECT_TARGET;
     }
-    if !prev_null && check_enabled(REJECT_TARGET_RATIO) && !target_ratio_in_window(c.target_here, prev.p_hat) {
+    let prev_sp = shading_point_from_surface(ps, frame.prev_camera_position);
+    if !prev_null && check_enabled(REJECT_TARGET_RATIO) && !target_ratio_in_window(c.target_here, window_target_previous(prev_sp, prev)) {
         c.mask |= REJECT_TARGET_RATIO;
     }
     return c;
+}
+
+// The target-ratio window compares p̂ here with p̂ there, both *unshadowed*, for either
+// sample: then whether the history takes part at a sample y is a function of y alone and the
+// pairwise weights still sum to one. The stored p̂ of a reservoir is p̂·V; in an opaque scene
+// V is 1 wherever p̂·V > 0, so the stored value is the unshadowed one and serves as is.
+// Through glass V is a tint in (0, 1): comparing p̂ with p̂·V made the window depend on
+// which side the sample came from (−2.9 % on builtin:lamps with grey glass, temporal only;
+// PLANTED_WINDOW_ON_STORED_TARGETS keeps that for its test).
+fn window_target_previous(prev_sp: ShadingPoint, prev: Reservoir) -> f32 {
+#ifdef TRANSPARENCY
+#ifndef PLANTED_WINDOW_ON_STORED_TARGETS
+    if prev.light != NO_LIGHT {
+        return target_pdf(light_contribution(prev_sp, light_point_in_frame(prev.light, prev.uv, previous_lights())));
+    }
+#endif
+#endif
+    return prev.p_hat;
+}
+
+// Whether the previous pixel's targets use last frame's lights (animated scenes).
+fn previous_lights() -> bool {
+#ifdef ANIMATION
+    return (params.flags & PARAM_FLAG_PREVIOUS_LIGHTS) != 0u;
+#else
+    return false;
+#endif
+}
+
+fn window_target_here(sp: ShadingPoint, current: Reservoir) -> f32 {
+#ifdef TRANSPARENCY
+#ifndef PLANTED_WINDOW_ON_STORED_TARGETS
+    if current.light != NO_LIGHT {
+        return target_at(sp, current.light, current.uv);
+    }
+#endif
+#endif
+    return current.p_hat;
 }
 
 // Pairwise MIS of this pixel's initial reservoir (canonical) and the history, which is a
 // domain whatever its sample holds: a null sample, a target of 0 here or a light that went
 // off contributes nothing, and its confidence m_prev still counts in c_total. Every term
 // uses the same targets T_here = p̂·V here and T_prev = p̂·V at the previous pixel (V only
-// with mis_visibility), and the target-ratio clamp is a window on T_here / T_prev applied
-// to both samples alike: outside it the history's weight is 0 and the canonical keeps its
+// with mis_visibility), and the target-ratio clamp is a window on p̂_here / p̂_prev
+// (unshadowed, window_target_previous) applied to both samples alike: outside it the history's weight is 0 and the canonical keeps its
 // share, so the weights still sum to one (unbiased; a rejection of the history sample alone
 // is not). `rays` counts the shadow rays.
 fn merge_pairwise(sp: ShadingPoint, current: Reservoir, cand: TemporalCandidate, m_prev: f32, temporal_source: u32, u_current: f32, u_prev: f32, rays: ptr<function, u32>) -> Reservoir {
     let prev = cand.reservoir;
     let c_total = current.m + m_prev;
+    let prev_sp = shading_point_from_surface(cand.prev_surface, frame.prev_camera_position);
+    let previous = previous_lights();
 
     // The history's sample y_p: T_here(y_p) and its weight. T_prev(y_p) is the stored p̂.
     var target_here = cand.target_here;
-    if !target_ratio_in_window(target_here, prev.p_hat) {
+    if !target_ratio_in_window(target_here, window_target_previous(prev_sp, prev)) {
         target_here = 0.0;
     }
     if target_here > 0.0 && mis_visibility() {
@@ -94,16 +135,11 @@ fn merge_pairwise(sp: ShadingPoint, current: Reservoir, cand: TemporalCandidate,
     // animation, last frame's lights (a light switched on since then has p̂ 0 there, so
     // the canonical sample keeps its full weight). Current lights there (previous_lights
     // off) under-weight newly lit samples: a dark lag.
-    let prev_sp = shading_point_from_surface(cand.prev_surface, frame.prev_camera_position);
-    var previous = false;
-#ifdef ANIMATION
-    previous = (params.flags & PARAM_FLAG_PREVIOUS_LIGHTS) != 0u;
-#endif
     var prev_at_current = 0.0;
     if current.light != NO_LIGHT {
         prev_at_current = target_pdf(light_contribution(prev_sp, light_point_in_frame(current.light, current.uv, previous)));
     }
-    if !target_ratio_in_window(current.p_hat, prev_at_current) {
+    if !target_ratio_in_window(window_target_here(sp, current), prev_at_current) {
         prev_at_current = 0.0;
     }
     if prev_at_current > 0.0 && mis_visibility() {

@@ -9,37 +9,12 @@
 
 mod common;
 
-use glam::{Vec2, Vec3, Vec4};
-use restir_render::scene::{AlphaMode, Camera, Material, Triangle, Vertex};
+use common::scene_parts::{material, rect};
+use glam::{Vec3, Vec4};
+use restir_render::scene::{AlphaMode, Camera, Material};
 use restir_render::{LinearImage, Mode, Renderer, Scene, load_scene};
 
 const OPAQUE_GLASS: &str = "PLANTED_OPAQUE_GLASS";
-
-/// The rectangle `center ± u ± v`, front face along u × v.
-fn rect(scene: &mut Scene, center: Vec3, u: Vec3, v: Vec3, material: u32) {
-    let base = scene.vertices.len() as u32;
-    let normal = u.cross(v).normalize();
-    let corners = [center - u - v, center + u - v, center + u + v, center - u + v];
-    let uvs = [Vec2::ZERO, Vec2::X, Vec2::ONE, Vec2::Y];
-    for (position, uv) in corners.into_iter().zip(uvs) {
-        scene.vertices.push(Vertex {
-            position,
-            normal,
-            uv,
-        });
-    }
-    for t in [[0, 1, 2], [0, 2, 3]] {
-        scene.triangles.push(Triangle {
-            indices: t.map(|i| base + i),
-            material,
-        });
-    }
-}
-
-fn material(scene: &mut Scene, m: Material) -> u32 {
-    scene.materials.push(m);
-    scene.materials.len() as u32 - 1
-}
 
 /// The pane's model values: coverage 0.5, transmission 0.8, tint (1, 0.5, 0.25), so
 /// transmittance = (1 − a) + a·t·tint = (0.9, 0.7, 0.6) (README "Conventions").
@@ -104,7 +79,10 @@ fn pane_ratio(mode: Mode, planted: &[&str]) -> [f64; 3] {
         channel_means(&common::accumulate(&mut r, frames))
     };
     let (with, without) = (render(true), render(false));
-    assert!(without.iter().all(|&c| c > 0.01), "the floor is lit: {without:?}");
+    assert!(
+        without.iter().all(|&c| c > 0.01),
+        "the floor is lit: {without:?}"
+    );
     [0, 1, 2].map(|c| with[c] / without[c])
 }
 
@@ -135,11 +113,18 @@ fn planted_opaque_pane_blocks_the_light() {
     // The twin: the pane as an opaque surface (the loader's old "BLEND is opaque").
     let ratio = pane_ratio(Mode::Reference, &[OPAQUE_GLASS]);
     eprintln!("opaque pane: with / without = {ratio:.4?}");
-    assert!(ratio.iter().all(|&c| c < 0.05), "detector silent: {ratio:?}");
+    assert!(
+        ratio.iter().all(|&c| c < 0.05),
+        "detector silent: {ratio:?}"
+    );
 }
 
 /// Accumulated `restir` and the reference of `scene` (jitter off), with `planted` defines.
-fn restir_and_reference(scene: &Scene, size: (u32, u32), planted: &[&str]) -> (LinearImage, LinearImage) {
+fn restir_and_reference(
+    scene: &Scene,
+    size: (u32, u32),
+    planted: &[&str],
+) -> (LinearImage, LinearImage) {
     let settings = common::settings(&["jitter=false"]);
     let mut r = Renderer::new(common::gpu(), scene, size.0, size.1, settings).unwrap();
     r.plant_for_tests(planted);
@@ -175,9 +160,8 @@ fn lamps() -> Scene {
 #[test]
 fn restir_agrees_with_the_reference_behind_glass() {
     // builtin:lamps: every emitter sits in glass (clear and frosted globes, tinted tubes,
-    // a textured shade). 2 %: the bar; the 512-spp reference and 48 correlated
-    // frames each carry well under 0.5 % standard error in the mean at this size (measured
-    // spread of the ratio over seeds below), and the twin is far outside.
+    // a textured shade). 2 %: the bar; measured 1.008, 1.002, 1.005, 0.996 over
+    // four seeds (σ 0.5 %), and the twin is far outside.
     let (image, reference) = restir_and_reference(&lamps(), (64, 48), &[]);
     let ratio = image.mean_luminance() / reference.mean_luminance();
     eprintln!("lamps: restir / reference = {ratio:.4}");
@@ -195,118 +179,112 @@ fn planted_opaque_glass_darkens_the_lamps() {
     assert!(ratio < 0.5, "detector silent: {ratio:.4}");
 }
 
-#[test]
-#[ignore]
-fn explore_lamps() {
+/// builtin:lamps with every transparent layer turned into grey glass (pass 0.5 a layer), so
+/// the visibility factor in the targets is far from 0 and 1.
+fn grey_lamps() -> Scene {
     let mut scene = lamps();
-    if std::env::var("NO_GLASS").is_ok() {
-        let mats = scene.materials.clone();
-        scene.triangles.retain(|t| !mats[t.material as usize].is_transparent());
+    for m in scene.materials.iter_mut().filter(|m| m.is_transparent()) {
+        m.alpha_mode = AlphaMode::Opaque;
+        m.base_color = Vec4::new(0.5, 0.5, 0.5, 1.0);
+        m.transmission = 1.0;
+        m.transmission_texture = None;
     }
-    if let Ok(v) = std::env::var("FROSTED_CLEAR") {
-        for m in &mut scene.materials {
-            if m.alpha_mode == AlphaMode::Blend && v == "1" { m.base_color.w = 1.0; m.alpha_mode = AlphaMode::Opaque; m.transmission = 1.0; }
-            if m.transmission_texture.is_some() && v == "1" { m.transmission_texture = None; }
-        }
-    }
-    for jitter in ["jitter=false"] {
-    let settings = common::settings(&[jitter]);
-    let mut r = Renderer::new(common::gpu(), &scene, 32, 24, settings).unwrap();
-    let reference = common::reference(&mut r, 32, 64);
-    let ref_lum = reference.mean_luminance();
-    for (mode, extra, seed) in [
-        (Mode::Restir, Vec::<&str>::new(), 1),
-        (Mode::Restir, vec![], 2),
-        (Mode::Restir, vec![], 3),
-        (Mode::Restir, vec!["mis_visibility=false"], 1),
-        (Mode::Restir, vec!["mis_visibility=false"], 2),
-        (Mode::Restir, vec!["mis_visibility=false"], 3),
+    scene
+}
 
-    ] {
-        let mut a = vec![jitter];
-        a.extend(extra.iter().copied());
-        r.set_settings(common::settings(&a));
+/// Temporal reuse alone (the target-ratio window lives there) on grey-glass lamps: the
+/// accumulated mean over `seeds` runs relative to the reference.
+fn grey_lamps_temporal_ratio(planted: &[&str]) -> f64 {
+    let settings = common::settings(&["jitter=false", "spatial=false"]);
+    let mut r = Renderer::new(common::gpu(), &grey_lamps(), 32, 24, settings).unwrap();
+    r.plant_for_tests(planted);
+    r.set_seed(1000);
+    let reference = common::reference(&mut r, 16, 64).mean_luminance();
+    r.set_mode(Mode::Restir);
+    let seeds = [1, 2];
+    let mut sum = 0.0;
+    for seed in seeds {
         r.set_seed(seed);
-        r.set_mode(mode);
-        let t0 = std::time::Instant::now();
-        let img = common::accumulate(&mut r, 256);
-        eprintln!("{:?}", t0.elapsed());
-        let (a, b) = lit_means(&img, &reference);
-        eprintln!("{jitter} {mode:?} {extra:?} {seed}: {:.4} lit {:.4}", img.mean_luminance() / ref_lum, a / b);
+        sum += common::accumulate(&mut r, 128).mean_luminance() / reference;
     }
-    }
+    sum / seeds.len() as f64
 }
 
 #[test]
-#[ignore]
-fn explore_specks() {
-    let mut scene = lamps();
-    let keep_glass = std::env::var("KEEP_GLASS").is_ok();
-    if !keep_glass {
-        let mats = scene.materials.clone();
-        scene.triangles.retain(|t| !mats[t.material as usize].is_transparent());
-    }
-    let settings = common::settings(&["jitter=false"]);
-    let mut r = Renderer::new(common::gpu(), &scene, 160, 120, settings).unwrap();
-    r.set_mode(Mode::Nee);
-    let img = common::accumulate(&mut r, 32);
-    let rgba: Vec<u8> = img
+fn target_ratio_window_stays_unbiased_through_grey_glass() {
+    // 1.5 %: the ratio of one 128-frame run scatters by 0.6 % over seeds at this size
+    // (measured over 8 seeds), 0.4 % for the mean of two, and the 1024-spp reference adds
+    // about 0.2 %: the bar is over 3σ, the twin's −2.9 % is over 6σ away.
+    let ratio = grey_lamps_temporal_ratio(&[]);
+    eprintln!("grey lamps, temporal only: restir / reference = {ratio:.4}");
+    assert!((ratio - 1.0).abs() < 0.015, "ratio {ratio:.4}");
+}
+
+#[test]
+fn planted_window_on_stored_targets_darkens_grey_glass() {
+    // The twin: the window compares p̂ here with the stored p̂·V there (and p̂·V here with p̂
+    // there), so whether the history takes part depends on which side a sample came from.
+    let ratio = grey_lamps_temporal_ratio(&["PLANTED_WINDOW_ON_STORED_TARGETS"]);
+    eprintln!("grey lamps, window on stored targets: {ratio:.4}");
+    assert!(ratio < 0.985, "detector silent: {ratio:.4}");
+}
+
+/// Khronos' LightsPunctualLamp (assets/khronos, CC BY 4.0): a bulb and a point light inside
+/// a paper shade (KHR_materials_transmission with a texture), lit from outside by four more
+/// point lights; no camera in the file, so the automatic one frames it.
+fn khronos_lamp() -> Scene {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../assets/khronos/LightsPunctualLamp/glTF/LightsPunctualLamp.gltf"
+    );
+    load_scene(path).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Pixels of `image` brighter than LIT_LUMA_MAX: the bulb seen directly (through the shade).
+fn bulb_pixels(image: &LinearImage) -> usize {
+    image
         .pixels
         .iter()
-        .flat_map(|p| {
-            let t = |c: f32| ((c / (1.0 + c)).powf(1.0 / 2.2) * 255.0) as u8;
-            [t(p[0] * 0.5), t(p[1] * 0.5), t(p[2] * 0.5), 255]
-        })
-        .collect();
-    restir_render::image::save_png_rgba8(
-        std::path::Path::new(&format!("/tmp/l/specks_{keep_glass}.png")),
-        160,
-        120,
-        &rgba,
-    )
-    .unwrap();
+        .filter(|p| luma(**p) >= LIT_LUMA_MAX)
+        .count()
+}
+
+/// Accumulated `restir` (with `planted`) on the Khronos lamp against the correct reference:
+/// the ratio of the lit surfaces' mean (the bulb seen directly left out: through the
+/// shade's partial transmission it is a random choice per frame, and its few pixels would
+/// decide the mean and its noise), and the bulb pixels of the image and of the reference.
+fn khronos_lamp_lit_ratio(planted: &[&str]) -> (f64, usize, usize) {
+    let settings = common::settings(&["jitter=false"]);
+    let mut r = Renderer::new(common::gpu(), &khronos_lamp(), 36, 48, settings).unwrap();
+    let reference = common::reference(&mut r, 16, 64);
+    r.plant_for_tests(planted);
+    r.set_mode(Mode::Restir);
+    let image = common::accumulate(&mut r, 128);
+    let (a, b) = lit_means(&image, &reference);
+    (a / b, bulb_pixels(&image), bulb_pixels(&reference))
 }
 
 #[test]
-#[ignore]
-fn explore_variance() {
-    let scene = lamps();
-    let settings = common::settings(&["jitter=false"]);
-    let mut r = Renderer::new(common::gpu(), &scene, 32, 24, settings).unwrap();
-    r.set_mode(Mode::Nee);
-    let mut imgs = vec![];
-    for seed in [1, 2] {
-        r.set_seed(seed);
-        imgs.push(common::accumulate(&mut r, 256));
-    }
-    let mut d: Vec<(f64, usize, f64, f64)> = imgs[0].pixels.iter().zip(&imgs[1].pixels).enumerate()
-        .map(|(i, (a, b))| ((luma(*a) - luma(*b)).abs(), i, luma(*a), luma(*b))).collect();
-    d.sort_by(|x, y| y.0.partial_cmp(&x.0).unwrap());
-    let total: f64 = d.iter().map(|x| x.0).sum();
-    eprintln!("means {} {}", imgs[0].mean_luminance(), imgs[1].mean_luminance());
-    for x in d.iter().take(12) {
-        eprintln!("pixel ({}, {}): diff {:.3} ({:.3} vs {:.3}), share {:.3}", x.1 % 32, x.1 / 32, x.0, x.2, x.3, x.0 / total);
-    }
+fn restir_agrees_with_the_reference_on_the_khronos_lamp() {
+    // 2 %: the bar. Measured at 36×48 over 256 frames: 1.008, blocks of 6×6 pixels
+    // all within 0.98–1.05; the 1024-spp reference's own noise on the lit mean is under 1 %.
+    let (ratio, bulb, bulb_reference) = khronos_lamp_lit_ratio(&[]);
+    eprintln!(
+        "khronos lamp: restir / reference (lit) = {ratio:.4}, bulb pixels {bulb} (reference {bulb_reference})"
+    );
+    assert!((ratio - 1.0).abs() < 0.02, "ratio {ratio:.4}");
+    assert!(
+        bulb_reference > 0 && bulb > 0,
+        "the bulb behind the shade is seen"
+    );
 }
 
 #[test]
-#[ignore]
-fn explore_pixel() {
-    let scene = lamps();
-    let settings = common::settings(&["jitter=false"]);
-    let mut r = Renderer::new(common::gpu(), &scene, 32, 24, settings).unwrap();
-    r.set_mode(Mode::Nee);
-    for seed in [1, 2] {
-        r.set_seed(seed);
-        r.reset_accumulation();
-        let mut v = vec![];
-        for _ in 0..24 {
-            r.render_frame().unwrap();
-            let img = r.read_radiance();
-            v.push(format!("{:.2}", luma(img.get(22, 10))));
-        }
-        let s = r.read_surfaces();
-        let p = &s[10 * 32 + 22];
-        eprintln!("seed {seed}: {} | depth {} thr {:?} first {} mat {}", v.join(" "), p.depth, p.throughput, p.transparent_first, p.material);
-    }
+fn planted_opaque_glass_fails_the_khronos_lamp() {
+    // The twin: glass as opaque. The shade then hides the bulb and the stem behind it and
+    // shows its own paper lit by the four outside lights (measured 7.8× the lit mean, where
+    // the see-through shade only tints what is behind it): far outside the bar above.
+    let (ratio, _, _) = khronos_lamp_lit_ratio(&[OPAQUE_GLASS]);
+    eprintln!("khronos lamp, opaque shade: restir / reference (lit) = {ratio:.4}");
+    assert!((ratio - 1.0).abs() > 0.05, "detector silent: {ratio:.4}");
 }

@@ -96,12 +96,15 @@ fn eval_material(material_index: u32, uv: vec2<f32>) -> MaterialSample {
     out.metallic = 0.0;
 #endif
 #ifdef UNLIT
+#ifndef PLANTED_UNLIT_AS_LIT
     // Unlit: the look is radiance (material_unlit_color); nothing is reflected.
+    // (The planted twin, test only, shades it as a lit surface: the old loader.)
     if (m.flags & MATERIAL_UNLIT) != 0u {
         out.base_color = vec3<f32>(0.0);
         out.metallic = 0.0;
         out.specular = 0.0;
     }
+#endif
 #endif
 #ifndef SPECULAR
     out.specular = 0.0;
@@ -227,9 +230,11 @@ fn emission_toward_viewer(hs: HitSurface) -> vec3<f32> {
         return vec3<f32>(0.0);
     }
 #ifdef UNLIT
+#ifndef PLANTED_UNLIT_AS_LIT
     if (m.flags & MATERIAL_UNLIT) != 0u {
         return material_unlit_color(hs.material, hs.uv) + material_emission(hs.material, hs.uv);
     }
+#endif
 #endif
     return material_emission(hs.material, hs.uv);
 }

@@ -1,9 +1,10 @@
 //! Issue 19: light through glass. Shadow rays through a pane of known coverage and
 //! transmission carry exactly its transmittance; emitters behind glass are seen and light
 //! the scene, and accumulated `restir` agrees with the reference on `builtin:lamps` and on
-//! Khronos' LightsPunctualLamp; unlit surfaces show their base colour. Each test has a
-//! planted twin: glass treated as opaque (`PLANTED_OPAQUE_GLASS`, what the loader did
-//! before), or the unlit extension ignored.
+//! Khronos' LightsPunctualLamp, also behind grey glass where the visibility factor of the
+//! targets is far from 0 and 1 (unlit surfaces: unlit.rs). Each test has a planted twin:
+//! glass treated as opaque (`PLANTED_OPAQUE_GLASS`, what the loader did before), or the
+//! target-ratio window on the stored p̂·V (`PLANTED_WINDOW_ON_STORED_TARGETS`).
 //!
 //! Sizes are tiny (lavapipe on two cores); every tolerance says where it comes from.
 

@@ -23,6 +23,25 @@ fn load_neighbour(index: u32) -> Reservoir {
     return checked_reservoir(reservoirs_in[index], PASS_SPATIAL);
 }
 
+// A sample's target T = p̂·V at `sp` for a pairwise term (V with mis_visibility). A sample
+// both pixels hold (`same_sample`) needs no ray: each pixel's survivor is visible from it
+// (V = 1 in an opaque scene), and through glass, where V is a tint, its T there is the
+// stored p̂ (`stored`).
+fn reuse_target(sp: ShadingPoint, light: u32, uv: vec2<f32>, same_sample: bool, stored: f32, rays: ptr<function, u32>) -> f32 {
+    var t = target_at(sp, light, uv);
+    if t > 0.0 && mis_visibility() {
+        if !same_sample {
+            t *= sample_visibility(sp, light, uv, false, rays);
+        }
+#ifdef TRANSPARENCY
+        if same_sample {
+            t = stored;
+        }
+#endif
+    }
+    return t;
+}
+
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if !pixel_in_frame(id) {
@@ -108,28 +127,11 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             // Reuse spreads survivors, so a neighbour often holds this pixel's very sample:
             // both visibilities are then known (each pixel's survivor is visible from it).
             let same_sample = !reservoir_is_null(canonical) && nr.light == canonical.light && all(nr.uv == canonical.uv);
-            var target_here = target_at(sp, nr.light, nr.uv);
-            if target_here > 0.0 && mis_visibility() && !same_sample {
-                target_here *= sample_visibility(sp, nr.light, nr.uv, false, &rays);
-            }
-#ifdef TRANSPARENCY
-            // Through glass V is a tint, not 1: the same sample's p̂·V here is already stored.
-            if same_sample && mis_visibility() {
-                target_here = canonical.p_hat;
-            }
-#endif
+            let target_here = reuse_target(sp, nr.light, nr.uv, same_sample, canonical.p_hat, &rays);
             let m_i = pairwise_mis_noncanonical(c_total, canonical.m, nr.m, nr.p_hat, target_here);
             reservoir_merge_mis(&r, nr, target_here, m_i, source_with_age(SOURCE_SPATIAL, reservoir_age(nr)), rand_f32(&rng));
             let neighbour_sp = shading_point_from_surface(surfaces[q_index], frame.camera_position);
-            var neighbour_at_canonical = target_at(neighbour_sp, canonical.light, canonical.uv);
-            if neighbour_at_canonical > 0.0 && mis_visibility() && !same_sample {
-                neighbour_at_canonical *= sample_visibility(neighbour_sp, canonical.light, canonical.uv, false, &rays);
-            }
-#ifdef TRANSPARENCY
-            if same_sample && mis_visibility() {
-                neighbour_at_canonical = nr.p_hat;
-            }
-#endif
+            let neighbour_at_canonical = reuse_target(neighbour_sp, canonical.light, canonical.uv, same_sample, nr.p_hat, &rays);
             m_canonical += pairwise_mis_canonical_term(c_total, canonical.m, nr.m, canonical.p_hat, neighbour_at_canonical);
         }
         reservoir_merge_mis(&r, canonical, canonical.p_hat, m_canonical, canonical.source, rand_f32(&rng));

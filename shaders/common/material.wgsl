@@ -64,27 +64,26 @@ fn sample_texture(index: u32, uv: vec2<f32>, srgb: bool) -> vec4<f32> {
 }
 #endif
 
-fn material_alpha(material_index: u32, uv: vec2<f32>) -> f32 {
+// Base colour factor × base colour texture (rgb linear, a coverage).
+fn base_color_at(material_index: u32, uv: vec2<f32>) -> vec4<f32> {
     let m = materials[material_index];
-    var alpha = m.base_color.a;
+    var c = m.base_color;
 #ifdef BASE_COLOR_TEXTURES
     if m.base_color_texture != NO_TEXTURE {
-        alpha *= sample_texture(m.base_color_texture, uv, true).a;
+        c *= sample_texture(m.base_color_texture, uv, true);
     }
 #endif
-    return alpha;
+    return c;
+}
+
+fn material_alpha(material_index: u32, uv: vec2<f32>) -> f32 {
+    return base_color_at(material_index, uv).a;
 }
 
 fn eval_material(material_index: u32, uv: vec2<f32>) -> MaterialSample {
     let m = materials[material_index];
-    var out = MaterialSample(m.base_color.rgb, m.base_color.a, m.metallic, m.roughness, m.specular);
-#ifdef BASE_COLOR_TEXTURES
-    if m.base_color_texture != NO_TEXTURE {
-        let c = sample_texture(m.base_color_texture, uv, true);
-        out.base_color *= c.rgb;
-        out.alpha *= c.a;
-    }
-#endif
+    let base = base_color_at(material_index, uv);
+    var out = MaterialSample(base.rgb, base.a, m.metallic, m.roughness, m.specular);
 #ifdef METALLIC_ROUGHNESS_TEXTURES
     if m.metallic_roughness_texture != NO_TEXTURE {
         let mr = sample_texture(m.metallic_roughness_texture, uv, false);
@@ -132,14 +131,7 @@ fn material_emission_of(m: Material, uv: vec2<f32>) -> vec3<f32> {
 // KHR_materials_unlit: base colour × texture, seen directly as radiance (README
 // "Conventions"). Not a light: no light table entry, so nothing else receives it.
 fn material_unlit_color(material_index: u32, uv: vec2<f32>) -> vec3<f32> {
-    let m = materials[material_index];
-    var c = m.base_color.rgb;
-#ifdef BASE_COLOR_TEXTURES
-    if m.base_color_texture != NO_TEXTURE {
-        c *= sample_texture(m.base_color_texture, uv, true).rgb;
-    }
-#endif
-    return c;
+    return base_color_at(material_index, uv).rgb;
 }
 #endif
 

@@ -21,11 +21,12 @@ struct TemporalCandidate {
     mask: u32,             // REJECT_* bits of the failed checks
     reservoir: Reservoir,
     target_here: f32,      // p̂(x, y_prev), re-evaluated at the current point
+    target_there: f32,     // p̂(x_prev, y_prev), the other side of the target-ratio window
     prev_surface: Surface,
 }
 
 fn validate_previous(pixel: vec2<i32>, s: Surface, sp: ShadingPoint) -> TemporalCandidate {
-    var c = TemporalCandidate(0u, reservoir_empty(), 0.0, Surface());
+    var c = TemporalCandidate(0u, reservoir_empty(), 0.0, 0.0, Surface());
     let read = previous_pixel(pixel, s);
     if read.mask != 0u {
         c.mask |= read.mask;
@@ -62,8 +63,8 @@ fn validate_previous(pixel: vec2<i32>, s: Surface, sp: ShadingPoint) -> Temporal
     if c.target_here <= 0.0 && check_enabled(REJECT_TARGET) {
         c.mask |= REJECT_TARGET;
     }
-    let prev_sp = shading_point_from_surface(ps, frame.prev_camera_position);
-    if !prev_null && check_enabled(REJECT_TARGET_RATIO) && !target_ratio_in_window(c.target_here, window_target_previous(prev_sp, prev)) {
+    c.target_there = window_target_previous(shading_point_from_surface(ps, frame.prev_camera_position), prev);
+    if !prev_null && check_enabled(REJECT_TARGET_RATIO) && !target_ratio_in_window(c.target_here, c.target_there) {
         c.mask |= REJECT_TARGET_RATIO;
     }
     return c;
@@ -112,9 +113,9 @@ fn window_target_here(sp: ShadingPoint, current: Reservoir) -> f32 {
 // off contributes nothing, and its confidence m_prev still counts in c_total. Every term
 // uses the same targets T_here = p̂·V here and T_prev = p̂·V at the previous pixel (V only
 // with mis_visibility), and the target-ratio clamp is a window on p̂_here / p̂_prev
-// (unshadowed, window_target_previous) applied to both samples alike: outside it the history's weight is 0 and the canonical keeps its
-// share, so the weights still sum to one (unbiased; a rejection of the history sample alone
-// is not). `rays` counts the shadow rays.
+// (unshadowed, window_target_previous) applied to both samples alike: outside it the
+// history's weight is 0 and the canonical keeps its share, so the weights still sum to one
+// (unbiased; a rejection of the history sample alone is not). `rays` counts the shadow rays.
 fn merge_pairwise(sp: ShadingPoint, current: Reservoir, cand: TemporalCandidate, m_prev: f32, temporal_source: u32, u_current: f32, u_prev: f32, rays: ptr<function, u32>) -> Reservoir {
     let prev = cand.reservoir;
     let c_total = current.m + m_prev;
@@ -123,7 +124,7 @@ fn merge_pairwise(sp: ShadingPoint, current: Reservoir, cand: TemporalCandidate,
 
     // The history's sample y_p: T_here(y_p) and its weight. T_prev(y_p) is the stored p̂.
     var target_here = cand.target_here;
-    if !target_ratio_in_window(target_here, window_target_previous(prev_sp, prev)) {
+    if !target_ratio_in_window(target_here, cand.target_there) {
         target_here = 0.0;
     }
     if target_here > 0.0 && mis_visibility() {

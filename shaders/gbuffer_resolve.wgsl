@@ -4,7 +4,7 @@
 #include "common/stats_bindings.wgsl"
 #include "common/material.wgsl"
 #ifdef TRANSPARENCY
-#include "common/transparency.wgsl"
+#include "common/layer_walk.wgsl"
 #include "common/camera_ray.wgsl"
 #endif
 
@@ -31,21 +31,22 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     var tri = vis.x - 1u;
     var bu = bitcast<f32>(vis.y);
     var bv = bitcast<f32>(vis.z);
-    var emission_in_front = vec3<f32>(0.0);
+    var in_front = vec3<f32>(0.0);
 #ifdef TRANSPARENCY
-    // Glass and partial coverage (transparency.wgsl): the camera ray goes on from the
-    // rasterised layer; the surface is where it stops, the layers passed tint it. Only
-    // partial coverage draws a random choice, so clear glass is as stable as a wall.
+    // Glass and partial coverage (layer_walk.wgsl): the camera ray goes on from the
+    // rasterised layer to the primary surface without a random choice (a still view keeps
+    // its surfaces); the layers passed tint it and add their own light, estimated once.
     if is_transparent_triangle(tri) {
         s.transparent_first = 1u;
         let dir = camera_ray_direction(vec2<f32>(id.xy) + 0.5 - frame.jitter);
         var rng = rng_seed(id.xy, STREAM_TRANSPARENCY);
-        let walk = walk_layers(frame.camera_position, dir, Hit(1.0, tri, bu, bv), true, &rng);
+        let walk = walk_to_primary(frame.camera_position, dir, Hit(1.0, tri, bu, bv), &rng);
         s.throughput = walk.weight;
-        emission_in_front = walk.emission;
+        in_front = walk.in_front;
+        add_stat(STAT_SHADOW_RAYS + PASS_GBUFFER, walk.shadow_rays);
         if walk.hit.t < 0.0 {
             // Nothing behind the glass: the background, tinted (shade.wgsl).
-            s.emission = emission_in_front;
+            s.emission = in_front;
             surfaces[index] = s;
             return;
         }
@@ -64,7 +65,14 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     s.base_color_metallic = pack4x8unorm(vec4<f32>(m.base_color, m.metallic));
     s.roughness = m.roughness;
     s.specular = m.specular;
-    s.emission = emission_in_front + s.throughput * emission_toward_viewer(hs);
+    var own_emission = s.throughput * emission_toward_viewer(hs);
+#ifdef TRANSPARENCY
+    // A transparent primary layer's emission is in in_front already (walk_to_primary).
+    if is_transparent_triangle(tri) {
+        own_emission = vec3<f32>(0.0);
+    }
+#endif
+    s.emission = in_front + own_emission;
 #ifdef MOTION
     var prev_position = hs.position;
 #ifdef ANIMATION

@@ -6,6 +6,7 @@
 // The sample (x_s, n_s, L_o) has source pdf p_ω (solid angle at x_v); one candidate, so
 // W = 1 / p_ω, M = 1.
 #include "common/gi_reuse.wgsl"
+#include "common/layer_walk.wgsl"
 
 @group(2) @binding(0) var<storage, read> surfaces: array<Surface>;
 @group(2) @binding(1) var<storage, read_write> gi_out: array<GiReservoir>;

@@ -11,32 +11,13 @@
 #include "common/shading_point.wgsl"
 #include "common/camera_ray.wgsl"
 #include "common/path_trace.wgsl"
-#include "common/transparency.wgsl"
+#include "common/layer_walk.wgsl"
 
 @group(2) @binding(0) var<storage, read_write> radiance: array<vec4<f32>>;
 @group(2) @binding(1) var<storage, read_write> accumulation: array<vec4<f32>>;
 // pass_index = which chunk of REFERENCE_SAMPLES_PER_DISPATCH samples this dispatch takes.
 @group(2) @binding(2) var<uniform> pass_info: PassInfo;
 @group(2) @binding(3) var<storage, read> surfaces: array<Surface>;
-
-fn light_sample_estimate(sp: ShadingPoint, rng: ptr<function, u32>) -> vec3<f32> {
-    // The BSDF strategy runs only with shadows (see main), so only then is it in the weight.
-#ifdef SHADOWS
-    return light_sample_mis(sp, rng, true);
-#else
-    return light_sample_mis(sp, rng, false);
-#endif
-}
-
-fn bsdf_sample_estimate(sp: ShadingPoint, rng: ptr<function, u32>) -> vec3<f32> {
-    let u = vec3<f32>(rand_f32(rng), rand_f32(rng), rand_f32(rng));
-    let bs = sample_brdf(sp.brdf, sp.normal, sp.wo, u);
-    if !(bs.pdf > 0.0) {
-        return vec3<f32>(0.0);
-    }
-    let found = bsdf_ray_light(sp, bs.wi);
-    return found.transmittance * bsdf_found_emission(sp, bs.pdf, found.id);
-}
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -75,7 +56,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             let walk = walk_layers(frame.camera_position, dir, hit, true, &rng);
             hit = walk.hit;
             throughput = walk.weight;
-            sum += walk.emission;
+            sum += walk.in_front;
 #endif
             if hit.t < 0.0 {
 #ifdef ENVIRONMENT
@@ -84,9 +65,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
                 continue;
             }
             let hs = hit_surface(hit.triangle, hit.u, hit.v, frame.camera_position);
-            let m = eval_material(hs.material, hs.uv);
-            let brdf = make_brdf(m.base_color, m.metallic, m.roughness, m.specular);
-            sp = ShadingPoint(hs.position, hs.normal, hs.geo_normal, -dir, brdf, hs.material, length(hs.position - frame.camera_position));
+            sp = hit_shading_point(hs, -dir, hit_brdf(hs), length(hs.position - frame.camera_position));
             sample_value = emission_toward_viewer(hs);
         } else {
             // Jitter off: the surface the rasterised G-buffer sees at the pixel centre, so
@@ -128,20 +107,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         }
         // One bounce: the code as it was before paths, so max_bounces=1 renders the
         // same image bit for bit (render/tests/one_bounce_unchanged.rs).
-        if frame.light_count > 0u {
-            sample_value += light_sample_estimate(sp, &rng);
-        }
-#ifdef SHADOWS
-        // BSDF rays see occlusion by construction: only valid when shadows are on (always
-        // with an environment), and only useful when they can find a light.
-#ifdef ENVIRONMENT
-        sample_value += bsdf_sample_estimate(sp, &rng);
-#else
-#ifdef AREA_LIGHTS
-        sample_value += bsdf_sample_estimate(sp, &rng);
-#endif
-#endif
-#endif
+        add_direct_light(sp, &rng, &sample_value);
         sample_value *= throughput;
         if is_finite_vec3(sample_value) {
             sum += sample_value;

@@ -187,7 +187,8 @@ pub struct GpuSurface {
     /// negative when it was behind the previous camera.
     pub motion: [f32; 2],
     /// Radiance toward the camera: the surface's emission (or unlit colour) and that of
-    /// the transparent layers in front of it, each weighted by what lies before it.
+    /// the transparent layers in front of it with their glass reflection, each weighted by
+    /// what lies before it.
     pub emission: [f32; 3],
     /// 1 when the rasterised surface was a transparent layer (the reference then draws
     /// its own choice of layer per sample).

@@ -108,7 +108,7 @@ fn trace(ray: Ray, mode: u32, cull_single_sided_back: bool, transmittance: ptr<f
                     best = Hit(h.x, tri_index, h.y, h.z);
 #ifdef TRANSPARENCY
                     if mode == TRACE_TRANSMITTANCE {
-                        let layer = triangle_layer(tri_index, h.y, h.z);
+                        let layer = triangle_layer(tri_index, h.y, h.z, ray.dir);
                         layers++;
                         (*transmittance).value *= layer.pass_through;
                         (*transmittance).crossed_emitter = (*transmittance).crossed_emitter || triangles[tri_index].light != NO_LIGHT;

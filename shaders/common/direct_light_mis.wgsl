@@ -2,23 +2,37 @@
 // and BSDF sampling) with the balance heuristic (Veach 1997, §9.2): weights
 // p_light / (p_light + p_bsdf) and p_bsdf / (p_light + p_bsdf), both pdfs per unit area for
 // triangle lights and per steradian for the environment, so an emitter both strategies can
-// find is counted once. Used by the one-bounce reference and at every path vertex.
+// find is counted once. Used by the one-bounce reference, at every path vertex and for the
+// light of transparent layers toward the camera (layer_walk.wgsl).
 #include "common/shading_point.wgsl"
+
+// A strategy's weighted estimate and the shadow rays it traced (counted per pass).
+struct DirectLight {
+    value: vec3<f32>,
+    shadow_rays: u32,
+}
+
+// A light sample traces its shadow ray only where the scene can occlude.
+#ifdef SHADOWS
+const LIGHT_SAMPLE_RAYS: u32 = 1u;
+#else
+const LIGHT_SAMPLE_RAYS: u32 = 0u;
+#endif
 
 // One power-sampled light point with a shadow ray. `bsdf_in_weight`: the BSDF strategy
 // runs too, so its pdf enters the weight (without it the light sample stands alone).
 // Without SHADOWS the scene is convex and every segment between surface points is
 // unoccluded (effects.rs).
-fn light_sample_mis(sp: ShadingPoint, rng: ptr<function, u32>, bsdf_in_weight: bool) -> vec3<f32> {
+fn light_sample_mis(sp: ShadingPoint, rng: ptr<function, u32>, bsdf_in_weight: bool) -> DirectLight {
     let y = sample_light(rng);
     let lp = light_point(y.light, y.uv);
     let c = light_contribution(sp, lp);
     if !(target_pdf(c) > 0.0) {
-        return vec3<f32>(0.0);
+        return DirectLight(vec3<f32>(0.0), 0u);
     }
     let tr = light_transmittance(sp, lp, c);
     if !any(tr.value > vec3<f32>(0.0)) {
-        return vec3<f32>(0.0);
+        return DirectLight(vec3<f32>(0.0), LIGHT_SAMPLE_RAYS);
     }
     var p_bsdf = 0.0;
     // A BSDF ray stops at the first emitter (transparency.wgsl): behind a glowing layer
@@ -26,26 +40,66 @@ fn light_sample_mis(sp: ShadingPoint, rng: ptr<function, u32>, bsdf_in_weight: b
     if bsdf_in_weight && bsdf_can_hit(lp.kind) && !tr.crossed_emitter {
         p_bsdf = brdf_pdf(sp.brdf, sp.normal, sp.wo, c.wi) * c.cos_light / c.dist2;
     }
-    return tr.value * c.value / (lp.source_pdf + p_bsdf);
+    return DirectLight(tr.value * c.value / (lp.source_pdf + p_bsdf), LIGHT_SAMPLE_RAYS);
 }
 
 // The emission a BSDF-sampled direction found (`found`: the emitter its ray hit first, or
 // the environment; NO_LIGHT for anything else), as the BSDF strategy's weighted estimate:
-// Le·f·cos/p_bsdf · p_bsdf/(p_bsdf + p_light) = value / (p_light + p_bsdf) in area measure.
+// Le·f·cos/p_bsdf · p_bsdf/(p_bsdf + p_light) = value / (p_light + p_bsdf) in area measure,
+// f along the sampled direction (shading_point.wgsl, light_contribution_with).
 // The hit is the closest surface (or nothing: the environment), hence visible.
-fn bsdf_found_emission(sp: ShadingPoint, bsdf_pdf: f32, found: LightSampleId) -> vec3<f32> {
+fn bsdf_found_emission(sp: ShadingPoint, bs: BrdfSample, found: LightSampleId) -> vec3<f32> {
     if found.light == NO_LIGHT {
         return vec3<f32>(0.0);
     }
     let lp = light_point(found.light, found.uv);
-    let c = light_contribution(sp, lp);
+    let c = light_contribution_with(sp, lp, true, bs.wi);
     if !(target_pdf(c) > 0.0) {
         return vec3<f32>(0.0);
     }
-    let p_bsdf = bsdf_pdf * c.cos_light / c.dist2;
+    let p_bsdf = bs.pdf * c.cos_light / c.dist2;
 #ifdef PLANTED_NO_BSDF_MIS
     return c.value / p_bsdf;
 #else
     return c.value / (lp.source_pdf + p_bsdf);
 #endif
+}
+
+// One BSDF-sampled direction and the emitter (or environment) its ray finds through clear
+// layers, weighted against the light sample.
+fn bsdf_sample_mis(sp: ShadingPoint, rng: ptr<function, u32>) -> vec3<f32> {
+    let u = vec3<f32>(rand_f32(rng), rand_f32(rng), rand_f32(rng));
+    let bs = sample_brdf(sp.brdf, sp.normal, sp.wo, u);
+    if !(bs.pdf > 0.0) {
+        return vec3<f32>(0.0);
+    }
+    let found = bsdf_ray_light(sp, bs.wi);
+    return found.transmittance * bsdf_found_emission(sp, bs, found.id);
+}
+
+// Direct light at sp by one sample of each strategy, added to *sum light sample first (the
+// one-bounce reference is held to its images bit for bit: one_bounce_unchanged.rs).
+// BSDF rays see occlusion by construction, so that strategy runs only with shadows (always
+// with an environment), and only where it can find a light. Returns the shadow rays traced.
+fn add_direct_light(sp: ShadingPoint, rng: ptr<function, u32>, sum: ptr<function, vec3<f32>>) -> u32 {
+    var shadow_rays = 0u;
+    if frame.light_count > 0u {
+#ifdef SHADOWS
+        let light = light_sample_mis(sp, rng, true);
+#else
+        let light = light_sample_mis(sp, rng, false);
+#endif
+        *sum += light.value;
+        shadow_rays = light.shadow_rays;
+    }
+#ifdef SHADOWS
+#ifdef ENVIRONMENT
+    *sum += bsdf_sample_mis(sp, rng);
+#else
+#ifdef AREA_LIGHTS
+    *sum += bsdf_sample_mis(sp, rng);
+#endif
+#endif
+#endif
+    return shadow_rays;
 }

@@ -2,6 +2,7 @@
 // own #ifdef so a scene without textures compiles none of this (issue "specialisation").
 #include "common/scene_bindings.wgsl"
 #include "common/math.wgsl"
+#include "common/brdf.wgsl"
 
 struct MaterialSample {
     base_color: vec3<f32>,
@@ -129,33 +130,48 @@ fn material_emission_of(m: Material, uv: vec2<f32>) -> vec3<f32> {
 
 #ifdef UNLIT
 // KHR_materials_unlit: base colour × texture, seen directly as radiance (README
-// "Conventions"). Not a light: no light table entry, so nothing else receives it.
+// "Conventions"). Not a light: no light table entry, so nothing else receives it. Blended,
+// it covers the share alpha (glTF's α·colour + (1 − α)·behind: the layer passes the rest).
 fn material_unlit_color(material_index: u32, uv: vec2<f32>) -> vec3<f32> {
-    return base_color_at(material_index, uv).rgb;
+    let c = base_color_at(material_index, uv);
+    var blended = (materials[material_index].flags & MATERIAL_ALPHA_BLEND) != 0u;
+#ifdef PLANTED_UNLIT_UNBLENDED
+    blended = false;  // test only: the colour at full strength whatever its alpha (before)
+#endif
+    return c.rgb * select(1.0, clamp(c.a, 0.0, 1.0), blended);
 }
 #endif
 
 #ifdef TRANSPARENCY
-// A transparent surface as a thin layer (README "Conventions", transparency): of the light
-// reaching it, the share `solid` meets the surface as if it were opaque (it is shaded with
-// its BRDF, and it blocks), and `pass_through` goes straight on, unrefracted:
-//   coverage a (alpha BLEND, else 1), transmission t (KHR_materials_transmission × its texture):
-//   solid = a·(1 − t),   pass_through = (1 − a) + a·t·base_colour.
-// Shadow rays multiply pass_through along the segment; camera and path rays pick `solid`
-// with probability `solid`, else go on with weight pass_through / (1 − solid) (≤ 1), so
-// both estimate the same transport. No Fresnel reflection off glass (a documented limit).
+// A transparent surface as a thin layer (README "Conventions", transparency). With coverage a
+// (alpha BLEND, else 1) and transmission t (KHR_materials_transmission × its texture, of the
+// dielectric share: × (1 − metallic)), of the light reaching it
+//   * `solid` = a·(1 − t) meets the surface as if it were opaque: shaded with its BRDF, blocked;
+//   * `glass` = a·t meets a smooth dielectric interface (glTF's thin-walled transmission):
+//     the share F(θ) is reflected (the specular lobe of the layer's roughness: layer_walk.wgsl
+//     adds it to camera rays) and (1 − F(θ))·baseColour goes straight on, unrefracted;
+//   * the rest, 1 − a, goes straight on untouched.
+// pass_through = (1 − a) + glass·(1 − F(θ))·baseColour, θ between the ray and the layer's
+// normal. Shadow rays multiply pass_through along the segment; camera and path rays go
+// through the layers by layer_walk.wgsl's two walks, which estimate the same transport.
 struct Layer {
     solid: f32,
+    glass: f32,
     pass_through: vec3<f32>,
 }
 
-fn material_layer(material_index: u32, uv: vec2<f32>) -> Layer {
+fn opaque_layer() -> Layer {
+    return Layer(1.0, 0.0, vec3<f32>(0.0));
+}
+
+// The layer of a material at uv for a ray crossing it at cos_theta to its normal.
+fn material_layer(material_index: u32, uv: vec2<f32>, cos_theta: f32) -> Layer {
     let m = materials[material_index];
     if (m.flags & MATERIAL_TRANSPARENT) == 0u {
-        return Layer(1.0, vec3<f32>(0.0));
+        return opaque_layer();
     }
 #ifdef PLANTED_OPAQUE_GLASS
-    return Layer(1.0, vec3<f32>(0.0));  // test only: glass and BLEND as opaque (the old loader)
+    return opaque_layer();  // test only: glass and BLEND as opaque (the old loader)
 #endif
     let ms = eval_material(material_index, uv);
     var coverage = 1.0;
@@ -166,19 +182,41 @@ fn material_layer(material_index: u32, uv: vec2<f32>) -> Layer {
     if m.transmission_texture != NO_TEXTURE {
         t *= sample_texture(m.transmission_texture, uv, false).r;
     }
-    t = clamp(t, 0.0, 1.0);
+    t = clamp(t, 0.0, 1.0) * (1.0 - ms.metallic);
+    let glass = coverage * t;
+    var reflected = 0.0;
+#ifdef SPECULAR
+#ifndef PLANTED_NO_FRESNEL
+    // (The planted twin, test only: the layer before Fresnel, all of `glass` passing.)
+    reflected = clamp(dielectric_fresnel(ms.specular, cos_theta), 0.0, 1.0);
+#endif
+#endif
     let tint = clamp(ms.base_color, vec3<f32>(0.0), vec3<f32>(1.0));
-    return Layer(coverage * (1.0 - t), vec3<f32>(1.0 - coverage) + coverage * t * tint);
+    return Layer(coverage * (1.0 - t), glass, vec3<f32>(1.0 - coverage) + glass * (1.0 - reflected) * tint);
 }
 
-fn triangle_layer(tri_index: u32, u: f32, v: f32) -> Layer {
-    return material_layer(triangles[tri_index].material, triangle_uv(tri_index, u, v));
+// The layer a ray along `dir` (any length: shadow rays span their segment) meets at a
+// point of a triangle, θ from the shading normal (the one camera rays shade with).
+fn triangle_layer(tri_index: u32, u: f32, v: f32, dir: vec3<f32>) -> Layer {
+    let cos_theta = abs(dot(shading_normal_at(tri_index, u, v), safe_normalize(dir, vec3<f32>(0.0))));
+    return material_layer(triangles[tri_index].material, triangle_uv(tri_index, u, v), cos_theta);
 }
 #endif
 
 // Geometric normal of a triangle by its counter-clockwise winding (the emitting side).
 fn triangle_normal(tri: Triangle) -> vec3<f32> {
     return safe_normalize(cross(tri.p1 - tri.p0, tri.p2 - tri.p0), vec3<f32>(0.0, 1.0, 0.0));
+}
+
+// The interpolated vertex normal at barycentrics (u, v), or the geometric one without
+// normals (either side: callers orient it).
+fn shading_normal_at(tri_index: u32, u: f32, v: f32) -> vec3<f32> {
+    let ng = triangle_normal(triangles[tri_index]);
+    let s = shading[tri_index];
+    if s.has_normals == 0u {
+        return ng;
+    }
+    return safe_normalize(oct_decode(s.normals[0]) * (1.0 - u - v) + oct_decode(s.normals[1]) * u + oct_decode(s.normals[2]) * v, ng);
 }
 
 // Everything a shading point needs from a hit (G-buffer resolve and reference renderer).
@@ -193,25 +231,26 @@ struct HitSurface {
 
 fn hit_surface(tri_index: u32, u: f32, v: f32, viewer: vec3<f32>) -> HitSurface {
     let tri = triangles[tri_index];
-    let s = shading[tri_index];
     let w = 1.0 - u - v;
     let position = tri.p0 * w + tri.p1 * u + tri.p2 * v;
     let ng = triangle_normal(tri);
     let to_viewer = viewer - position;
     let front = dot(ng, to_viewer) >= 0.0;
     let ng_f = select(-ng, ng, front);
-    var ns = ng;
-    if s.has_normals != 0u {
-        ns = safe_normalize(oct_decode(s.normals[0]) * w + oct_decode(s.normals[1]) * u + oct_decode(s.normals[2]) * v, ng);
-    }
+    var ns = shading_normal_at(tri_index, u, v);
     ns = select(-ns, ns, front);
     // An interpolated normal that faces away from the viewer would make the BRDF
     // undefined; fall back to the geometric one (the usual "normal flip" fix).
     if dot(ns, to_viewer) <= 0.0 {
         ns = ng_f;
     }
-    let uv = s.uvs[0] * w + s.uvs[1] * u + s.uvs[2] * v;
-    return HitSurface(position, ns, ng_f, front, uv, tri.material);
+    return HitSurface(position, ns, ng_f, front, triangle_uv(tri_index, u, v), tri.material);
+}
+
+// The BRDF of the material at a hit.
+fn hit_brdf(hs: HitSurface) -> Brdf {
+    let m = eval_material(hs.material, hs.uv);
+    return make_brdf(m.base_color, m.metallic, m.roughness, m.specular);
 }
 
 // Radiance leaving a hit toward the viewer: emitters shine from their front face only,

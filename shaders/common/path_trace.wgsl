@@ -14,7 +14,7 @@
 // PLANTED_NO_THROUGHPUT_PDF (here) and PLANTED_NO_BSDF_MIS (direct_light_mis.wgsl) exist
 // only for the furnace test's power checks (EffectSet::planted): they break the estimator
 // in the way the test must notice.
-#include "common/direct_light_mis.wgsl"
+#include "common/layer_walk.wgsl"
 
 // Everything past the emission seen directly: direct light at each of the first
 // `bounces` vertices of a BSDF-sampled path starting at `first`.
@@ -26,7 +26,7 @@ fn path_estimate(first: ShadingPoint, bounces: u32, rng: ptr<function, u32>) -> 
         if frame.light_count > 0u {
             // Along a path the BSDF ray is always traced (it continues the path), so its
             // pdf is in the light sample's weight whether or not shadows are compiled in.
-            sum += throughput * light_sample_mis(sp, rng, true);
+            sum += throughput * light_sample_mis(sp, rng, true).value;
         }
         let u = vec3<f32>(rand_f32(rng), rand_f32(rng), rand_f32(rng));
         let bs = sample_brdf(sp.brdf, sp.normal, sp.wo, u);
@@ -51,7 +51,7 @@ fn path_estimate(first: ShadingPoint, bounces: u32, rng: ptr<function, u32>) -> 
         // sample of direct light), then where the path goes on (transparency.wgsl).
         let found = find_light_from(origin, bs.wi, first);
         if frame.light_count > 0u {
-            sum += throughput * found.transmittance * bsdf_found_emission(sp, bs.pdf, found.id);
+            sum += throughput * found.transmittance * bsdf_found_emission(sp, bs, found.id);
         }
         let walk = walk_layers(sp.position, bs.wi, first, false, rng);
         let hit = walk.hit;
@@ -63,9 +63,7 @@ fn path_estimate(first: ShadingPoint, bounces: u32, rng: ptr<function, u32>) -> 
         // camera ray; BSDF rays do not cull back faces, so a path may leave a thin
         // single-sided surface from behind).
         let hs = hit_surface(hit.triangle, hit.u, hit.v, walk.origin);
-        let m = eval_material(hs.material, hs.uv);
-        let brdf = make_brdf(m.base_color, m.metallic, m.roughness, m.specular);
-        sp = ShadingPoint(hs.position, hs.normal, hs.geo_normal, -bs.wi, brdf, hs.material, sp.depth + length(hs.position - sp.position));
+        sp = hit_shading_point(hs, -bs.wi, hit_brdf(hs), sp.depth + length(hs.position - sp.position));
     }
     return sum;
 }

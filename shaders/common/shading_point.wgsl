@@ -34,6 +34,11 @@ fn shading_point_from_surface(s: Surface, viewer: vec3<f32>) -> ShadingPoint {
     return ShadingPoint(s.position, oct_decode(s.normal), oct_decode(s.geo_normal), wo, brdf, s.material, s.depth);
 }
 
+// A ray's hit as a shading point seen from `wo` (`depth`: the path's length to it).
+fn hit_shading_point(hs: HitSurface, wo: vec3<f32>, brdf: Brdf, depth: f32) -> ShadingPoint {
+    return ShadingPoint(hs.position, hs.normal, hs.geo_normal, wo, brdf, hs.material, depth);
+}
+
 struct LightContribution {
     value: vec3<f32>,  // unshadowed Le · fr · G (the integrand without visibility)
     wi: vec3<f32>,
@@ -46,6 +51,14 @@ fn no_contribution() -> LightContribution {
 }
 
 fn light_contribution(sp: ShadingPoint, lp: LightPoint) -> LightContribution {
+    return light_contribution_with(sp, lp, false, vec3<f32>(0.0));
+}
+
+// The same with the BRDF evaluated along `brdf_wi` when `along` (a BSDF sample: the
+// direction it was drawn in, whose pdf it carries). The direction from sp.position to the
+// point its ray hit differs by the ray origin's offset (ray.wgsl, ~1e-4 rad), which inside
+// a sharp lobe (α = 1e-3) changes D by tens of percent: f and pdf would no longer cancel.
+fn light_contribution_with(sp: ShadingPoint, lp: LightPoint, along: bool, brdf_wi: vec3<f32>) -> LightContribution {
     var wi: vec3<f32>;
     var dist2 = 1.0;
     var falloff = 1.0;  // G without cos at x, or 1/d² and cone for punctual lights
@@ -93,7 +106,11 @@ fn light_contribution(sp: ShadingPoint, lp: LightPoint) -> LightContribution {
     if cos_x <= 0.0 || dot(sp.geo_normal, wi) <= 0.0 {
         return no_contribution();
     }
-    let f = eval_brdf(sp.brdf, sp.normal, sp.wo, wi);
+#ifdef PLANTED_BSDF_F_TOWARD_HIT
+    let f = eval_brdf(sp.brdf, sp.normal, sp.wo, wi);  // test only: the code before
+#else
+    let f = eval_brdf(sp.brdf, sp.normal, sp.wo, select(wi, brdf_wi, along));
+#endif
     let value = lp.radiance * f * (cos_x * falloff);
     return LightContribution(value, wi, dist2, cos_light);
 }

@@ -103,7 +103,8 @@ struct Surface {
     roughness: f32,
     specular: f32,
     motion: vec2<f32>,        // previous-frame pixel position of this point
-    emission: vec3<f32>,      // radiance toward the camera (this surface and layers before it)
+    emission: vec3<f32>,      // radiance toward the camera: this surface's emission, and the
+                              // emission and glass reflection of the layers before it
     transparent_first: u32,   // 1: the rasterised surface was a transparent layer (reference.wgsl)
     throughput: vec3<f32>,    // weight of the camera path through transparent layers (1: none)
     _pad2: f32,

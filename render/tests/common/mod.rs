@@ -87,3 +87,14 @@ pub fn radius_px(pixels: f32, height: u32) -> String {
     let r = restir_render::settings::pixel_units::at_1080p(pixels, height);
     format!("spatial_radius={r}")
 }
+
+/// The mean of each colour channel over the image.
+pub fn channel_means(img: &LinearImage) -> [f64; 3] {
+    let mut sum = [0.0; 3];
+    for p in &img.pixels {
+        for c in 0..3 {
+            sum[c] += p[c] as f64;
+        }
+    }
+    sum.map(|s| s / img.pixels.len() as f64)
+}

@@ -1,0 +1,169 @@
+// Camera and path rays through transparent layers (material.wgsl's thin-layer `Layer`): the
+// ray finds a surface, and the layers it passes add their own light. Two walks estimate the
+// same transport:
+//
+// * `walk_layers` (the reference, per sample; path and GI rays): at each layer the ray stops
+//   with probability `solid` (the layer is then the surface, shaded as opaque), else it
+//   goes on with weight pass_through / (1 − solid).
+// * `walk_to_primary` (the G-buffer): no random choice, so a still view gives the same
+//   surfaces every frame and the reservoirs behind frosted glass keep their history. The
+//   larger of a layer's two shares, solid or passing (by luminance), holds the pixel's
+//   primary surface, shaded by ReSTIR; the other is estimated once per frame with one light
+//   and one BSDF sample (direct_light_mis.wgsl, the reference's estimator): the layer's
+//   solid share lit at the layer, or what lies behind it seen through a `walk_layers` ray.
+//   Clear glass (solid 0) and cut-out texels are passed, fully covered texels hold.
+//
+// Camera rays (`camera`) also collect what each layer's glass share reflects: direct light
+// off its specular lobe, one sample of the same estimator per layer, whichever way the walk
+// goes (the glass share is neither solid nor passing). For smooth glass the BSDF sample
+// finds the mirrored emitter every frame, so the highlight is as stable as the glass. The
+// reflection of lit surfaces (indirect light) is not modelled, in any mode; path rays see
+// glass as tint only.
+#include "common/transparency.wgsl"
+#include "common/direct_light_mis.wgsl"
+
+struct LayerWalk {
+    hit: Hit,              // the surface the ray stops at (t < 0: it left the scene)
+    weight: vec3<f32>,     // what that surface's (or the background's) radiance is worth
+    in_front: vec3<f32>,   // radiance toward the ray's origin from the layers met, weighted:
+                           // their emission, their glass reflection (camera rays) and, in
+                           // walk_to_primary, the share the primary surface leaves out
+    origin: vec3<f32>,     // the origin of the last ray segment (viewer of `hit`)
+    shadow_rays: u32,      // traced for those estimates
+}
+
+// `share` × the direct light `lobe` reflects toward `wo` at a layer's point `hs`: one light
+// and one BSDF sample, added to the walk's in_front with its weight.
+fn add_layer_light(walk: ptr<function, LayerWalk>, hs: HitSurface, lobe: Brdf, share: f32, wo: vec3<f32>, rng: ptr<function, u32>) {
+    var reflected = vec3<f32>(0.0);
+    (*walk).shadow_rays += add_direct_light(hit_shading_point(hs, wo, lobe, 0.0), rng, &reflected);
+    (*walk).in_front += (*walk).weight * share * reflected;
+}
+
+// What the glass share of a layer reflects: its specular lobe alone (base colour 0,
+// metallic 0: brdf.wgsl then has no diffuse term and F = specularFactor·Schlick).
+fn add_glass_reflection(walk: ptr<function, LayerWalk>, hs: HitSurface, glass: f32, wo: vec3<f32>, rng: ptr<function, u32>) {
+#ifdef SPECULAR
+#ifndef PLANTED_NO_FRESNEL
+    let m = eval_material(hs.material, hs.uv);
+    if glass > 0.0 && m.specular > 0.0 {
+        add_layer_light(walk, hs, make_brdf(vec3<f32>(0.0), 0.0, m.roughness, m.specular), glass, wo, rng);
+    }
+#endif
+#endif
+}
+
+// From `first` (the closest hit of a ray from `origin` along `dir`), through transparent
+// layers, choosing at random. `camera`: a camera ray, which keeps the camera rule for
+// single-sided back faces on every segment and collects the layers' glass reflections.
+fn walk_layers(origin: vec3<f32>, dir: vec3<f32>, first: Hit, camera: bool, rng: ptr<function, u32>) -> LayerWalk {
+    var walk = LayerWalk(first, vec3<f32>(1.0), vec3<f32>(0.0), origin, 0u);
+#ifdef TRANSPARENCY
+    for (var layer = 0u; layer < MAX_TRANSPARENT_LAYERS; layer++) {
+        if walk.hit.t < 0.0 || !is_transparent_triangle(walk.hit.triangle) {
+            return walk;
+        }
+        let hs = hit_surface(walk.hit.triangle, walk.hit.u, walk.hit.v, walk.origin);
+        let l = triangle_layer(walk.hit.triangle, walk.hit.u, walk.hit.v, dir);
+        if camera {
+            add_glass_reflection(&walk, hs, l.glass, -dir, rng);
+        }
+        if rand_f32(rng) < l.solid {
+            return walk;
+        }
+        walk.in_front += walk.weight * emission_toward_viewer(hs);
+        walk.weight *= l.pass_through / max(1.0 - l.solid, 1e-6);
+        if !any(walk.weight > vec3<f32>(0.0)) {
+            walk.hit.t = -1.0;
+            return walk;
+        }
+        walk.origin = origin_past_layer(hs.position, walk.hit.triangle, dir);
+        walk.hit = trace_closest(Ray(walk.origin, dir, FLT_MAX), camera);
+    }
+    // Past the cap the next transparent surface is as far as light gets: opaque black.
+    if walk.hit.t >= 0.0 && is_transparent_triangle(walk.hit.triangle) {
+        walk.weight = vec3<f32>(0.0);
+    }
+#endif
+    return walk;
+}
+
+#ifdef TRANSPARENCY
+// One sample of the radiance a camera ray from `origin` along `dir` brings back, direct
+// light only: through the layers at random, the emission and the light (one light and one
+// BSDF sample) of the surface it stops at, or the environment. The reference's one-bounce
+// sample, for the share of a layer the primary surface leaves out.
+fn add_radiance_along(walk: ptr<function, LayerWalk>, share: vec3<f32>, origin: vec3<f32>, dir: vec3<f32>, rng: ptr<function, u32>) {
+    var behind = walk_layers(origin, dir, trace_closest(Ray(origin, dir, FLT_MAX), true), true, rng);
+    var radiance = behind.in_front;
+    if behind.hit.t < 0.0 {
+#ifdef ENVIRONMENT
+        radiance += behind.weight * env_background(dir);
+#endif
+    } else {
+        let hs = hit_surface(behind.hit.triangle, behind.hit.u, behind.hit.v, behind.origin);
+        var direct = vec3<f32>(0.0);
+        behind.shadow_rays += add_direct_light(hit_shading_point(hs, -dir, hit_brdf(hs), 0.0), rng, &direct);
+        radiance += behind.weight * (emission_toward_viewer(hs) + direct);
+    }
+    (*walk).shadow_rays += behind.shadow_rays;
+    (*walk).in_front += (*walk).weight * share * radiance;
+}
+#endif
+
+// The G-buffer's walk (see the top of this file): from `first`, through transparent layers
+// without a random choice, to the pixel's primary surface. Its `weight` is what the primary
+// surface's shading is worth; `in_front` holds everything else, including the primary
+// layer's emission (the caller adds emission only for an opaque primary surface).
+fn walk_to_primary(origin: vec3<f32>, dir: vec3<f32>, first: Hit, rng: ptr<function, u32>) -> LayerWalk {
+    var walk = LayerWalk(first, vec3<f32>(1.0), vec3<f32>(0.0), origin, 0u);
+#ifdef TRANSPARENCY
+    for (var layer = 0u; layer < MAX_TRANSPARENT_LAYERS; layer++) {
+        if walk.hit.t < 0.0 || !is_transparent_triangle(walk.hit.triangle) {
+            return walk;
+        }
+        let hs = hit_surface(walk.hit.triangle, walk.hit.u, walk.hit.v, walk.origin);
+        let l = triangle_layer(walk.hit.triangle, walk.hit.u, walk.hit.v, dir);
+        add_glass_reflection(&walk, hs, l.glass, -dir, rng);
+        walk.in_front += walk.weight * emission_toward_viewer(hs);
+        let past = origin_past_layer(hs.position, walk.hit.triangle, dir);
+#ifdef PLANTED_RANDOM_LAYER_CHOICE
+        // Test only: the choice before, at random by solid, which a still view redraws every
+        // frame (the other share is then left to the choice, not sampled).
+        let hold = rand_f32(rng) < l.solid;
+        let held_share = 1.0;
+        let passed_share = l.pass_through / max(1.0 - l.solid, 1e-6);
+        let sample_other = false;
+#else
+        let hold = l.solid >= luminance(l.pass_through);
+        let held_share = l.solid;
+        let passed_share = l.pass_through;
+        let sample_other = true;
+#endif
+        if hold {
+            // The layer is the primary surface (ReSTIR shades its solid share); what passes
+            // is sampled once.
+            if sample_other && any(l.pass_through > vec3<f32>(0.0)) {
+                add_radiance_along(&walk, l.pass_through, past, dir, rng);
+            }
+            walk.weight *= held_share;
+            return walk;
+        }
+        // What lies behind holds the primary surface; the layer's solid share is lit once.
+        if sample_other && l.solid > 0.0 {
+            add_layer_light(&walk, hs, hit_brdf(hs), l.solid, -dir, rng);
+        }
+        walk.weight *= passed_share;
+        if !any(walk.weight > vec3<f32>(0.0)) {
+            walk.hit.t = -1.0;
+            return walk;
+        }
+        walk.origin = past;
+        walk.hit = trace_closest(Ray(past, dir, FLT_MAX), true);
+    }
+    if walk.hit.t >= 0.0 && is_transparent_triangle(walk.hit.triangle) {
+        walk.weight = vec3<f32>(0.0);
+    }
+#endif
+    return walk;
+}

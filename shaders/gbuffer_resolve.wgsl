@@ -14,6 +14,14 @@
 // group's `prev_triangles` (scene_bindings.wgsl). Group 2 binding 2 of this pass's layout
 // holds the same buffer and is no longer read.
 
+fn clamp_barycentrics(uv: vec2<f32>) -> vec2<f32> {
+#ifdef PLANTED_UNCLAMPED_BARYCENTRICS
+    return uv;  // test only: as rasterised (before)
+#endif
+    let c = max(uv, vec2<f32>(0.0));
+    return c / max(c.x + c.y, 1.0);
+}
+
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if !pixel_in_frame(id) {
@@ -29,8 +37,13 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     var tri = vis.x - 1u;
-    var bu = bitcast<f32>(vis.y);
-    var bv = bitcast<f32>(vis.z);
+    // The rasteriser snaps edges to its sub-pixel grid, so a pixel centre just outside a
+    // triangle can land on it with barycentrics slightly outside [0, 1]: the point lies past
+    // the edge, at a concave corner behind the other wall, where every shadow ray is blocked
+    // (a black pixel). Clamped onto the triangle.
+    let raster_uv = clamp_barycentrics(vec2<f32>(bitcast<f32>(vis.y), bitcast<f32>(vis.z)));
+    var bu = raster_uv.x;
+    var bv = raster_uv.y;
     var in_front = vec3<f32>(0.0);
 #ifdef TRANSPARENCY
     // Glass and partial coverage (layer_walk.wgsl): the camera ray goes on from the

@@ -53,7 +53,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             let dir = camera_ray_direction(vec2<f32>(id.xy) + at);
             var hit = trace_closest(Ray(frame.camera_position, dir, FLT_MAX), true);
 #ifdef TRANSPARENCY
-            let walk = walk_layers(frame.camera_position, dir, hit, true, &rng);
+            let walk = walk_layers(frame.camera_position, dir, hit, WALK_REFERENCE_CAMERA, MAX_TRANSPARENT_LAYERS, &rng);
             hit = walk.hit;
             throughput = walk.weight;
             sum += walk.in_front;

@@ -216,8 +216,8 @@ fn planted_no_fresnel_loses_the_reflection() {
     assert!((r / expected - 1.0).abs() > 0.2, "detector silent: {r:.4}");
 }
 
-/// The share of pixels whose `nee` estimate changes by more than 1 % from one frame to the
-/// next on the smooth pane (one light sample and one BSDF sample per pixel and frame).
+/// The share of pixels whose `nee` image changes by more than 2 % from one frame to the
+/// next on the smooth pane (the pane's reflection is estimated afresh every frame).
 fn mirror_changed_pixels(planted: &[&str]) -> f64 {
     let settings = common::settings(&["jitter=false"]);
     let mut r = Renderer::new(common::gpu(), &mirror_scene(), 16, 12, settings).unwrap();
@@ -229,20 +229,20 @@ fn mirror_changed_pixels(planted: &[&str]) -> f64 {
         .pixels
         .iter()
         .zip(&second.pixels)
-        .filter(|(a, b)| (a[0] / b[0] - 1.0).abs() > 0.01)
+        .filter(|(a, b)| (a[0] / b[0] - 1.0).abs() > 0.02)
         .count();
     changed as f64 / first.pixels.len() as f64
 }
 
 #[test]
 fn a_smooth_pane_reflects_the_same_in_every_frame() {
-    // The BSDF sample lands in the mirror lobe, where f/pdf = F·G2/G1 is constant: only
-    // samples in GGX's long tail (F of another half vector) move a pixel by over 1 %
-    // (measured 5 % of the pixels). The twin, f and pdf of the same sample evaluated apart,
-    // moves most (66 %): 10 % leaves room for the tail's luck at 192 pixels.
+    // The BSDF candidate lands in the mirror lobe, where f/pdf = F·G2/G1 is constant: only
+    // light candidates in GGX's long tail move a pixel by over 2 % (measured 6 % of the
+    // pixels). The twin, f and pdf of the same sample evaluated apart, moves half of them
+    // (measured 48 %): 15 % leaves room for the tail's luck at 192 pixels.
     let changed = mirror_changed_pixels(&[]);
-    eprintln!("pixels changed by > 1 % between frames: {changed:.3}");
-    assert!(changed < 0.1, "changed {changed:.3}");
+    eprintln!("pixels changed by > 2 % between frames: {changed:.3}");
+    assert!(changed < 0.15, "changed {changed:.3}");
 }
 
 #[test]
@@ -250,6 +250,6 @@ fn planted_bsdf_f_toward_the_hit_makes_the_reflection_flicker() {
     // The BSDF sample's f along sp → hit point instead of its own direction (the code
     // before): the ray origin's offset turns the lobe by ~1e-4 rad.
     let changed = mirror_changed_pixels(&["PLANTED_BSDF_F_TOWARD_HIT"]);
-    eprintln!("f toward the hit: pixels changed by > 1 %: {changed:.3}");
+    eprintln!("f toward the hit: pixels changed by > 2 %: {changed:.3}");
     assert!(changed > 0.3, "detector silent: {changed:.3}");
 }

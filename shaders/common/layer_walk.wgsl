@@ -8,19 +8,26 @@
 // * `walk_to_primary` (the G-buffer): no random choice, so a still view gives the same
 //   surfaces every frame and the reservoirs behind frosted glass keep their history. The
 //   larger of a layer's two shares, solid or passing (by luminance), holds the pixel's
-//   primary surface, shaded by ReSTIR; the other is estimated once per frame with one light
-//   and one BSDF sample (direct_light_mis.wgsl, the reference's estimator): the layer's
-//   solid share lit at the layer, or what lies behind it seen through a `walk_layers` ray.
-//   Clear glass (solid 0) and cut-out texels are passed, fully covered texels hold.
+//   primary surface, shaded by ReSTIR; the other is estimated once per frame without
+//   reuse: the layer's solid share lit where it is, or what lies behind it seen through a
+//   `walk_layers` ray. Clear glass (solid 0) and cut-out texels are passed, fully covered
+//   texels hold.
 //
-// Camera rays (`camera`) also collect what each layer's glass share reflects: direct light
-// off its specular lobe, one sample of the same estimator per layer, whichever way the walk
-// goes (the glass share is neither solid nor passing). For smooth glass the BSDF sample
-// finds the mirrored emitter every frame, so the highlight is as stable as the glass. The
-// reflection of lit surfaces (indirect light) is not modelled, in any mode; path rays see
-// glass as tint only.
+// Camera rays also collect what each layer's glass share reflects: direct light off its
+// specular lobe, estimated the same way per layer, whichever way the walk goes (the glass
+// share is neither solid nor passing). For smooth glass the BSDF sample finds the mirrored
+// emitter every frame, so the highlight is as stable as the glass. The reflection of lit
+// surfaces (indirect light) is not modelled, in any mode; path rays see glass as tint only.
+//
+// The light of a layer is estimated by the walk's kind: the reference's camera rays use
+// its own one light + one BSDF sample (direct_light_mis.wgsl), the G-buffer's RIS over
+// 8 light and 1 BSDF candidates (ris_direct_light.wgsl).
 #include "common/transparency.wgsl"
-#include "common/direct_light_mis.wgsl"
+#include "common/ris_direct_light.wgsl"
+
+const WALK_PATH: u32 = 0u;              // path and GI rays: no culling, no layer light
+const WALK_REFERENCE_CAMERA: u32 = 1u;  // culling; layer light by one light + one BSDF sample
+const WALK_GBUFFER_CAMERA: u32 = 2u;    // culling; layer light by RIS
 
 struct LayerWalk {
     hit: Hit,              // the surface the ray stops at (t < 0: it left the scene)
@@ -30,13 +37,32 @@ struct LayerWalk {
                            // walk_to_primary, the share the primary surface leaves out
     origin: vec3<f32>,     // the origin of the last ray segment (viewer of `hit`)
     shadow_rays: u32,      // traced for those estimates
+    kind: u32,             // WALK_*
+}
+
+// The G-buffer's candidates for a layer's light: the same in every real-time mode (nee,
+// ris and restir differ in how they shade the primary surface, not in this), one BSDF
+// candidate where shadow rays exist (a smooth pane's mirror image needs it; BSDF rays see
+// occlusion, so a convex scene without them relies on light candidates alone).
+const LAYER_LIGHT_CANDIDATES: u32 = 8u;
+#ifdef SHADOWS
+const LAYER_BSDF_CANDIDATES: u32 = 1u;
+#else
+const LAYER_BSDF_CANDIDATES: u32 = 0u;
+#endif
+
+fn add_layer_direct_light(kind: u32, sp: ShadingPoint, rng: ptr<function, u32>, sum: ptr<function, vec3<f32>>) -> u32 {
+    if kind == WALK_GBUFFER_CAMERA {
+        return add_ris_direct_light(sp, LAYER_LIGHT_CANDIDATES, LAYER_BSDF_CANDIDATES, rng, sum);
+    }
+    return add_direct_light(sp, rng, sum);
 }
 
 // `share` × the direct light `lobe` reflects toward `wo` at a layer's point `hs`: one light
 // and one BSDF sample, added to the walk's in_front with its weight.
 fn add_layer_light(walk: ptr<function, LayerWalk>, hs: HitSurface, lobe: Brdf, share: f32, wo: vec3<f32>, rng: ptr<function, u32>) {
     var reflected = vec3<f32>(0.0);
-    (*walk).shadow_rays += add_direct_light(hit_shading_point(hs, wo, lobe, 0.0), rng, &reflected);
+    (*walk).shadow_rays += add_layer_direct_light((*walk).kind, hit_shading_point(hs, wo, lobe, 0.0), rng, &reflected);
     (*walk).in_front += (*walk).weight * share * reflected;
 }
 
@@ -53,13 +79,15 @@ fn add_glass_reflection(walk: ptr<function, LayerWalk>, hs: HitSurface, glass: f
 #endif
 }
 
-// From `first` (the closest hit of a ray from `origin` along `dir`), through transparent
-// layers, choosing at random. `camera`: a camera ray, which keeps the camera rule for
-// single-sided back faces on every segment and collects the layers' glass reflections.
-fn walk_layers(origin: vec3<f32>, dir: vec3<f32>, first: Hit, camera: bool, rng: ptr<function, u32>) -> LayerWalk {
-    var walk = LayerWalk(first, vec3<f32>(1.0), vec3<f32>(0.0), origin, 0u);
+// From `first` (the closest hit of a ray from `origin` along `dir`), through at most
+// `max_layers` transparent layers (MAX_TRANSPARENT_LAYERS for a whole ray), choosing at
+// random. A camera ray (`kind` not WALK_PATH) keeps the camera rule for single-sided back
+// faces on every segment and collects the layers' glass reflections.
+fn walk_layers(origin: vec3<f32>, dir: vec3<f32>, first: Hit, kind: u32, max_layers: u32, rng: ptr<function, u32>) -> LayerWalk {
+    var walk = LayerWalk(first, vec3<f32>(1.0), vec3<f32>(0.0), origin, 0u, kind);
+    let camera = kind != WALK_PATH;
 #ifdef TRANSPARENCY
-    for (var layer = 0u; layer < MAX_TRANSPARENT_LAYERS; layer++) {
+    for (var layer = 0u; layer < max_layers; layer++) {
         if walk.hit.t < 0.0 || !is_transparent_triangle(walk.hit.triangle) {
             return walk;
         }
@@ -90,11 +118,11 @@ fn walk_layers(origin: vec3<f32>, dir: vec3<f32>, first: Hit, camera: bool, rng:
 
 #ifdef TRANSPARENCY
 // One sample of the radiance a camera ray from `origin` along `dir` brings back, direct
-// light only: through the layers at random, the emission and the light (one light and one
-// BSDF sample) of the surface it stops at, or the environment. The reference's one-bounce
-// sample, for the share of a layer the primary surface leaves out.
-fn add_radiance_along(walk: ptr<function, LayerWalk>, share: vec3<f32>, origin: vec3<f32>, dir: vec3<f32>, rng: ptr<function, u32>) {
-    var behind = walk_layers(origin, dir, trace_closest(Ray(origin, dir, FLT_MAX), true), true, rng);
+// light only: through the layers at random, the emission and the light (RIS) of the
+// surface it stops at, or the environment. For the share of a layer the primary surface
+// leaves out; `max_layers`: what is left of the ray's cap.
+fn add_radiance_along(walk: ptr<function, LayerWalk>, share: vec3<f32>, origin: vec3<f32>, dir: vec3<f32>, max_layers: u32, rng: ptr<function, u32>) {
+    var behind = walk_layers(origin, dir, trace_closest(Ray(origin, dir, FLT_MAX), true), WALK_GBUFFER_CAMERA, max_layers, rng);
     var radiance = behind.in_front;
     if behind.hit.t < 0.0 {
 #ifdef ENVIRONMENT
@@ -103,7 +131,7 @@ fn add_radiance_along(walk: ptr<function, LayerWalk>, share: vec3<f32>, origin: 
     } else {
         let hs = hit_surface(behind.hit.triangle, behind.hit.u, behind.hit.v, behind.origin);
         var direct = vec3<f32>(0.0);
-        behind.shadow_rays += add_direct_light(hit_shading_point(hs, -dir, hit_brdf(hs), 0.0), rng, &direct);
+        behind.shadow_rays += add_layer_direct_light(WALK_GBUFFER_CAMERA, hit_shading_point(hs, -dir, hit_brdf(hs), 0.0), rng, &direct);
         radiance += behind.weight * (emission_toward_viewer(hs) + direct);
     }
     (*walk).shadow_rays += behind.shadow_rays;
@@ -116,7 +144,7 @@ fn add_radiance_along(walk: ptr<function, LayerWalk>, share: vec3<f32>, origin: 
 // surface's shading is worth; `in_front` holds everything else, including the primary
 // layer's emission (the caller adds emission only for an opaque primary surface).
 fn walk_to_primary(origin: vec3<f32>, dir: vec3<f32>, first: Hit, rng: ptr<function, u32>) -> LayerWalk {
-    var walk = LayerWalk(first, vec3<f32>(1.0), vec3<f32>(0.0), origin, 0u);
+    var walk = LayerWalk(first, vec3<f32>(1.0), vec3<f32>(0.0), origin, 0u, WALK_GBUFFER_CAMERA);
 #ifdef TRANSPARENCY
     for (var layer = 0u; layer < MAX_TRANSPARENT_LAYERS; layer++) {
         if walk.hit.t < 0.0 || !is_transparent_triangle(walk.hit.triangle) {
@@ -144,7 +172,7 @@ fn walk_to_primary(origin: vec3<f32>, dir: vec3<f32>, first: Hit, rng: ptr<funct
             // The layer is the primary surface (ReSTIR shades its solid share); what passes
             // is sampled once.
             if sample_other && any(l.pass_through > vec3<f32>(0.0)) {
-                add_radiance_along(&walk, l.pass_through, past, dir, rng);
+                add_radiance_along(&walk, l.pass_through, past, dir, MAX_TRANSPARENT_LAYERS - layer - 1u, rng);
             }
             walk.weight *= held_share;
             return walk;

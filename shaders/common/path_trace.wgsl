@@ -53,7 +53,7 @@ fn path_estimate(first: ShadingPoint, bounces: u32, rng: ptr<function, u32>) -> 
         if frame.light_count > 0u {
             sum += throughput * found.transmittance * bsdf_found_emission(sp, bs, found.id);
         }
-        let walk = walk_layers(sp.position, bs.wi, first, false, rng);
+        let walk = walk_layers(sp.position, bs.wi, first, WALK_PATH, MAX_TRANSPARENT_LAYERS, rng);
         let hit = walk.hit;
         throughput *= weight * walk.weight;
         if hit.t <= 0.0 || bounce == bounces || !any(throughput > vec3<f32>(0.0)) {

@@ -3,7 +3,7 @@
 //! Freeze stops new frames; Step renders exactly one.
 
 use egui::{RichText, Ui};
-use restir_render::gpu_types::NO_LIGHT;
+use restir_render::gpu_types::{GpuSurface, NO_LIGHT};
 use restir_render::renderer::{GiInspection, GiStageReservoir, PixelInspection, StageReservoir};
 use restir_render::shader_constants::*;
 
@@ -55,6 +55,7 @@ pub fn inspection(ui: &mut Ui, i: &PixelInspection) {
     let s = &i.surface;
     if s.depth <= 0.0 {
         ui.label("No surface: the pixel sees the background.");
+        layers(ui, s);
         return;
     }
     ui.label(format!(
@@ -63,6 +64,7 @@ pub fn inspection(ui: &mut Ui, i: &PixelInspection) {
         s.depth,
         s.material
     ));
+    layers(ui, s);
     let d = &i.debug;
     ui.label(format!(
         "Final: source {} · W {:.4e} · p_hat {:.4e}",
@@ -84,6 +86,21 @@ pub fn inspection(ui: &mut Ui, i: &PixelInspection) {
         ui.separator();
         gi_inspection(ui, gi);
     }
+}
+
+/// Behind transparent layers (README "Conventions", transparency): what this surface's
+/// shading is worth, and the light added to it (emission seen, through the layers too,
+/// their glass reflection and the share of a layer this surface leaves out).
+fn layers(ui: &mut Ui, s: &GpuSurface) {
+    if s.transparent_first == 0 {
+        return;
+    }
+    ui.label(format!(
+        "Seen through transparent layers: shading × {} · added: {} (emission, glass \
+         reflection, the share of a layer this surface leaves out)",
+        vec3(s.throughput),
+        vec3(s.emission)
+    ));
 }
 
 /// The ReSTIR GI reservoir after each GI stage, and the GI checks.

@@ -70,7 +70,9 @@ const TABLE: &[(&str, Support)] = &[
     ("KHR_materials_unlit", Support::Full),
     (
         "KHR_materials_transmission",
-        Support::Partial("thin-walled: no refraction, no reflection off the glass"),
+        Support::Partial(
+            "thin-walled: no refraction or rough transmission; the glass reflects direct light only",
+        ),
     ),
     (
         "KHR_materials_ior",

@@ -121,6 +121,35 @@ fn the_inspector_shows_every_field_of_a_pixel() {
     assert!(h.query_by_label("7").is_some() && h.query_by_label("9").is_some());
 }
 
+/// Behind glass the inspector says what the surface's shading is worth and what the layers
+/// add; an opaque pixel says nothing of layers.
+#[test]
+fn the_inspector_shows_the_layers_in_front() {
+    let mut behind_glass = synthetic_inspection();
+    behind_glass.surface.transparent_first = 1;
+    behind_glass.surface.throughput = [0.5, 0.25, 0.125];
+    behind_glass.surface.emission = [0.0625, 0.0, 2.0];
+    let mut s = state();
+    s.inspector.pixel = Some((12, 34));
+    s.inspector.last = Some(behind_glass);
+    let h = harness(
+        |ui, s: &mut ViewerState| inspector::ui(ui, &mut s.inspector),
+        s,
+    );
+    assert!(shows(
+        &h,
+        "Seen through transparent layers: shading × (0.500, 0.250, 0.125) · added: (0.062, 0.000, 2.000)"
+    ));
+    let mut s = state();
+    s.inspector.pixel = Some((12, 34));
+    s.inspector.last = Some(synthetic_inspection());
+    let h = harness(
+        |ui, s: &mut ViewerState| inspector::ui(ui, &mut s.inspector),
+        s,
+    );
+    assert!(!shows(&h, "Seen through transparent layers"));
+}
+
 /// With GI on, the inspector adds the GI reservoir after each GI stage and the GI checks.
 #[test]
 fn the_inspector_shows_the_gi_stages() {

@@ -79,23 +79,46 @@ fn add_glass_reflection(walk: ptr<function, LayerWalk>, hs: HitSurface, glass: f
 #endif
 }
 
+#ifdef TRANSPARENCY
+// The transparent layer a walk has hit: its surface and its shares for this ray, with its
+// glass reflection already added for a camera ray.
+struct MetLayer {
+    hs: HitSurface,
+    layer: Layer,
+}
+
+fn meet_layer(walk: ptr<function, LayerWalk>, dir: vec3<f32>, rng: ptr<function, u32>) -> MetLayer {
+    let hit = (*walk).hit;
+    let hs = hit_surface(hit.triangle, hit.u, hit.v, (*walk).origin);
+    let l = triangle_layer(hit.triangle, hit.u, hit.v, dir);
+    if (*walk).kind != WALK_PATH {
+        add_glass_reflection(walk, hs, l.glass, -dir, rng);
+    }
+    return MetLayer(hs, l);
+}
+#endif
+
+// Past the cap the next transparent surface is as far as light gets: opaque black.
+fn stop_at_cap(walk: ptr<function, LayerWalk>) {
+    if (*walk).hit.t >= 0.0 && is_transparent_triangle((*walk).hit.triangle) {
+        (*walk).weight = vec3<f32>(0.0);
+    }
+}
+
 // From `first` (the closest hit of a ray from `origin` along `dir`), through at most
 // `max_layers` transparent layers (MAX_TRANSPARENT_LAYERS for a whole ray), choosing at
 // random. A camera ray (`kind` not WALK_PATH) keeps the camera rule for single-sided back
 // faces on every segment and collects the layers' glass reflections.
 fn walk_layers(origin: vec3<f32>, dir: vec3<f32>, first: Hit, kind: u32, max_layers: u32, rng: ptr<function, u32>) -> LayerWalk {
     var walk = LayerWalk(first, vec3<f32>(1.0), vec3<f32>(0.0), origin, 0u, kind);
-    let camera = kind != WALK_PATH;
 #ifdef TRANSPARENCY
     for (var layer = 0u; layer < max_layers; layer++) {
         if walk.hit.t < 0.0 || !is_transparent_triangle(walk.hit.triangle) {
             return walk;
         }
-        let hs = hit_surface(walk.hit.triangle, walk.hit.u, walk.hit.v, walk.origin);
-        let l = triangle_layer(walk.hit.triangle, walk.hit.u, walk.hit.v, dir);
-        if camera {
-            add_glass_reflection(&walk, hs, l.glass, -dir, rng);
-        }
+        let met = meet_layer(&walk, dir, rng);
+        let hs = met.hs;
+        let l = met.layer;
         if rand_f32(rng) < l.solid {
             return walk;
         }
@@ -106,12 +129,9 @@ fn walk_layers(origin: vec3<f32>, dir: vec3<f32>, first: Hit, kind: u32, max_lay
             return walk;
         }
         walk.origin = origin_past_layer(hs.position, walk.hit.triangle, dir);
-        walk.hit = trace_closest(Ray(walk.origin, dir, FLT_MAX), camera);
+        walk.hit = trace_closest(Ray(walk.origin, dir, FLT_MAX), kind != WALK_PATH);
     }
-    // Past the cap the next transparent surface is as far as light gets: opaque black.
-    if walk.hit.t >= 0.0 && is_transparent_triangle(walk.hit.triangle) {
-        walk.weight = vec3<f32>(0.0);
-    }
+    stop_at_cap(&walk);
 #endif
     return walk;
 }
@@ -150,9 +170,9 @@ fn walk_to_primary(origin: vec3<f32>, dir: vec3<f32>, first: Hit, rng: ptr<funct
         if walk.hit.t < 0.0 || !is_transparent_triangle(walk.hit.triangle) {
             return walk;
         }
-        let hs = hit_surface(walk.hit.triangle, walk.hit.u, walk.hit.v, walk.origin);
-        let l = triangle_layer(walk.hit.triangle, walk.hit.u, walk.hit.v, dir);
-        add_glass_reflection(&walk, hs, l.glass, -dir, rng);
+        let met = meet_layer(&walk, dir, rng);
+        let hs = met.hs;
+        let l = met.layer;
         walk.in_front += walk.weight * emission_toward_viewer(hs);
         let past = origin_past_layer(hs.position, walk.hit.triangle, dir);
 #ifdef PLANTED_RANDOM_LAYER_CHOICE
@@ -189,9 +209,7 @@ fn walk_to_primary(origin: vec3<f32>, dir: vec3<f32>, first: Hit, rng: ptr<funct
         walk.origin = past;
         walk.hit = trace_closest(Ray(past, dir, FLT_MAX), true);
     }
-    if walk.hit.t >= 0.0 && is_transparent_triangle(walk.hit.triangle) {
-        walk.weight = vec3<f32>(0.0);
-    }
+    stop_at_cap(&walk);
 #endif
     return walk;
 }

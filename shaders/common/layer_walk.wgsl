@@ -58,8 +58,8 @@ fn add_layer_direct_light(kind: u32, sp: ShadingPoint, rng: ptr<function, u32>, 
     return add_direct_light(sp, rng, sum);
 }
 
-// `share` × the direct light `lobe` reflects toward `wo` at a layer's point `hs`: one light
-// and one BSDF sample, added to the walk's in_front with its weight.
+// `share` × the direct light `lobe` reflects toward `wo` at a layer's point `hs`, estimated
+// as the walk's kind says, added to the walk's in_front with its weight.
 fn add_layer_light(walk: ptr<function, LayerWalk>, hs: HitSurface, lobe: Brdf, share: f32, wo: vec3<f32>, rng: ptr<function, u32>) {
     var reflected = vec3<f32>(0.0);
     (*walk).shadow_rays += add_layer_direct_light((*walk).kind, hit_shading_point(hs, wo, lobe, 0.0), rng, &reflected);

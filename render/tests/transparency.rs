@@ -422,9 +422,10 @@ fn bulb_pixels(image: &LinearImage) -> usize {
 }
 
 /// Accumulated `restir` (with `planted`) on the Khronos lamp against the correct reference:
-/// the ratio of the lit surfaces' mean (the bulb seen directly left out: through the
-/// shade's partial transmission it is a random choice per frame, and its few pixels would
-/// decide the mean and its noise), and the bulb pixels of the image and of the reference.
+/// the ratio of the lit surfaces' mean (the bulb seen directly left out: seen through the
+/// shade's partial transmission, it is sampled per frame in the image and per sample in
+/// the reference, and its few bright pixels would decide the mean and its noise), and the
+/// bulb pixels of the image and of the reference.
 fn khronos_lamp_lit_ratio(planted: &[&str]) -> (f64, usize, usize) {
     let settings = common::settings(&["jitter=false"]);
     let mut r = Renderer::new(common::gpu(), &khronos_lamp(), 36, 48, settings).unwrap();

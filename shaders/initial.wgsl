@@ -48,13 +48,12 @@ fn stream_light_candidates(sp: ShadingPoint, r: ptr<function, Reservoir>, rng: p
         let u_select = rand_f32(rng);
         let c = light_contribution(sp, lp);
         let t = target_pdf(c);
-        var p_bsdf = 0.0;
 #ifdef BSDF_CANDIDATES
-        if n_b > 0.0 && t > 0.0 && bsdf_can_hit(lp.kind) {
-            p_bsdf = brdf_pdf(sp.brdf, sp.normal, sp.wo, c.wi) * c.cos_light / c.dist2;
-        }
+        let source = light_candidate_source(sp, lp, c, t, n_l, n_b);
+#else
+        let source = n_l * lp.source_pdf;
 #endif
-        reservoir_update(r, y.light, y.uv, t / (n_l * lp.source_pdf + n_b * p_bsdf), t, SOURCE_INITIAL, u_select);
+        reservoir_update(r, y.light, y.uv, t / source, t, SOURCE_INITIAL, u_select);
     }
 }
 

@@ -47,11 +47,7 @@ fn add_ris_direct_light(sp: ShadingPoint, light_candidates: u32, bsdf_candidates
             let u = rand_f32(rng);
             let c = light_contribution(sp, lp);
             let t = target_pdf(c);
-            var p_bsdf = 0.0;
-            if n_b > 0.0 && t > 0.0 && bsdf_can_hit(lp.kind) {
-                p_bsdf = brdf_pdf(sp.brdf, sp.normal, sp.wo, c.wi) * c.cos_light / c.dist2;
-            }
-            ris_consider(&choice, lp, c, t, n_l * lp.source_pdf + n_b * p_bsdf, u);
+            ris_consider(&choice, lp, c, t, light_candidate_source(sp, lp, c, t, n_l, n_b), u);
         }
     }
     for (var j = 0u; j < bsdf_candidates; j++) {

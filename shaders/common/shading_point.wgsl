@@ -173,6 +173,17 @@ fn bsdf_can_hit(kind: u32) -> bool {
     return kind == LIGHT_POINT_AREA;
 }
 
+// The balance-heuristic denominator of a light candidate y among N_l light and N_b BSDF
+// candidates: N_l p_light(y) + N_b p_bsdf(y), area measure (p_bsdf only where a BSDF ray
+// could find y; `t`: y's target, 0 when it contributes nothing).
+fn light_candidate_source(sp: ShadingPoint, lp: LightPoint, c: LightContribution, t: f32, n_l: f32, n_b: f32) -> f32 {
+    var p_bsdf = 0.0;
+    if n_b > 0.0 && t > 0.0 && bsdf_can_hit(lp.kind) {
+        p_bsdf = brdf_pdf(sp.brdf, sp.normal, sp.wo, c.wi) * c.cos_light / c.dist2;
+    }
+    return n_l * lp.source_pdf + n_b * p_bsdf;
+}
+
 // The light a BSDF ray from sp along wi finds (transparency.wgsl): the emitter it hits
 // first through clear layers, or the environment; NO_LIGHT for anything else.
 fn bsdf_ray_light(sp: ShadingPoint, wi: vec3<f32>) -> FoundLight {

@@ -37,7 +37,7 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) ve
     let tri = triangles[in.triangle];
     let material = materials[tri.material];
     // glTF back-face culling of single-sided materials (the reference's camera rays
-    // apply the same rule in bvh.wgsl).
+    // apply the same rule in trace.wgsl).
     if !front && (material.flags & MATERIAL_DOUBLE_SIDED) == 0u {
         discard;
     }

@@ -31,7 +31,7 @@ fn reuse_target(sp: ShadingPoint, light: u32, uv: vec2<f32>, same_sample: bool, 
     var t = target_at(sp, light, uv);
     if t > 0.0 && mis_visibility() {
         if !same_sample {
-            t *= sample_visibility(sp, light, uv, false, rays);
+            t *= sample_visibility(sp, light, uv, false, GEOMETRY_CURRENT, rays);
         }
 #ifdef TRANSPARENCY
         if same_sample {

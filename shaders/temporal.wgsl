@@ -97,6 +97,19 @@ fn previous_lights() -> bool {
 #endif
 }
 
+// Which frame's geometry the previous pixel's visibility is traced against: last frame's
+// (`previous_geometry`, animated scenes) or, as a shortcut, this frame's. A moving occluder
+// makes the two differ: with this frame's the previous pixel's domain is credited with
+// samples it could not see (moving-occluder 2 % dark, docs/bench.md).
+fn previous_geometry() -> u32 {
+#ifdef ANIMATION
+    if (params.flags & PARAM_FLAG_PREVIOUS_GEOMETRY) != 0u {
+        return GEOMETRY_PREVIOUS;
+    }
+#endif
+    return GEOMETRY_CURRENT;
+}
+
 fn window_target_here(sp: ShadingPoint, current: Reservoir) -> f32 {
 #ifdef TRANSPARENCY
 #ifndef PLANTED_WINDOW_ON_STORED_TARGETS
@@ -128,14 +141,15 @@ fn merge_pairwise(sp: ShadingPoint, current: Reservoir, cand: TemporalCandidate,
         target_here = 0.0;
     }
     if target_here > 0.0 && mis_visibility() {
-        target_here *= sample_visibility(sp, prev.light, prev.uv, false, rays);
+        target_here *= sample_visibility(sp, prev.light, prev.uv, false, GEOMETRY_CURRENT, rays);
     }
     let m_temporal = pairwise_mis_noncanonical(c_total, current.m, m_prev, prev.p_hat, target_here);
 
     // The canonical sample y_c at the previous pixel: the previous surface and, under
     // animation, last frame's lights (a light switched on since then has p̂ 0 there, so
     // the canonical sample keeps its full weight). Current lights there (previous_lights
-    // off) under-weight newly lit samples: a dark lag.
+    // off) under-weight newly lit samples: a dark lag. Its visibility there is traced
+    // against last frame's geometry (previous_geometry).
     var prev_at_current = 0.0;
     if current.light != NO_LIGHT {
         prev_at_current = target_pdf(light_contribution(prev_sp, light_point_in_frame(current.light, current.uv, previous)));
@@ -144,7 +158,7 @@ fn merge_pairwise(sp: ShadingPoint, current: Reservoir, cand: TemporalCandidate,
         prev_at_current = 0.0;
     }
     if prev_at_current > 0.0 && mis_visibility() {
-        prev_at_current *= sample_visibility(prev_sp, current.light, current.uv, previous, rays);
+        prev_at_current *= sample_visibility(prev_sp, current.light, current.uv, previous, previous_geometry(), rays);
     }
     let m_current = confidence_share(current.m, c_total)
         + pairwise_mis_canonical_term(c_total, current.m, m_prev, current.p_hat, prev_at_current);

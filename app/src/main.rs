@@ -46,6 +46,8 @@ enum Command {
     BenchEnv(bench::env_cost::EnvCostArgs),
     /// Compare refit, rebuild and a two-level BVH on an animated scene over time.
     BenchBvh(bench::bvh_cost::BvhCostArgs),
+    /// Rays per second of each tracing backend (software BVH, hardware ray queries).
+    BenchRays(bench::ray_cost::RayCostArgs),
 }
 
 fn main() {
@@ -61,6 +63,7 @@ fn main() {
         }
         Some(Command::BenchEnv(a)) => bench::env_cost::run(a),
         Some(Command::BenchBvh(a)) => bench::bvh_cost::run(a),
+        Some(Command::BenchRays(a)) => bench::ray_cost::run(a),
         Some(Command::Scenes) => {
             cli::params::print_scenes();
             Ok(())

@@ -1,8 +1,11 @@
 //! Uploading a CPU `Scene`: BVH build, triangle reordering, light table, materials and
-//! textures, into the storage buffers of bind group 1 (scene_bindings.wgsl): eight for the
-//! current frame, three for the previous one (animated scenes), then the environment.
-//! `update.rs` rewrites them in place when an animated scene changes.
+//! textures, into the storage buffers of bind group 1 (scene_bindings.wgsl, numbered in
+//! `layout.rs`): eight for the current frame, four for the previous one (animated scenes),
+//! the environment, and where the device has ray queries the acceleration structures
+//! (`accel.rs`). `update.rs` rewrites them in place when an animated scene changes.
 
+pub mod accel;
+pub mod layout;
 mod rebuild;
 #[cfg(test)]
 mod rebuild_tests;
@@ -29,11 +32,11 @@ use crate::gpu_types::*;
 use crate::scene::bvh::Bvh;
 use crate::scene::lights::LightTable;
 use crate::scene::{Aabb, Scene};
+use crate::tracing::RayBackend;
+use accel::{AccelInfo, AccelStructures};
+use layout::SceneLayouts;
 
-/// Storage bindings 0.. of the scene group (bind group 1): triangles, shading, materials,
-/// textures, texels, lights, punctual lights, BVH nodes, then last frame's triangles,
-/// materials and punctual lights. The environment's bindings follow.
-pub const SCENE_STORAGE_BINDINGS: u32 = 11;
+pub use layout::SCENE_STORAGE_BINDINGS;
 
 /// Facts about an uploaded scene (the viewer's Scene panel, `--stats`).
 #[derive(Clone, Debug, serde::Serialize)]
@@ -58,6 +61,9 @@ pub struct SceneInfo {
     pub extensions: Vec<crate::scene::ExtensionUse>,
     /// The file has no camera: the start camera frames the bounds (`Camera::framing`).
     pub camera_automatic: bool,
+    /// The ray-query backend's acceleration structures (`None` on a device without ray
+    /// queries).
+    pub accel: Option<AccelInfo>,
 }
 
 #[derive(Clone, Debug, serde::Serialize)]
@@ -73,7 +79,13 @@ pub struct EnvironmentInfo {
 }
 
 pub struct GpuScene {
-    pub bind_group: wgpu::BindGroup,
+    /// Group 1 for the software backend.
+    bind_group: wgpu::BindGroup,
+    /// Group 1 for the ray-query backend, one per TLAS slot (`AccelStructures::current_slot`);
+    /// empty on a device without ray queries.
+    ray_query_groups: Vec<wgpu::BindGroup>,
+    /// The ray-query backend's acceleration structures (devices with ray queries).
+    accel: Option<AccelStructures>,
     pub triangle_count: u32,
     pub light_count: u32,
     pub punctual_count: u32,
@@ -102,6 +114,9 @@ pub struct GpuScene {
     /// Last frame's materials (their emission) and punctual lights, same slots.
     prev_materials: wgpu::Buffer,
     prev_punctual: wgpu::Buffer,
+    /// Last frame's BVH boxes: this frame's tree refitted to last frame's triangles (the
+    /// software backend's previous geometry; the node buffer itself for a static scene).
+    prev_bvh_nodes: wgpu::Buffer,
     /// Materials whose triangles keep a light-table slot at zero power (see
     /// `LightTable::build_with_slots`); empty for a static scene.
     kept_materials: Vec<bool>,
@@ -180,11 +195,7 @@ fn storage_buffer<T: bytemuck::Pod + Default>(gpu: &Gpu, label: &str, data: &[T]
 }
 
 impl GpuScene {
-    pub fn upload(
-        gpu: &Gpu,
-        scene: &Scene,
-        layout: &wgpu::BindGroupLayout,
-    ) -> anyhow::Result<GpuScene> {
+    pub fn upload(gpu: &Gpu, scene: &Scene, layouts: &SceneLayouts) -> anyhow::Result<GpuScene> {
         let positions: Vec<[Vec3; 3]> = (0..scene.triangles.len())
             .map(|t| scene.triangle_positions(t))
             .collect();
@@ -224,19 +235,22 @@ impl GpuScene {
             punctual: storage_buffer(gpu, "punctual lights", &lights.punctual),
             bvh_nodes: storage_buffer(gpu, "bvh nodes", &node_capacity(scene, &bvh)),
         };
-        let (prev_triangles, prev_materials, prev_punctual) = if scene.animation.is_some() {
-            (
-                storage_buffer(gpu, "previous triangles", &triangles),
-                storage_buffer(gpu, "previous materials", &materials),
-                storage_buffer(gpu, "previous punctual lights", &lights.punctual),
-            )
-        } else {
-            (
-                buffers.triangles.clone(),
-                buffers.materials.clone(),
-                buffers.punctual.clone(),
-            )
-        };
+        let (prev_triangles, prev_materials, prev_punctual, prev_bvh_nodes) =
+            if scene.animation.is_some() {
+                (
+                    storage_buffer(gpu, "previous triangles", &triangles),
+                    storage_buffer(gpu, "previous materials", &materials),
+                    storage_buffer(gpu, "previous punctual lights", &lights.punctual),
+                    storage_buffer(gpu, "previous bvh nodes", &node_capacity(scene, &bvh)),
+                )
+            } else {
+                (
+                    buffers.triangles.clone(),
+                    buffers.materials.clone(),
+                    buffers.punctual.clone(),
+                    buffers.bvh_nodes.clone(),
+                )
+            };
         let refs = [
             &buffers.triangles,
             &buffers.shading,
@@ -256,27 +270,32 @@ impl GpuScene {
             scene.environment.as_deref(),
             lights.environment_light,
         );
-        let mut entries = crate::passes::buffer_entries(&refs);
-        let first = crate::environment::upload::ENVIRONMENT_FIRST_BINDING;
-        entries.extend([
-            wgpu::BindGroupEntry {
-                binding: first,
-                resource: environment.table.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: first + 1,
-                resource: wgpu::BindingResource::TextureView(&environment.radiance),
-            },
-            wgpu::BindGroupEntry {
-                binding: first + 2,
-                resource: environment.uniform.as_entire_binding(),
-            },
-        ]);
+        let entries = layout::software_entries(&refs, &environment, &prev_bvh_nodes);
         let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("scene"),
-            layout,
+            layout: &layouts.software,
             entries: &entries,
         });
+        let accel = match &layouts.ray_query {
+            Some(_) => Some(AccelStructures::build(gpu, scene, &bvh.triangle_order)?),
+            None => None,
+        };
+        let ray_query_groups = match (&accel, &layouts.ray_query) {
+            (Some(accel), Some(rq_layout)) => accel
+                .tlas_pairs()
+                .into_iter()
+                .map(|(current, previous)| {
+                    let mut e = entries.clone();
+                    e.extend(layout::ray_query_entries(current, previous, accel.map()));
+                    gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                        label: Some("scene (ray queries)"),
+                        layout: rq_layout,
+                        entries: &e,
+                    })
+                })
+                .collect(),
+            _ => Vec::new(),
+        };
         gpu.check()?;
 
         let bounds = scene.bounds();
@@ -308,6 +327,7 @@ impl GpuScene {
             }),
             extensions: scene.extensions.clone(),
             camera_automatic: scene.camera_is_automatic(),
+            accel: accel.as_ref().map(|a| a.info),
         };
         let light_areas = if scene.animation.is_some() {
             light_areas(scene, &bvh.triangle_order, &lights)
@@ -322,6 +342,8 @@ impl GpuScene {
             .any(|p| p.kind == crate::scene::PunctualKind::Directional);
         Ok(GpuScene {
             bind_group,
+            ray_query_groups,
+            accel,
             triangle_count: triangles.len() as u32,
             light_count: lights.lights.len() as u32,
             punctual_count: lights.punctual.len() as u32,
@@ -339,6 +361,7 @@ impl GpuScene {
             prev_triangles,
             prev_materials,
             prev_punctual,
+            prev_bvh_nodes,
             kept_materials,
             keep_punctual,
             sampleable: lights.sampleable(),
@@ -367,6 +390,15 @@ impl GpuScene {
             rebuild_plant: Default::default(),
             bvh,
         })
+    }
+
+    /// Group 1 for pipelines of `backend` (the ray-query one binds this frame's TLAS and
+    /// last frame's). The renderer resolves the backend against the device first.
+    pub fn bind_group(&self, backend: RayBackend) -> &wgpu::BindGroup {
+        match (backend, &self.accel) {
+            (RayBackend::RayQuery, Some(accel)) => &self.ray_query_groups[accel.current_slot()],
+            _ => &self.bind_group,
+        }
     }
 
     /// The light count the shaders sample from (0 while no light has power).

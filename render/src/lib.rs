@@ -21,6 +21,7 @@ pub mod shader_constants;
 pub mod shader_source;
 pub mod stats;
 pub mod timeline;
+pub mod tracing;
 pub mod view;
 
 pub use environment::{Environment, load_environment};

@@ -17,6 +17,7 @@ pub enum Stage {
     Spatial,
     Resampling,
     Shading,
+    Tracing,
     Indirect,
 }
 
@@ -28,6 +29,7 @@ impl Stage {
             Stage::Spatial => "Spatial reuse",
             Stage::Resampling => "Bias correction",
             Stage::Shading => "Shading and reference",
+            Stage::Tracing => "Ray tracing",
             Stage::Indirect => "Indirect",
         }
     }
@@ -101,6 +103,21 @@ pub enum LightTiles {
 
 pub const LIGHT_TILES_NAMES: &[&str] = &["auto", "on", "off"];
 
+/// Which implementation traces the renderer's rays (`tracing.rs`): every pass calls the
+/// same functions of shaders/common/trace.wgsl; this picks what is compiled behind them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RayBackendChoice {
+    /// Ray queries on a GPU that has them, else the software BVH (also on CPU adapters,
+    /// whose ray queries are slower than it: docs/bench.md "Ray queries").
+    Auto,
+    /// The BVH built on the CPU, traversed in WGSL (every adapter).
+    Software,
+    /// Hardware ray queries (wgpu `EXPERIMENTAL_RAY_QUERY`, Vulkan `VK_KHR_ray_query`).
+    RayQuery,
+}
+
+pub const RAY_BACKEND_NAMES: &[&str] = &["auto", "software", "ray-query"];
+
 /// Conversion between a typed field and the table's dynamic value.
 trait Param: Sized {
     fn to_value(&self) -> ParamValue;
@@ -169,6 +186,11 @@ macro_rules! choice_param {
 
 choice_param!(BiasCorrection, BIAS_CORRECTION_NAMES, [OneOverM, Pairwise]);
 choice_param!(LightTiles, LIGHT_TILES_NAMES, [Auto, On, Off]);
+choice_param!(
+    RayBackendChoice,
+    RAY_BACKEND_NAMES,
+    [Auto, Software, RayQuery]
+);
 
 macro_rules! parameter_table {
     ($( $stage:ident { $( $field:ident : $ty:ty = $default:expr, $kind:expr, $label:literal, $doc:literal; )* } )*) => {
@@ -274,6 +296,8 @@ parameter_table! {
             "Pairwise: the target is p̂·V (visibility included) at every pixel and in every MIS term, as unbiased reuse of visibility-tested samples requires (RTXDI's ray-traced bias correction): each reused sample is traced from here before it can be picked, this pixel's sample from each spatial neighbour and from the previous pixel (against this frame's geometry). Implies initial visibility; shading then traces no ray (the survivor is known visible). Costs 2 shadow rays per spatial neighbour and 2 per temporal merge. Off: unshadowed MIS terms: darker where neighbours are shadowed differently (sun-lit Cornell box −5 %) and black speckles where a pixel picks a sample it cannot see.";
         previous_lights: bool = true, ParamKind::Bool, "Previous-frame lights",
             "Animated scenes, pairwise MIS: evaluate this pixel's own (canonical) sample at the previous pixel with last frame's lights — positions, emission, punctual records — as unbiasedness requires. Off: with the current lights, a common shortcut; then a light switched on stays too dark for a few frames (its new samples are weighted as if the history could have found them). Static scenes: no difference.";
+        previous_geometry: bool = true, ParamKind::Bool, "Previous-frame geometry",
+            "Animated scenes, pairwise MIS with MIS visibility: trace the visibility of this pixel's own sample at the previous pixel against last frame's geometry (last frame's TLAS with ray queries, last frame's BVH boxes and triangles with the software backend), as unbiasedness requires. Off: against this frame's geometry, a common shortcut; then a moving occluder credits the previous pixel with samples it could not see (builtin:dynamic:moving-occluder 2 % dark). Static scenes: no difference.";
     }
     Shading {
         jitter: bool = true, ParamKind::Bool, "Sub-pixel jitter",
@@ -282,6 +306,10 @@ parameter_table! {
             "Samples per pixel per frame of the reference renderer.";
         max_bounces: u32 = 1, ParamKind::Int { min: 1, max: MAX_BOUNCES as i64 }, "Max bounces",
             "Path vertices the reference shades. 1: emission seen directly + direct light at the first hit (what nee, ris and restir estimate). N: the path continues along the BSDF-sampled ray, with direct light (light sampling + BSDF sampling, balance heuristic) at each of its first N hits, so 2 adds one bounce of indirect light. Every bounce costs two more rays per sample.";
+    }
+    Tracing {
+        ray_backend: RayBackendChoice = RayBackendChoice::Auto, ParamKind::Choice(RAY_BACKEND_NAMES), "Ray backend",
+            "What traces every ray (shadow rays, BSDF rays, camera and path rays): software, the BVH built on the CPU and walked in WGSL (any adapter); ray-query, the driver's acceleration structures through ray queries (VK_KHR_ray_query: NVIDIA, AMD, Intel GPUs, and Mesa 25's lavapipe on the CPU); auto, ray queries on a GPU that has them, software on a CPU adapter (lavapipe's ray queries run on the CPU too and measured 0.3–0.7× the BVH's rays per second, docs/bench.md \"Ray queries\"). Both give the same image (ties between equally near hits may resolve differently); the Stats panel names the one running.";
     }
     Indirect {
         gi: bool = false, ParamKind::Bool, "Indirect (ReSTIR GI)",
@@ -467,6 +495,9 @@ impl Settings {
         flags |= self.gi_flags();
         if self.previous_lights {
             flags |= PARAM_FLAG_PREVIOUS_LIGHTS;
+        }
+        if self.previous_geometry {
+            flags |= PARAM_FLAG_PREVIOUS_GEOMETRY;
         }
         GpuParams {
             light_candidates: self.light_candidates,

@@ -73,6 +73,9 @@ pub const PARAM_FLAG_PREVIOUS_LIGHTS: u32 = 1 << 10;
 /// Pairwise MIS with visibility in the target (`mis_visibility`): every pairwise term is
 /// p̂·V, so reuse traces the shadow rays the MIS weights need and shading traces none.
 pub const PARAM_FLAG_MIS_VISIBILITY: u32 = 1 << 11;
+/// Pairwise MIS traces the canonical sample's visibility at the previous pixel against last
+/// frame's geometry (`previous_geometry`; only compiled in for animated scenes).
+pub const PARAM_FLAG_PREVIOUS_GEOMETRY: u32 = 1 << 12;
 
 /// Passes that count non-finite values (issue "hard cases": a GPU-side guard).
 pub const PASS_GBUFFER: u32 = 0;
@@ -141,6 +144,13 @@ pub const MAX_TRANSPARENT_LAYERS: u32 = 8;
 /// `rng_seed` mixes frame_index × STREAM_COUNT + stream: a stream ≥ STREAM_COUNT would
 /// replay another stream of a later frame (GI once drew DI's next-frame numbers).
 pub const STREAM_COUNT: u32 = 16;
+
+/// `bench-rays` (ray_bench.wgsl): rays per surface pixel and dispatch, and the two kinds
+/// (the dispatch's `PassInfo` slot). 16 rays keep one dispatch far above its fixed cost on
+/// a GPU and well inside Mesa 22's loop-iteration cap (REFERENCE_SAMPLES_PER_DISPATCH).
+pub const RAY_BENCH_RAYS_PER_PIXEL: u32 = 16;
+pub const RAY_BENCH_SHADOW: u32 = 0;
+pub const RAY_BENCH_CLOSEST: u32 = 1;
 
 /// The reference renders its samples per pixel in dispatches of at most this many.
 /// lavapipe (Mesa 22) bounds the total loop iterations of one shader invocation (one
@@ -323,6 +333,7 @@ pub fn wgsl_prelude() -> String {
         ),
         ("PARAM_FLAG_PREVIOUS_LIGHTS", PARAM_FLAG_PREVIOUS_LIGHTS),
         ("PARAM_FLAG_MIS_VISIBILITY", PARAM_FLAG_MIS_VISIBILITY),
+        ("PARAM_FLAG_PREVIOUS_GEOMETRY", PARAM_FLAG_PREVIOUS_GEOMETRY),
         ("PASS_GBUFFER", PASS_GBUFFER),
         ("PASS_INITIAL", PASS_INITIAL),
         ("PASS_TEMPORAL", PASS_TEMPORAL),
@@ -364,6 +375,9 @@ pub fn wgsl_prelude() -> String {
         ("STREAM_TRANSPARENCY", STREAM_TRANSPARENCY),
         ("MAX_TRANSPARENT_LAYERS", MAX_TRANSPARENT_LAYERS),
         ("STREAM_COUNT", STREAM_COUNT),
+        ("RAY_BENCH_RAYS_PER_PIXEL", RAY_BENCH_RAYS_PER_PIXEL),
+        ("RAY_BENCH_SHADOW", RAY_BENCH_SHADOW),
+        ("RAY_BENCH_CLOSEST", RAY_BENCH_CLOSEST),
         ("MAX_SPATIAL_NEIGHBOURS", MAX_SPATIAL_NEIGHBOURS),
         (
             "REFERENCE_SAMPLES_PER_DISPATCH",
@@ -467,6 +481,7 @@ mod stream_tests {
             PARAM_FLAG_INITIAL_VISIBILITY,
             PARAM_FLAG_PREVIOUS_LIGHTS,
             PARAM_FLAG_MIS_VISIBILITY,
+            PARAM_FLAG_PREVIOUS_GEOMETRY,
             PARAM_FLAG_GI,
             PARAM_FLAG_GI_TEMPORAL,
             PARAM_FLAG_GI_SPATIAL,

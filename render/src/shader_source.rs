@@ -52,7 +52,13 @@ pub fn shader_file(path: &str) -> Result<String, ShaderSourceError> {
 
 /// Composes `entry` with its includes for the given set of defines.
 pub fn compose(entry: &str, defines: &BTreeSet<String>) -> Result<String, ShaderSourceError> {
-    let mut out = wgsl_prelude();
+    // WGSL wants `enable` directives before any declaration.
+    let mut out = if defines.contains(crate::tracing::RAY_QUERY_DEFINE) {
+        String::from("enable wgpu_ray_query;\n")
+    } else {
+        String::new()
+    };
+    out.push_str(&wgsl_prelude());
     let mut defines_line = String::from("// Defines:");
     for d in defines {
         defines_line.push(' ');

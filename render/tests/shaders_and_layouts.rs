@@ -22,9 +22,11 @@ fn parse_and_validate(name: &str, defines: &BTreeSet<String>) -> naga::Module {
 fn validate_source(what: &str, source: &str) -> naga::Module {
     let module = naga::front::wgsl::parse_str(source)
         .unwrap_or_else(|e| panic!("{what}:\n{}", e.emit_to_string(source)));
+    // Ray queries are a capability wgpu grants with EXPERIMENTAL_RAY_QUERY; the software
+    // variants do not use it, so validating them with it loses nothing.
     naga::valid::Validator::new(
         naga::valid::ValidationFlags::all(),
-        naga::valid::Capabilities::default(),
+        naga::valid::Capabilities::default() | naga::valid::Capabilities::RAY_QUERY,
     )
     .validate(&module)
     .unwrap_or_else(|e| panic!("{what}: {}", e.emit_to_string(source)));
@@ -44,6 +46,16 @@ fn every_pass_validates_for_every_effect_set() {
             .defines(),
         );
     }
+    // Each set with either tracing backend behind trace.wgsl.
+    let ray_query: Vec<BTreeSet<String>> = sets
+        .iter()
+        .map(|d| {
+            let mut d = d.clone();
+            d.insert(restir_render::tracing::RAY_QUERY_DEFINE.to_string());
+            d
+        })
+        .collect();
+    sets.extend(ray_query);
     for defines in &sets {
         for pass in restir_render::passes::ALL {
             parse_and_validate(pass.shader, defines);
@@ -65,10 +77,21 @@ fn every_pass_validates_for_every_effect_set() {
         ("gi_temporal.wgsl", "PLANTED_GI_NO_TEMPORAL_VISIBILITY"),
         // The boiling view's planted twin (render/tests/temporal_window.rs).
         ("temporal_window.wgsl", "PLANTED_WINDOW_CURRENT_FRAME_ONLY"),
+        // The tracing backends' twins (render/tests/ray_backends.rs).
+        ("reference.wgsl", "PLANTED_BVH_LAST_HIT_NOT_NEAREST"),
     ] {
         let mut defines = EffectSet::all().defines();
         defines.insert(planted.to_string());
         parse_and_validate(shader, &defines);
+    }
+    for planted in [
+        "PLANTED_RAY_QUERY_NO_GEOMETRY_OFFSET",
+        "PLANTED_RAY_QUERY_NO_CULLING",
+    ] {
+        let mut defines = EffectSet::all().defines();
+        defines.insert(planted.to_string());
+        defines.insert(restir_render::tracing::RAY_QUERY_DEFINE.to_string());
+        parse_and_validate("reference.wgsl", &defines);
     }
 }
 

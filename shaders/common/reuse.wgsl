@@ -133,11 +133,11 @@ fn target_ratio_in_window(t_here: f32, t_there: f32) -> bool {
 }
 
 // One shadow ray from sp to a stored light sample: this frame's light, or (`previous`, for
-// animated scenes) the light as it was last frame. Traced against this frame's geometry:
-// the BVH is refitted in place, last frame's is gone. `rays` counts what was traced.
-// The target factor V (light_visibility): 0 or 1, or between through glass.
-fn sample_visibility(sp: ShadingPoint, light: u32, uv: vec2<f32>, previous: bool, rays: ptr<function, u32>) -> f32 {
+// animated scenes) the light as it was last frame, traced against `geometry`'s frame (the
+// previous pixel's canonical term uses last frame's: previous_geometry). `rays` counts
+// what was traced. The target factor V (light_visibility): 0 or 1, or between through glass.
+fn sample_visibility(sp: ShadingPoint, light: u32, uv: vec2<f32>, previous: bool, geometry: u32, rays: ptr<function, u32>) -> f32 {
     let lp = light_point_in_frame(light, uv, previous);
     *rays += 1u;
-    return light_visibility(sp, lp, light_contribution(sp, lp));
+    return light_visibility_in(sp, lp, light_contribution(sp, lp), geometry);
 }

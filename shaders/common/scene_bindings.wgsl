@@ -1,4 +1,5 @@
-// Group 1: the uploaded scene, all in BVH triangle order (render/src/passes/scene_gpu.rs).
+// Group 1: the uploaded scene, all in BVH triangle order (render/src/gpu_scene/layout.rs
+// numbers the bindings).
 #include "common/types.wgsl"
 
 @group(1) @binding(0) var<storage, read> triangles: array<Triangle>;
@@ -17,10 +18,23 @@
 @group(1) @binding(8) var<storage, read> prev_triangles: array<Triangle>;
 @group(1) @binding(9) var<storage, read> prev_materials: array<Material>;
 @group(1) @binding(10) var<storage, read> prev_punctual_lights: array<PunctualLight>;
+// Last frame's BVH boxes: the same tree as bvh_nodes refitted to last frame's triangles
+// (temporal visibility at the previous pixel, trace_bvh.wgsl).
+@group(1) @binding(14) var<storage, read> prev_bvh_nodes: array<BvhNode>;
 #endif
 #ifdef ENVIRONMENT
 // The environment (render/src/environment/upload.rs): sampling table, radiance, uniform.
 @group(1) @binding(11) var<storage, read> env_table: array<EnvTexel>;
 @group(1) @binding(12) var env_radiance: texture_2d<f32>;
 @group(1) @binding(13) var<uniform> env: Environment;
+#endif
+#ifdef RAY_QUERY
+// The hardware's acceleration structures (render/src/gpu_scene/accel.rs) and the map from
+// (instance, geometry, primitive) to a triangle slot (trace_ray_query.wgsl).
+@group(1) @binding(15) var scene_tlas: acceleration_structure;
+@group(1) @binding(17) var<storage, read> accel_map: array<u32>;
+#ifdef ANIMATION
+// Last frame's TLAS: the same BLASes at last frame's instance transforms.
+@group(1) @binding(16) var prev_scene_tlas: acceleration_structure;
+#endif
 #endif

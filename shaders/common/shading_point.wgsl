@@ -129,8 +129,9 @@ fn target_at(sp: ShadingPoint, light: u32, uv: vec2<f32>) -> f32 {
 }
 
 // One shadow ray between the shading point and the light point: 1 or 0 in an opaque
-// scene, the tint of the transparent layers between them otherwise (bvh.wgsl).
-fn light_transmittance(sp: ShadingPoint, lp: LightPoint, c: LightContribution) -> Transmittance {
+// scene, the tint of the transparent layers between them otherwise (trace.wgsl), against
+// this frame's geometry or last frame's (`geometry`).
+fn light_transmittance_in(sp: ShadingPoint, lp: LightPoint, c: LightContribution, geometry: u32) -> Transmittance {
 #ifdef SHADOWS
     var ray: Ray;
     var distant = lp.kind == LIGHT_POINT_DIRECTION;
@@ -144,18 +145,26 @@ fn light_transmittance(sp: ShadingPoint, lp: LightPoint, c: LightContribution) -
         let light_n = select(-lp.normal, lp.normal, dot(lp.normal, sp.position - lp.position) > 0.0);
         ray = segment_ray(sp.position, sp.geo_normal, lp.position, light_n);
     }
-    return trace_transmittance(ray);
+    return trace_transmittance_in(ray, geometry);
 #else
     return Transmittance(vec3<f32>(1.0), false);
 #endif
+}
+
+fn light_transmittance(sp: ShadingPoint, lp: LightPoint, c: LightContribution) -> Transmittance {
+    return light_transmittance_in(sp, lp, c, GEOMETRY_CURRENT);
 }
 
 // The visibility factor V of a target p̂·V (visibility in the target, the pairwise MIS
 // terms): the luminance of the transmittance. In an opaque scene it is exactly 0 or 1; with
 // glass it is a valid target factor (> 0 wherever light gets through), used alike in every
 // term, while shading multiplies by the full colour (shade.wgsl).
+fn light_visibility_in(sp: ShadingPoint, lp: LightPoint, c: LightContribution, geometry: u32) -> f32 {
+    return luminance(light_transmittance_in(sp, lp, c, geometry).value);
+}
+
 fn light_visibility(sp: ShadingPoint, lp: LightPoint, c: LightContribution) -> f32 {
-    return luminance(light_transmittance(sp, lp, c).value);
+    return light_visibility_in(sp, lp, c, GEOMETRY_CURRENT);
 }
 
 fn light_visible(sp: ShadingPoint, lp: LightPoint, c: LightContribution) -> bool {

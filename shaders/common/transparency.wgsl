@@ -1,12 +1,12 @@
 // Rays through transparent layers (alpha BLEND, KHR_materials_transmission), in the thin-layer
 // model of material.wgsl's `Layer`. Shadow rays take the product of the layers'
-// pass_through (bvh.wgsl, TRACE_TRANSMITTANCE); BSDF rays looking for an emitter (light
+// pass_through (trace.wgsl, TRACE_TRANSMITTANCE); BSDF rays looking for an emitter (light
 // MIS, BSDF candidates) use `find_light_through` here: they go through every non-emitting
 // transparent layer, collecting its pass_through, and stop at the first emitter
 // (transparent or not) or opaque surface, as a shadow ray to that emitter would see it.
 // Camera and path rays find a surface instead (layer_walk.wgsl). Every walk ends after
 // MAX_TRANSPARENT_LAYERS layers, the same cap as shadow rays.
-#include "common/bvh.wgsl"
+#include "common/trace.wgsl"
 #include "common/lights.wgsl"
 
 // A point just past a layer's surface, on the far side along `dir`.

@@ -92,22 +92,45 @@ pub struct Config {
     pub description: String,
 }
 
-/// Parses `--configs`: comma-separated built-in names and preset files (`.toml`; the
-/// configuration is named after the file stem and runs in `restir` mode).
+/// A built-in name with a tracing backend after a colon (`nee:ray-query`): the
+/// configuration traced by that backend (`ray_backend`), whatever `--set` says.
+fn split_backend(item: &str) -> (&str, Option<&str>) {
+    match item.rsplit_once(':') {
+        Some((name, backend))
+            if restir_render::settings::RAY_BACKEND_NAMES.contains(&backend)
+                && BUILTIN.iter().any(|(n, ..)| *n == name) =>
+        {
+            (name, Some(backend))
+        }
+        _ => (item, None),
+    }
+}
+
+/// Parses `--configs`: comma-separated built-in names (each optionally `:software`,
+/// `:ray-query` or `:auto`) and preset files (`.toml`; the configuration is named after the
+/// file stem and runs in `restir` mode).
 pub fn parse_configs(list: &str, base: &Settings) -> anyhow::Result<Vec<Config>> {
     let mut configs: Vec<Config> = Vec::new();
     for item in list.split(',').map(str::trim).filter(|s| !s.is_empty()) {
-        let config = match BUILTIN.iter().find(|(name, ..)| *name == item) {
-            Some(&(name, mode, sets, description)) => {
+        let (builtin, backend) = split_backend(item);
+        let config = match BUILTIN.iter().find(|(name, ..)| *name == builtin) {
+            Some(&(_, mode, sets, description)) => {
                 let mut settings = base.clone();
                 settings
                     .apply_assignments(sets.iter().copied())
                     .expect("built-in configurations use valid parameters");
+                let mut description = description.to_string();
+                if let Some(b) = backend {
+                    settings
+                        .set_from_str("ray_backend", b)
+                        .expect("a listed backend name");
+                    description.push_str(&format!(", rays traced by {b}"));
+                }
                 Config {
-                    name: name.into(),
+                    name: item.into(),
                     mode,
                     settings,
-                    description: description.into(),
+                    description,
                 }
             }
             None if item.ends_with(".toml") || Path::new(item).is_file() => {
@@ -180,6 +203,22 @@ mod tests {
             configs[5].settings.bias_correction,
             BiasCorrection::Pairwise
         );
+    }
+
+    #[test]
+    fn a_backend_suffix_picks_the_tracing_backend() {
+        use restir_render::settings::RayBackendChoice;
+        let configs = parse_configs(
+            "nee:ray-query,restir-pairwise:software,nee",
+            &Settings::default(),
+        )
+        .unwrap();
+        assert_eq!(configs[0].name, "nee:ray-query");
+        assert_eq!(configs[0].mode, Mode::Nee);
+        assert_eq!(configs[0].settings.ray_backend, RayBackendChoice::RayQuery);
+        assert_eq!(configs[1].settings.ray_backend, RayBackendChoice::Software);
+        assert_eq!(configs[2].settings.ray_backend, RayBackendChoice::Auto);
+        assert!(parse_configs("nee:warp-drive", &Settings::default()).is_err());
     }
 
     #[test]

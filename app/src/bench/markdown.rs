@@ -129,6 +129,7 @@ pub fn results(info: &BenchInfo, results: &[ConfigResult]) -> String {
         "signed bias",
         "black pixels",
         "shadow rays / pixel",
+        "rays traced by",
         "per-frame MSE × nee",
     ]
     .map(String::from)
@@ -152,6 +153,7 @@ pub fn results(info: &BenchInfo, results: &[ConfigResult]) -> String {
                 s.map(|s| format!("{:.2} %", 100.0 * s.black_pixel_fraction))
                     .unwrap_or_else(|| "n/a".into()),
                 format!("{:.2}", r.times.shadow_rays_per_pixel_total),
+                r.ray_backend.map_or("n/a", |b| b.name()).to_string(),
                 ratio(r.frame_mse_vs_nee),
             ]
         })

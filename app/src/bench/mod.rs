@@ -19,6 +19,7 @@ mod events;
 pub(crate) mod lag;
 mod markdown;
 mod plots;
+pub mod ray_cost;
 mod references;
 mod run_loop;
 mod scoring;
@@ -297,7 +298,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         warmup: args.warmup,
         budget_ms: args.budget_ms,
         seed: args.pipeline.seed,
-        device: gpu.adapter_name(),
+        device: format!("{}, {}", gpu.adapter_name(), gpu.driver_info()),
         device_is_cpu: gpu.is_cpu(),
         radius,
         jitter: base.jitter,

@@ -70,6 +70,8 @@ pub struct ConfigResult {
     /// The temporal-stability figure: mean |Δ luma| between consecutive measured frames
     /// over the reference's luminance (`restir_render::flicker`; none without scoring).
     pub flicker: Option<f64>,
+    /// What traced the configuration's rays (`ray_backend` resolved on the device).
+    pub ray_backend: Option<restir_render::tracing::RayBackend>,
 }
 
 impl ConfigResult {
@@ -217,6 +219,7 @@ impl<'a> ConfigRun<'a> {
             frame_mse_vs_nee: None,
             budget_mse_vs_nee: None,
             flicker: self.flicker.mean(),
+            ray_backend: self.renderer.last_ray_backend(),
         };
         Ok((result, self.renderer))
     }

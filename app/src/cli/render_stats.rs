@@ -42,8 +42,15 @@ pub(super) struct SceneTimeStats {
 pub(super) struct StatsFile<'a> {
     scene: &'a restir_render::gpu_scene::SceneInfo,
     adapter: String,
+    /// The driver and its version (lavapipe: "llvmpipe Mesa 25.0.7…"), so every figure
+    /// can say which driver made it.
+    driver: String,
     /// "lavapipe timings are CPU timings": true when the adapter is a CPU implementation.
     adapter_is_cpu: bool,
+    /// What traced the rays: "software" (the BVH in WGSL) or "ray-query" (hardware).
+    ray_backend: Option<restir_render::tracing::RayBackend>,
+    /// Whether the device could run the ray-query backend.
+    ray_query_available: bool,
     mode: Mode,
     size: [u32; 2],
     /// The last frame's camera.
@@ -187,7 +194,10 @@ pub(super) fn side_stats(side: &Side) -> StatsFile<'_> {
     StatsFile {
         scene: renderer.scene_info(),
         adapter: renderer.gpu().adapter_name(),
+        driver: renderer.gpu().driver_info(),
         adapter_is_cpu: renderer.gpu().is_cpu(),
+        ray_backend: renderer.last_ray_backend(),
+        ray_query_available: renderer.gpu().ray_query,
         mode: renderer.mode(),
         size: [renderer.size().0, height],
         camera: {

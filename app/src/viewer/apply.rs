@@ -3,7 +3,8 @@
 //! outputs (reports, inspection, effect set) come back into the state.
 
 use restir_render::renderer::{MAX_SIZE, PixelInspection};
-use restir_render::{Renderer, ViewSettings};
+use restir_render::settings::RayBackendChoice;
+use restir_render::{Renderer, Settings, ViewSettings};
 
 use super::camera::CameraState;
 use super::state::{InspectorState, ViewerState};
@@ -23,7 +24,7 @@ pub fn render_size(area: (f32, f32), scale: f32) -> Option<(u32, u32)> {
 /// parameter, scene and size changes).
 pub fn before_frame(renderer: &mut Renderer, state: &ViewerState) {
     renderer.set_mode(state.mode);
-    renderer.set_settings(state.settings.clone());
+    renderer.set_settings(runnable_settings(renderer, &state.settings));
     let turned_on = state.view.accumulate && !renderer.view().accumulate;
     renderer.set_view(state.view);
     let moved = renderer.camera() != state.camera.camera;
@@ -34,6 +35,17 @@ pub fn before_frame(renderer: &mut Renderer, state: &ViewerState) {
         renderer.reset_accumulation();
     }
     renderer.set_inspected_pixel(state.inspector.pixel);
+}
+
+/// The settings as this device can run them: `ray_backend=ray-query` without hardware ray
+/// queries renders with the software backend (the Pipeline panel says why) instead of
+/// failing every frame.
+pub fn runnable_settings(renderer: &Renderer, settings: &Settings) -> Settings {
+    let mut s = settings.clone();
+    if restir_render::tracing::resolve_for(renderer.gpu(), s.ray_backend).is_err() {
+        s.ray_backend = RayBackendChoice::Software;
+    }
+    s
 }
 
 /// Shows a view change on a frozen frame (only the display pass runs again).
@@ -61,6 +73,7 @@ pub fn after_frame(
         state.stats.push_report(report);
     }
     state.render_size = renderer.size();
+    state.device.ray_backend = renderer.last_ray_backend();
     state.accumulated_frames = renderer.accumulated_frames();
     state.window_frames = renderer.temporal_window_frames();
     // Copied only when they change (an effect set carries a sentence per effect).

@@ -94,7 +94,8 @@ impl CompareSide {
         let (w, h) = a.size();
         b.resize(w, h)?;
         b.set_mode(self.target.mode);
-        b.set_settings(self.target.settings.clone());
+        let settings = super::apply::runnable_settings(b, &self.target.settings);
+        b.set_settings(settings);
         if b.camera() != a.camera() {
             b.set_camera(a.camera());
             b.reset_accumulation();

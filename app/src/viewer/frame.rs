@@ -106,8 +106,11 @@ impl Viewer {
         }
         state.device = DeviceInfo {
             adapter: gpu.adapter_name(),
+            driver: gpu.driver_info(),
             is_cpu: gpu.is_cpu(),
             timing: format!("{:?}", renderer.timing_mode()),
+            ray_query: gpu.ray_query,
+            ray_backend: None,
         };
         state.accuracy = AccuracyState::new(gpu.is_cpu());
         renderer.set_view(state.view);

@@ -301,8 +301,14 @@ impl Default for RecordState {
 #[derive(Clone, Debug, Default)]
 pub struct DeviceInfo {
     pub adapter: String,
+    /// The driver and its version ("Mesa 25.0.7…" on lavapipe).
+    pub driver: String,
     pub is_cpu: bool,
     pub timing: String,
+    /// Whether the device has hardware ray queries (`ray_backend=ray-query` can run).
+    pub ray_query: bool,
+    /// What traced the last frame's rays.
+    pub ray_backend: Option<restir_render::tracing::RayBackend>,
 }
 
 /// The whole editable state of the viewer.

@@ -1,7 +1,7 @@
 //! The environment on the GPU (scene group bindings 11–13 after the scene's storage
 //! buffers, scene_bindings.wgsl): the sampling table as a storage buffer, the radiance as an
 //! unfilterable RGBA32F texture (a texture, not another storage buffer: the temporal pass
-//! already binds 19, gpu/context.rs) and the
+//! already binds 21, gpu/context.rs) and the
 //! uniform with size, strength, rotation and light index. Without an environment all
 //! three are one-texel placeholders the shaders never read (their code is not compiled).
 
@@ -17,30 +17,9 @@ pub struct EnvironmentResources {
     pub uniform: wgpu::Buffer,
 }
 
-/// The first environment binding of the scene group (table, radiance, uniform follow).
-pub const ENVIRONMENT_FIRST_BINDING: u32 = crate::gpu_scene::SCENE_STORAGE_BINDINGS;
-
-/// The three layout entries: table, radiance, uniform from `ENVIRONMENT_FIRST_BINDING` on.
-pub fn layout_entries(visibility: wgpu::ShaderStages) -> [wgpu::BindGroupLayoutEntry; 3] {
-    let first = ENVIRONMENT_FIRST_BINDING;
-    [
-        wgpu::BindGroupLayoutEntry {
-            visibility,
-            ..crate::passes::storage(first, true)
-        },
-        wgpu::BindGroupLayoutEntry {
-            binding: first + 1,
-            visibility,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
-            },
-            count: None,
-        },
-        crate::passes::uniform(first + 2, visibility),
-    ]
-}
+/// The first environment binding of the scene group (table, radiance, uniform follow;
+/// their layout entries are in gpu_scene/layout.rs with the rest of the group).
+pub use crate::gpu_scene::layout::ENVIRONMENT_FIRST_BINDING;
 
 impl EnvironmentResources {
     pub fn upload(gpu: &Gpu, env: Option<&Environment>, light: u32) -> EnvironmentResources {

@@ -3,11 +3,17 @@
 
 use std::sync::{Arc, Mutex};
 
-/// Storage buffers one shader stage binds at most (scene group + pass group + stats): 19
-/// for the temporal and display passes (12 scene buffers with the previous frame's
-/// triangles, materials and punctual lights and the environment table, 6 of their own, the
-/// stats). Desktop adapters offer far more (Metal 31, Vulkan and D3D12 drivers thousands).
-const STORAGE_BUFFERS_PER_STAGE: u32 = 19;
+/// Storage buffers one shader stage binds at most (scene group + pass group + stats): 21
+/// for the temporal and display passes (14 scene buffers with the previous frame's
+/// triangles, materials, punctual lights and BVH nodes, the environment table and the
+/// ray-query triangle map, 6 of their own, the stats). Desktop adapters offer far more
+/// (Metal 31, Mesa 22's lavapipe 32, Vulkan and D3D12 drivers thousands).
+const STORAGE_BUFFERS_PER_STAGE: u32 = 21;
+
+/// Set to `1` to create the device without ray queries even where the adapter has them, as
+/// on an adapter without (testing the software backend's fallback and the error of
+/// `ray_backend=ray-query`; working around a driver's ray-query bug).
+pub const NO_RAY_QUERY_ENV: &str = "RESTIR_NO_RAY_QUERY";
 
 #[derive(Debug, thiserror::Error)]
 pub enum GpuError {
@@ -22,6 +28,8 @@ pub enum GpuError {
     Device(String),
     #[error("GPU error: {0}")]
     Validation(String),
+    #[error(transparent)]
+    RayQueryUnavailable(#[from] crate::tracing::RayQueryUnavailable),
 }
 
 /// A device and queue plus what the renderer needs to know about them.
@@ -33,6 +41,9 @@ pub struct Gpu {
     pub queue: wgpu::Queue,
     /// Whether passes can be timed with timestamp queries.
     pub timestamps: bool,
+    /// Whether the device has hardware ray queries (`EXPERIMENTAL_RAY_QUERY`: Vulkan's
+    /// `VK_KHR_ray_query`), so the `ray-query` tracing backend can run (see `tracing.rs`).
+    pub ray_query: bool,
     /// The first uncaptured GPU error since the last `take_error` (instead of a panic).
     errors: Arc<Mutex<Option<String>>>,
 }
@@ -40,6 +51,16 @@ pub struct Gpu {
 impl Gpu {
     /// A device without a window (tests, `render`, `bench`).
     pub fn new_headless() -> Result<Gpu, GpuError> {
+        Gpu::headless(true)
+    }
+
+    /// A device without ray queries even where the adapter has them: what an adapter
+    /// without them gives (tests of the software fallback and of the error).
+    pub fn new_headless_without_ray_queries() -> Result<Gpu, GpuError> {
+        Gpu::headless(false)
+    }
+
+    fn headless(allow_ray_query: bool) -> Result<Gpu, GpuError> {
         let instance = new_instance();
         let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
             power_preference: wgpu::PowerPreference::HighPerformance,
@@ -48,12 +69,20 @@ impl Gpu {
             apply_limit_buckets: false,
         }))
         .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
-        Gpu::from_adapter(instance, adapter)
+        Gpu::from_adapter_with(instance, adapter, allow_ray_query)
     }
 
     /// Requests the device on an adapter chosen by the caller (the viewer picks one that
     /// can present to its window).
     pub fn from_adapter(instance: wgpu::Instance, adapter: wgpu::Adapter) -> Result<Gpu, GpuError> {
+        Gpu::from_adapter_with(instance, adapter, true)
+    }
+
+    fn from_adapter_with(
+        instance: wgpu::Instance,
+        adapter: wgpu::Adapter,
+        allow_ray_query: bool,
+    ) -> Result<Gpu, GpuError> {
         let info = adapter.get_info();
         let adapter_limits = adapter.limits();
         if adapter_limits.max_storage_buffers_per_shader_stage < STORAGE_BUFFERS_PER_STAGE {
@@ -66,22 +95,45 @@ impl Gpu {
             });
         }
         let timestamps = adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
+        let ray_query = allow_ray_query
+            && adapter
+                .features()
+                .contains(wgpu::Features::EXPERIMENTAL_RAY_QUERY)
+            && std::env::var(NO_RAY_QUERY_ENV).map_or(true, |v| v != "1");
         let mut features = wgpu::Features::empty();
         if timestamps {
             features |= wgpu::Features::TIMESTAMP_QUERY;
         }
-        let limits = wgpu::Limits {
+        if ray_query {
+            features |= wgpu::Features::EXPERIMENTAL_RAY_QUERY;
+        }
+        let base_limits = wgpu::Limits {
             max_storage_buffers_per_shader_stage: STORAGE_BUFFERS_PER_STAGE,
             max_storage_buffer_binding_size: adapter_limits.max_storage_buffer_binding_size,
             max_buffer_size: adapter_limits.max_buffer_size,
             max_texture_dimension_2d: adapter_limits.max_texture_dimension_2d,
+            // Storage + uniform buffers (+ two acceleration structures with ray queries).
+            max_buffers_and_acceleration_structures_per_shader_stage: adapter_limits
+                .max_buffers_and_acceleration_structures_per_shader_stage,
             ..wgpu::Limits::default()
+        };
+        let limits = if ray_query {
+            base_limits.using_acceleration_structure_values(adapter_limits.clone())
+        } else {
+            base_limits
         };
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("restir"),
             required_features: features,
             required_limits: limits,
-            experimental_features: wgpu::ExperimentalFeatures::disabled(),
+            // SAFETY: the only experimental feature requested is ray queries, used through
+            // wgpu's validated API (BLAS/TLAS builds, `ray_query` in WGSL); wgpu asks for
+            // this token because the API may still change, not for unsafe calls of ours.
+            experimental_features: if ray_query {
+                unsafe { wgpu::ExperimentalFeatures::enabled() }
+            } else {
+                wgpu::ExperimentalFeatures::disabled()
+            },
             memory_hints: wgpu::MemoryHints::Performance,
             trace: wgpu::Trace::Off,
         }))
@@ -95,10 +147,11 @@ impl Gpu {
             slot.get_or_insert_with(|| e.to_string());
         }));
         log::info!(
-            "GPU: {} ({:?}, {:?})",
+            "GPU: {} ({:?}, {:?}, {}; ray queries: {ray_query})",
             info.name,
             info.backend,
-            info.device_type
+            info.device_type,
+            info.driver_info
         );
         Ok(Gpu {
             instance,
@@ -106,6 +159,7 @@ impl Gpu {
             device,
             queue,
             timestamps,
+            ray_query,
             errors,
         })
     }
@@ -113,6 +167,15 @@ impl Gpu {
     pub fn adapter_name(&self) -> String {
         let info = self.adapter.get_info();
         format!("{} ({:?})", info.name, info.backend)
+    }
+
+    /// The driver and its version as the adapter reports them (lavapipe: "Mesa 25.0.7…"),
+    /// so every measurement can say which driver made it.
+    pub fn driver_info(&self) -> String {
+        let info = self.adapter.get_info();
+        format!("{} {}", info.driver, info.driver_info)
+            .trim()
+            .to_string()
     }
 
     /// True when the adapter is a CPU implementation (lavapipe): timings are CPU timings.

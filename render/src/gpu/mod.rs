@@ -4,7 +4,7 @@ pub mod context;
 pub mod readback;
 pub mod timing;
 
-pub use context::{Gpu, GpuError};
+pub use context::{Gpu, GpuError, NO_RAY_QUERY_ENV};
 
 /// A single-sampled, single-mip 2-D texture (render targets, storage images, captures).
 pub fn texture_2d(

@@ -61,6 +61,23 @@ impl GpuScene {
                 0,
                 bytemuck::cast_slice(&self.prev_triangle_records),
             );
+            // Last frame's boxes in the new tree: the new topology refitted to last frame's
+            // triangles (the software backend's previous geometry).
+            let mut previous = Bvh {
+                nodes: bvh.nodes.clone(),
+                triangle_order: Vec::new(),
+            };
+            let prev_positions: Vec<[Vec3; 3]> = self
+                .prev_triangle_records
+                .iter()
+                .map(|t| [t.p0, t.p1, t.p2].map(Vec3::from))
+                .collect();
+            previous.refit(&prev_positions);
+            gpu.queue.write_buffer(
+                &self.prev_bvh_nodes,
+                0,
+                bytemuck::cast_slice(&previous.nodes),
+            );
         }
         self.bvh = bvh;
         self.built_sah = self.bvh.sah_cost();

@@ -1,6 +1,7 @@
 //! Per-frame scene update for animated scenes: triangles and the BVH when geometry moved
 //! (a refit: same tree, new boxes; a rebuild once the refitted tree has degraded, see
-//! `rebuild.rs` and docs/bench.md), the light
+//! `rebuild.rs` and docs/bench.md) and the TLAS of the ray-query backend (`accel.rs`), the
+//! light
 //! table, punctual lights and materials only when lights changed. Buffers are rewritten in
 //! place, so bind groups stay valid, and light-table indices stay the light's identity
 //! (fixed slots, see `LightTable::build_with_slots`): the previous → current light map is
@@ -47,6 +48,7 @@ impl GpuScene {
             return times;
         }
         let start = Instant::now();
+        let first_update_of_frame = !self.updated_since_frame;
         // Before any write: last frame's data becomes the previous frame's.
         self.keep_previous_frame(gpu);
         // Rigid emitter motion keeps every power: the table (alias probabilities) stays
@@ -85,6 +87,12 @@ impl GpuScene {
             if self.rebuild_due() {
                 self.rebuild_bvh(gpu, &positions, self.rebuild_plant);
                 times.bvh_rebuilt = true;
+            }
+            if let Some(accel) = &mut self.accel {
+                if times.bvh_rebuilt {
+                    accel.rewrite_map(gpu, &self.bvh.triangle_order);
+                }
+                accel.moved(gpu, scene, first_update_of_frame);
             }
             times.bvh_ms = t.elapsed().as_secs_f64() * 1e3;
             // The light slots are fixed, so the per-triangle light index is too.
@@ -192,6 +200,9 @@ impl GpuScene {
             self.prev_differs = true;
         } else if self.prev_differs {
             self.copy_current_to_previous(gpu);
+            if let Some(accel) = &mut self.accel {
+                accel.settle(gpu);
+            }
             self.prev_differs = false;
         }
     }
@@ -215,6 +226,7 @@ impl GpuScene {
             (&self.buffers.triangles, &self.prev_triangles),
             (&self.buffers.materials, &self.prev_materials),
             (&self.buffers.punctual, &self.prev_punctual),
+            (&self.buffers.bvh_nodes, &self.prev_bvh_nodes),
         ] {
             encoder.copy_buffer_to_buffer(current, 0, previous, 0, current.size());
         }

@@ -9,7 +9,9 @@ use super::resources::Resource;
 use super::{ALL, display};
 use crate::gpu::timing::FrameRecorder;
 use crate::gpu::{Gpu, GpuError};
+use crate::gpu_scene::layout::SceneLayouts;
 use crate::shader_source;
+use crate::tracing::RayBackend;
 
 /// The 2-D workgroup of `Dispatch::Pixels` passes (their `@workgroup_size(8, 8)`).
 pub const WORKGROUP: u32 = 8;
@@ -115,11 +117,11 @@ fn layout(gpu: &Gpu, label: &str, entries: &[wgpu::BindGroupLayoutEntry]) -> wgp
 }
 
 /// Every bind group layout, created once: group 0 (frame, params, stats), group 1
-/// (scene) and each pass's group 2. Pipeline variants of different effect sets share
-/// them, so cached bind groups work with every variant.
+/// (scene, one layout per tracing backend) and each pass's group 2. Pipeline variants of
+/// different effect sets share them, so cached bind groups work with every variant.
 pub struct PassLayouts {
     pub frame: wgpu::BindGroupLayout,
-    pub scene: wgpu::BindGroupLayout,
+    pub scene: SceneLayouts,
     group2: HashMap<&'static str, wgpu::BindGroupLayout>,
 }
 
@@ -127,13 +129,6 @@ impl PassLayouts {
     pub fn new(gpu: &Gpu) -> PassLayouts {
         let all =
             wgpu::ShaderStages::COMPUTE | wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT;
-        let mut scene_entries: Vec<_> = (0..crate::gpu_scene::SCENE_STORAGE_BINDINGS)
-            .map(|i| wgpu::BindGroupLayoutEntry {
-                visibility: all,
-                ..storage(i, true)
-            })
-            .collect();
-        scene_entries.extend(crate::environment::upload::layout_entries(all));
         let group2 = ALL
             .iter()
             .map(|pass| {
@@ -150,7 +145,7 @@ impl PassLayouts {
                 "frame",
                 &[uniform(0, all), uniform(1, all), storage(2, false)],
             ),
-            scene: layout(gpu, "scene", &scene_entries),
+            scene: SceneLayouts::new(gpu),
             group2,
         }
     }
@@ -160,6 +155,16 @@ impl PassLayouts {
         self.group2
             .get(pass.name)
             .unwrap_or_else(|| panic!("pass {} is missing from passes::ALL", pass.name))
+    }
+
+    /// Groups 0 and 1 of a pipeline compiled with `defines` (group 1 follows the tracing
+    /// backend the defines select).
+    pub fn frame_and_scene(
+        &self,
+        defines: &BTreeSet<String>,
+    ) -> [Option<&wgpu::BindGroupLayout>; 2] {
+        let scene = self.scene.for_backend(RayBackend::of_defines(defines));
+        [Some(&self.frame), Some(scene)]
     }
 }
 
@@ -200,14 +205,15 @@ impl ComputePass {
         defines: &BTreeSet<String>,
     ) -> Result<ComputePass, GpuError> {
         let module = shader_module(gpu, pass.shader, defines)?;
+        let frame_and_scene = layouts.frame_and_scene(defines);
         let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let pipeline_layout = gpu
             .device
             .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
                 label: Some(pass.name),
                 bind_group_layouts: &[
-                    Some(&layouts.frame),
-                    Some(&layouts.scene),
+                    frame_and_scene[0],
+                    frame_and_scene[1],
                     Some(layouts.group2(pass)),
                 ],
                 immediate_size: 0,

@@ -47,7 +47,7 @@ impl RasterPass {
             .device
             .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
                 label: Some("gbuffer raster"),
-                bind_group_layouts: &[Some(&layouts.frame), Some(&layouts.scene)],
+                bind_group_layouts: &layouts.frame_and_scene(defines),
                 immediate_size: 0,
             });
         let raster = gpu

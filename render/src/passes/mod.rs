@@ -19,6 +19,7 @@ pub mod gi_view;
 pub mod initial;
 pub mod moments;
 pub mod presample;
+pub mod ray_bench;
 pub mod reference;
 pub mod shade;
 pub mod spatial;
@@ -33,7 +34,7 @@ pub use compile::{
 pub use pass::PassDef;
 
 /// Every pass, in pipeline order (a layout is created for each; tests validate each).
-pub const ALL: [&PassDef; 18] = [
+pub const ALL: [&PassDef; 19] = [
     &gbuffer::RASTER,
     &gbuffer::RESOLVE,
     &presample::PASS,
@@ -52,4 +53,5 @@ pub const ALL: [&PassDef; 18] = [
     &gi_view::PASS,
     &bias_view::PASS,
     &window_view::PASS,
+    &ray_bench::PASS,
 ];

@@ -10,6 +10,7 @@ mod bind_groups;
 mod comparison;
 pub mod frame_plan;
 mod inspect;
+mod ray_bench;
 mod readback;
 mod record;
 mod reports;
@@ -19,6 +20,7 @@ mod uniforms;
 mod window;
 
 pub use inspect::{GiInspection, GiStageReservoir, PixelInspection, StageReservoir};
+pub use ray_bench::{RayKind, RayRate};
 pub use setup::check_size;
 pub use window::TemporalWindow;
 
@@ -241,6 +243,11 @@ impl Renderer {
 
     pub fn last_passes(&self) -> &[&'static str] {
         &self.last_passes
+    }
+
+    /// What traced the last frame's rays (`ray_backend` resolved on this device).
+    pub fn last_ray_backend(&self) -> Option<crate::tracing::RayBackend> {
+        self.last_effects.as_ref().map(|e| e.backend)
     }
 
     pub fn camera(&self) -> Camera {

@@ -21,6 +21,7 @@ use crate::passes::resources::{DEBUG, RADIANCE, RESERVOIRS};
 use crate::passes::{ComputePass, PASS_INFO_SLOTS, PASS_INFO_STRIDE, PassDef, PassLayouts};
 use crate::settings::Settings;
 use crate::shader_constants::{MAX_SPATIAL_PASSES, REFERENCE_SAMPLES_PER_DISPATCH};
+use crate::tracing::RayBackend;
 use crate::view::{DebugView, Mode};
 
 /// What recording one step needs besides the bind group cache and the recorder (shared by
@@ -89,6 +90,8 @@ fn dynamic_offsets(step: &Step) -> Vec<u32> {
 /// computed when the inputs change and shared until they change again.
 pub(super) struct ActiveEffects {
     pub set: EffectSet,
+    /// What traces the frame's rays (its define is among `defines`).
+    pub backend: RayBackend,
     pub defines: BTreeSet<String>,
     pub key: String,
     /// What it was derived from (`None` settings when forced by `--effects`).
@@ -98,7 +101,11 @@ pub(super) struct ActiveEffects {
 impl Renderer {
     /// The effect set for this frame: forced, or derived from the scene and settings
     /// (cached: the common frame allocates nothing here).
-    fn active_effects(&mut self, settings: &Settings, moved: bool) -> Arc<ActiveEffects> {
+    fn active_effects(
+        &mut self,
+        settings: &Settings,
+        moved: bool,
+    ) -> Result<Arc<ActiveEffects>, GpuError> {
         let inputs = self
             .forced_effects
             .is_none()
@@ -108,27 +115,30 @@ impl Renderer {
                 && (inputs.is_some() || Some(&last.set) == self.forced_effects.as_ref())
         };
         if let Some(last) = self.last_effects.as_ref().filter(|l| unchanged(l)) {
-            return last.clone();
+            return Ok(last.clone());
         }
+        let backend = crate::tracing::resolve_for(&self.gpu, settings.ray_backend)?;
         let mut set = match &self.forced_effects {
             Some(forced) => forced.clone(),
             None => EffectSet::detect(&self.features, settings, moved),
         };
         set.planted.extend(self.planted.iter().cloned());
-        let defines = set.defines();
+        let mut defines = set.defines();
+        defines.extend(backend.define().map(str::to_string));
         let key = defines.iter().cloned().collect::<Vec<_>>().join(",");
-        Arc::new(ActiveEffects {
+        Ok(Arc::new(ActiveEffects {
             set,
+            backend,
             defines,
             key,
             inputs,
-        })
+        }))
     }
 }
 
 impl PipelineVariant {
     /// Compiles `pass` for this variant's defines on first use.
-    fn compile(
+    pub(super) fn compile(
         &mut self,
         gpu: &Gpu,
         layouts: &PassLayouts,
@@ -189,7 +199,7 @@ impl Renderer {
 
         self.scene
             .set_environment_share(&self.gpu, settings.environment_share);
-        let active = self.active_effects(&settings, moved);
+        let active = self.active_effects(&settings, moved)?;
         let (effects, defines, key) = (&active.set, &active.defines, active.key.as_str());
         let (view_proj, jitter) = self.write_frame_uniform(&settings);
         self.gpu.queue.write_buffer(
@@ -252,7 +262,7 @@ impl Renderer {
         );
 
         let frame_group = self.frame_bind_group.clone();
-        let scene_group = self.scene.bind_group.clone();
+        let scene_group = self.scene.bind_group(active.backend).clone();
         let size = self.size();
         let mut dispatched: Vec<&'static str> = Vec::new();
         let mut capture = self
@@ -384,7 +394,10 @@ impl Renderer {
             targets: &self.targets,
             uniforms: &uniforms,
             variant,
-            groups: [&self.frame_bind_group, &self.scene.bind_group],
+            groups: [
+                &self.frame_bind_group,
+                self.scene.bind_group(active.backend),
+            ],
             triangle_count: self.scene.triangle_count,
         };
         for (step, r) in plan.iter().zip(&resolved.steps) {

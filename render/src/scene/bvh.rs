@@ -1,5 +1,5 @@
 //! A binned-SAH bounding volume hierarchy, built on the CPU and flattened into
-//! [`GpuBvhNode`]s for the stack traversal in `shaders/common/bvh.wgsl`; the CPU mirror of
+//! [`GpuBvhNode`]s for the stack traversal in `shaders/common/trace_bvh.wgsl`; the CPU mirror of
 //! that traversal is in `bvh/traverse.rs`.
 //!
 //! Layout: node 0 is the root; a leaf (`count > 0`) holds triangles `first..first+count` of

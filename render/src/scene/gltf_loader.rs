@@ -306,6 +306,7 @@ impl Walker<'_> {
                         local,
                         materials: Vec::new(),
                     });
+                    self.scene.mesh_transforms.push(world);
                 }
             }
         }

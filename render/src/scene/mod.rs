@@ -33,6 +33,10 @@ pub struct Scene {
     pub environment: Option<std::sync::Arc<crate::environment::Environment>>,
     /// What moves and changes with scene time; `None` for a static scene.
     pub animation: Option<animation::SceneAnimation>,
+    /// The world matrix of each of `animation`'s mesh bindings as last placed (by the
+    /// loader, then by `SceneAnimation::pose`), in step with the vertices it produced: the
+    /// ray-query backend places each moving mesh's BLAS with it (gpu_scene/accel.rs).
+    pub mesh_transforms: Vec<glam::Mat4>,
     /// What the loader did with each extension the file lists (empty for built-ins).
     pub extensions: Vec<ExtensionUse>,
 }

@@ -5,15 +5,23 @@
 use std::path::Path;
 
 use egui::{RichText, Ui};
-use restir_render::settings::{PARAMS, ParamDef, ParamKind, ParamValue, Stage, preset};
+use restir_render::settings::{
+    PARAMS, ParamDef, ParamKind, ParamValue, RayBackendChoice, Stage, preset,
+};
+use restir_render::tracing::RayBackend;
 use restir_render::{Mode, Settings};
 
 use crate::viewer::state::ViewerState;
 
 pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
     mode_selector(ui, &mut state.mode);
+    let context = Context {
+        height: state.render_size.1,
+        ray_query: state.device.ray_query,
+        ray_backend: state.device.ray_backend,
+    };
     for stage in stages() {
-        stage_ui(ui, &mut state.settings, stage, state.render_size.1);
+        stage_ui(ui, &mut state.settings, stage, &context);
     }
     ui.horizontal(|ui| {
         if ui
@@ -58,7 +66,14 @@ fn mode_selector(ui: &mut Ui, mode: &mut Mode) {
 /// A stage as a collapsible group. A stage with an on/off switch (`temporal`,
 /// `spatial`) shows it in the group's header, so it stays reachable while the group is
 /// closed, and greys out the rest of the stage while it is off.
-fn stage_ui(ui: &mut Ui, settings: &mut Settings, stage: Stage, height: u32) {
+/// What the notes under the parameters need to know about the device and the last frame.
+struct Context {
+    height: u32,
+    ray_query: bool,
+    ray_backend: Option<RayBackend>,
+}
+
+fn stage_ui(ui: &mut Ui, settings: &mut Settings, stage: Stage, context: &Context) {
     let switch = PARAMS
         .iter()
         .find(|p| p.stage == stage && is_stage_switch(p));
@@ -83,7 +98,7 @@ fn stage_ui(ui: &mut Ui, settings: &mut Settings, stage: Stage, height: u32) {
                 .filter(|p| p.stage == stage && !is_stage_switch(p))
             {
                 param_widget(ui, settings, def);
-                effective_value(ui, settings, def, height);
+                effective_value(ui, settings, def, context);
             }
         });
     });
@@ -152,7 +167,11 @@ pub fn param_widget(ui: &mut Ui, settings: &mut Settings, def: &ParamDef) {
 
 /// Under a pixel-unit parameter (defined at 1080p): what it is at the render height; under a
 /// switch another one overrides: what runs.
-fn effective_value(ui: &mut Ui, settings: &Settings, def: &ParamDef, height: u32) {
+fn effective_value(ui: &mut Ui, settings: &Settings, def: &ParamDef, context: &Context) {
+    let height = context.height;
+    if def.name == "ray_backend" {
+        ray_backend_note(ui, settings, context);
+    }
     if def.name == "initial_visibility"
         && !settings.initial_visibility
         && settings.traces_initial_visibility()
@@ -164,6 +183,27 @@ fn effective_value(ui: &mut Ui, settings: &Settings, def: &ParamDef, height: u32
         .filter(|_| height > 0)
     {
         ui.weak(format!("= {px:.1} px at this {height}-pixel-high image"));
+    }
+}
+
+/// Under `ray_backend`: what runs, or why ray-query cannot.
+fn ray_backend_note(ui: &mut Ui, settings: &Settings, context: &Context) {
+    if settings.ray_backend == RayBackendChoice::RayQuery && !context.ray_query {
+        let device = restir_render::tracing::Device {
+            ray_query: false,
+            is_cpu: false,
+            adapter: "this adapter",
+        };
+        let line = restir_render::tracing::resolve(settings.ray_backend, device)
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
+        ui.colored_label(
+            ui.visuals().error_fg_color,
+            format!("{line} — rendering with software"),
+        );
+    } else if let Some(backend) = context.ray_backend {
+        ui.weak(format!("= {} here", backend.name()));
     }
 }
 

@@ -37,6 +37,20 @@ pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
                         info.bvh_nodes, info.bvh_depth, info.bvh_build_ms
                     ),
                 ),
+                (
+                    "Ray-query structures",
+                    info.accel
+                        .map_or("none (no ray queries on this device)".to_string(), |a| {
+                            format!(
+                                "{} BLAS, {} instances, {} of {} triangles opaque, {:.0} ms",
+                                a.blas_count,
+                                a.instance_count,
+                                a.opaque_triangles,
+                                info.triangles,
+                                a.build_ms
+                            )
+                        }),
+                ),
             ],
         );
         extensions(ui, &info.extensions);

@@ -8,6 +8,7 @@ use egui::{Color32, RichText, Ui};
 use egui_plot::{Line, Plot, PlotPoints};
 use restir_render::shader_constants::{GUARDED_PASS_NAMES, REJECT_REASON_NAMES, STAT_NONFINITE};
 use restir_render::stats::{FrameCounters, FrameReport, StatsSummary};
+use restir_render::tracing::RayBackend;
 
 use super::palette::source_legend;
 use crate::viewer::state::{StatsHistory, ViewerState};
@@ -15,9 +16,11 @@ use crate::viewer::state::{StatsHistory, ViewerState};
 pub fn ui(ui: &mut Ui, state: &ViewerState) {
     let device = &state.device;
     ui.label(format!("{} · timing: {}", device.adapter, device.timing));
+    ui.weak(format!("driver: {}", device.driver));
     if device.is_cpu {
         ui.weak("CPU adapter: pass times are CPU wall-clock times, not GPU times");
     }
+    ray_backend(ui, device);
     frame_time(ui, &state.stats);
     let window = state.stats.window();
     if window.is_empty() {
@@ -30,6 +33,23 @@ pub fn ui(ui: &mut Ui, state: &ViewerState) {
     history_plot(ui, &state.stats);
     reuse(ui, &summary);
     non_finite(ui, &summary, &state.stats.since_load);
+}
+
+/// What traces the rays, and whether the other backend could.
+fn ray_backend(ui: &mut Ui, device: &crate::viewer::state::DeviceInfo) {
+    let Some(backend) = device.ray_backend else {
+        return;
+    };
+    let what = match backend {
+        RayBackend::RayQuery => "ray-query (the driver's acceleration structures)",
+        RayBackend::Software => "software (BVH walked in WGSL)",
+    };
+    let available = if device.ray_query {
+        "this device also has the other (Pipeline → Ray tracing)"
+    } else {
+        "no hardware ray queries on this device"
+    };
+    ui.label(format!("Rays: {what}")).on_hover_text(available);
 }
 
 /// Width of the longest pass bar, in points.

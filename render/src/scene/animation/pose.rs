@@ -94,8 +94,13 @@ impl SceneAnimation {
         let mut change = SceneChange::default();
         let emissive: Vec<bool> = scene.materials.iter().map(|m| m.is_emissive()).collect();
 
-        for mesh in &self.meshes {
+        scene.mesh_transforms.resize(self.meshes.len(), Mat4::NAN);
+        for (mesh, transform) in self.meshes.iter().zip(&mut scene.mesh_transforms) {
             let m = world[mesh.node];
+            // As for the vertices below: a degenerate pose keeps the last good placement.
+            if m.is_finite() {
+                *transform = m;
+            }
             let normal_matrix = Mat3::from_mat4(m).inverse().transpose();
             let first = mesh.first as usize;
             let Some(range) = scene.vertices.get_mut(first..first + mesh.local.len()) else {

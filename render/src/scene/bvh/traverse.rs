@@ -1,4 +1,4 @@
-//! CPU traversal of a [`Bvh`], the same loop as `shaders/common/bvh.wgsl`: a fixed stack,
+//! CPU traversal of a [`Bvh`], the same loop as `shaders/common/trace_bvh.wgsl`: a fixed stack,
 //! nearer child first, boxes re-checked against the shrinking t_max when popped. Used by the
 //! tests and by CPU-side queries (picking, checks).
 
@@ -136,7 +136,7 @@ fn triangle_hit(tris: &[[Vec3; 3]], i: u32, ray: &Ray, t_max: f32) -> Option<Hit
 }
 
 /// `1/dir` with components below 1e-30 replaced by ±1e-30 first, as `safe_inverse_dir` in
-/// `bvh.wgsl` does (WGSL leaves x/0 undefined). On the CPU it also matters: a ray parallel to
+/// `trace_bvh.wgsl` does (WGSL leaves x/0 undefined). On the CPU it also matters: a ray parallel to
 /// a slab and starting on its plane gives 0·1e30 = 0 (inside) instead of 0·∞ = NaN, which
 /// would miss a box the ray runs along (e.g. an axis-aligned ray through a vertex).
 fn safe_recip(dir: Vec3) -> Vec3 {

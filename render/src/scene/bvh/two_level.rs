@@ -3,7 +3,7 @@
 //! levels"): a bottom-level tree (BLAS) per instance — each animated mesh binding, plus one
 //! for every triangle that never moves — built once in the instance's own space, and a
 //! top-level tree (TLAS) over the instances' world boxes, rebuilt every frame. The renderer
-//! does not use it: the GPU traverses the single-level tree (shaders/common/bvh.wgsl).
+//! does not use it: the GPU traverses the single-level tree (shaders/common/trace_bvh.wgsl).
 
 use glam::{Mat4, Vec3};
 

@@ -237,5 +237,6 @@ fn scene_info(
         environment: None,
         extensions,
         camera_automatic: true,
+        accel: None,
     }
 }

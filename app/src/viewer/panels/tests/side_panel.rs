@@ -46,6 +46,7 @@ fn the_side_panel_keeps_its_width_whatever_it_shows() {
             ),
         }],
         camera_automatic: true,
+        accel: None,
     });
     s.camera.automatic = true;
     s.scene.effects = Some(restir_render::effects::EffectSet::all());

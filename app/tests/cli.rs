@@ -266,6 +266,9 @@ fn render_writes_exr_png_debug_views_and_stats() {
         "fallback_tried",
         "effects",
         "passes",
+        "driver",
+        "ray_backend",
+        "ray_query_available",
     ] {
         assert!(!json[key].is_null(), "stats JSON lacks {key}");
     }
@@ -608,4 +611,90 @@ fn render_stats_report_the_files_extensions_and_automatic_camera() {
             "npx @gltf-transform/cli copy",
         ],
     );
+}
+
+/// Issue 26: `--set ray_backend=ray-query` where the device has no ray queries (here: the
+/// device created without them, `RESTIR_NO_RAY_QUERY=1`) is one line; with them it renders
+/// and the stats name the backend; `bench-rays` measures both backends.
+#[test]
+fn ray_backends_are_named_refused_clearly_and_measured() {
+    let dir = temp_dir("rays");
+    let png = dir.join("rq.png");
+    let png_arg = png.to_str().unwrap();
+    let refused = std::process::Command::new(env!("CARGO_BIN_EXE_restir-viewer"))
+        .args([
+            "render",
+            "--scene",
+            "builtin:cornell",
+            "--size",
+            "16x12",
+            "--out",
+            png_arg,
+        ])
+        .args(["--set", "ray_backend=ray-query"])
+        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
+        .env("RESTIR_NO_RAY_QUERY", "1")
+        .output()
+        .unwrap();
+    assert_one_line_error(
+        &refused,
+        &[
+            "ray_backend=ray-query",
+            "ray queries",
+            "RESTIR_NO_RAY_QUERY=1",
+        ],
+    );
+    let stats = dir.join("rq.json");
+    let res = render(
+        "builtin:cornell",
+        &[
+            "--frames",
+            "2",
+            "--set",
+            "ray_backend=ray-query",
+            "--stats",
+            stats.to_str().unwrap(),
+        ],
+        &png,
+    );
+    assert!(
+        res.status.success(),
+        "this test needs ray queries (Mesa 25 lavapipe, README): {}",
+        String::from_utf8_lossy(&res.stderr)
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+    assert_eq!(json["ray_backend"], "ray-query");
+    assert_eq!(json["ray_query_available"], true);
+    let out = dir.join("bench");
+    let res = viewer(&[
+        "bench-rays",
+        "--scene",
+        "builtin:cornell",
+        "--size",
+        "16x12",
+        "--dispatches",
+        "2",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(
+        res.status.success(),
+        "{}",
+        String::from_utf8_lossy(&res.stderr)
+    );
+    let csv = std::fs::read_to_string(out.join("rays.csv")).unwrap();
+    for row in [
+        "software,shadow",
+        "software,closest-hit",
+        "ray-query,shadow",
+        "ray-query,closest-hit",
+    ] {
+        assert!(csv.contains(row), "rays.csv lacks {row}:\n{csv}");
+    }
+    // Every row counted rays (16 per surface pixel; most of the box's pixels see a surface).
+    for line in csv.lines().skip(1) {
+        let rays: u64 = line.split(',').nth(4).unwrap().parse().unwrap();
+        assert!(rays >= 16 * 16 * 12 / 2, "{line}");
+    }
 }

@@ -2,9 +2,10 @@
 //! multi-bounce path tracing existed: the one-bounce code path is kept as it was, and this
 //! test holds it to hashes of images rendered by the code before that change.
 //!
-//! Different GPUs round differently, so the bit-exact check applies on the adapter the
-//! hashes were recorded on (lavapipe, which CI runs); any other adapter is held to the
-//! recorded mean luminance within 1e-3 (rounding only: a changed estimator moves it more).
+//! Different GPUs round differently, so the bit-exact check applies on the drivers the
+//! hashes were recorded on (lavapipe of Mesa 22.3.6 and 25.0.7, which CI runs); any other
+//! adapter or driver is held to the recorded mean luminance within 1e-3 (rounding only: a
+//! changed estimator moves it more).
 
 mod common;
 
@@ -50,18 +51,35 @@ const RECORDED: [(bool, bool, u64, f64); 4] = [
     (true, true, 0x1f114b2f4cb507db, 0.379951183),
     (false, true, 0x9db7eca6f529cca8, 0.392878840),
 ];
+/// The same renders on Mesa 25.0.7's lavapipe (what CI installs since issue 26), recorded
+/// with the code of issue 26, which still reproduces every hash above on Mesa 22.3.6: the
+/// drivers round the environment's rays differently (same means to 9 digits), not the code.
+const RECORDED_MESA_25: [(bool, bool, u64, f64); 4] = [
+    (true, false, 0x536f12f620a5453f, 0.077168477),
+    (false, false, 0x2fad0947d678a818, 0.090204933),
+    (true, true, 0x5076fd1168ac1740, 0.379951183),
+    (false, true, 0xc5a06bac4686fdbd, 0.392878840),
+];
 const RECORDED_ON: &str = "llvmpipe (LLVM 15.0.6, 256 bits) (Vulkan)";
 
 #[test]
 fn one_bounce_reference_is_what_it_was_before_multi_bounce() {
     let adapter = common::gpu().adapter_name();
-    for (jitter, env, hash, mean) in RECORDED {
+    let driver = common::gpu().driver_info();
+    let recorded = if driver.contains("Mesa 25.0.7") {
+        RECORDED_MESA_25
+    } else {
+        RECORDED
+    };
+    for (jitter, env, hash, mean) in recorded {
         let img = render(jitter, env, &["max_bounces=1"]);
         let (got_hash, got_mean) = (image_hash(&img), img.mean_luminance());
         eprintln!(
-            "jitter={jitter} env={env}: hash {got_hash:016x} mean {got_mean:.9} on {adapter}"
+            "jitter={jitter} env={env}: hash {got_hash:016x} mean {got_mean:.9} on {adapter}, {driver}"
         );
-        if adapter == RECORDED_ON {
+        if adapter == RECORDED_ON
+            && (driver.contains("Mesa 22.3.6") || driver.contains("Mesa 25.0.7"))
+        {
             assert_eq!(
                 got_hash, hash,
                 "jitter={jitter} env={env}: the 1-bounce image changed"

@@ -123,7 +123,7 @@ fn markdown(args: &RayCostArgs, gpu: &Gpu, rates: &[RayRate], size: (u32, u32)) 
         }
     );
     md.push_str(
-        "| backend | rays | rays per dispatch | hit | ms per dispatch | Mrays/s | × software |\n",
+        "| backend | ray kind | rays per dispatch | hit | ms per dispatch | Mrays/s | × software |\n",
     );
     md.push_str("| --- | --- | --- | --- | --- | --- | --- |\n");
     for r in rates {
@@ -145,7 +145,7 @@ fn markdown(args: &RayCostArgs, gpu: &Gpu, rates: &[RayRate], size: (u32, u32)) 
 
 fn csv(args: &RayCostArgs, gpu: &Gpu, rates: &[RayRate]) -> String {
     let mut out = String::from(
-        "scene,size,backend,rays,rays_per_dispatch,hits,median_ms,mrays_per_second,dispatches,device,timing\n",
+        "scene,size,backend,ray_kind,rays_per_dispatch,hits,median_ms,mrays_per_second,dispatches,device,timing\n",
     );
     let timing = if gpu.is_cpu() {
         "cpu-wall-clock"

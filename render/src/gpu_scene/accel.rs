@@ -517,6 +517,29 @@ mod tests {
     }
 
     #[test]
+    fn mesh_transforms_place_every_moving_vertex_where_the_pose_put_it() {
+        for name in [
+            "builtin:dynamic:moving-occluder",
+            "builtin:dynamic:many-lights:16",
+        ] {
+            let mut scene = crate::scene::load_scene(name).unwrap();
+            scene.pose(1.3, crate::scene::animation::ClipChoice::All);
+            let anim = scene.animation.as_ref().unwrap();
+            let world = mesh_world_matrices(&scene);
+            for (m, mesh) in anim.meshes.iter().enumerate() {
+                for (i, v) in mesh.local.iter().enumerate() {
+                    let placed = world[m].transform_point3(v.position);
+                    let posed = scene.vertices[mesh.first as usize + i].position;
+                    assert!(
+                        (placed - posed).length() < 1e-5,
+                        "{name} mesh {m}: {placed} vs {posed}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
     fn the_map_sends_every_primitive_to_its_slot() {
         // Two instances of one BLAS (1 opaque + 1 tested) and the static one (2 opaque).
         let plans = [

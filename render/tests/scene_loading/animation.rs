@@ -88,7 +88,20 @@ fn check_animated(path: &std::path::Path) {
     // Rest pose as loaded: the quad's (1,0,0) corner sits at (1,1,0), the emission is off.
     assert_eq!(scene.vertices[1].position, Vec3::new(1.0, 1.0, 0.0));
     assert!(!scene.materials[0].is_emissive());
+    // The moving mesh's placement (the ray-query backend's instance transform) is recorded
+    // with the vertices: as loaded, and after a pose.
+    let placed_where_posed = |scene: &restir_render::Scene| {
+        let mesh = &anim.meshes[0];
+        let m = scene.mesh_transforms[0];
+        mesh.local.iter().enumerate().all(|(i, v)| {
+            (m.transform_point3(v.position) - scene.vertices[mesh.first as usize + i].position)
+                .length()
+                < 1e-5
+        })
+    };
+    assert!(placed_where_posed(&scene), "as loaded");
     let change = anim.pose(&mut scene, 1.5, ClipChoice::All);
+    assert!(placed_where_posed(&scene), "after a pose");
     assert!(change.geometry && change.lights);
     // Parent at x = 1.5 (LINEAR 0 → 2 over 2 s), child 1 m up.
     let corner = scene.vertices[1].position;

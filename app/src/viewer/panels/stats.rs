@@ -45,7 +45,7 @@ fn ray_backend(ui: &mut Ui, device: &crate::viewer::state::DeviceInfo) {
         RayBackend::Software => "software (BVH walked in WGSL)",
     };
     let available = if device.ray_query {
-        "this device also has the other (Pipeline → Ray tracing)"
+        "this device also has the other (Pipeline panel, Ray tracing)"
     } else {
         "no hardware ray queries on this device"
     };

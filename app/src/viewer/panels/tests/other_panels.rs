@@ -104,7 +104,10 @@ pub(super) fn with_reports(mut s: ViewerState) -> ViewerState {
         s.stats.push_frame_ms(50.0);
     }
     s.device.adapter = "llvmpipe (LLVM 15.0.6, 256 bits) (Vulkan)".into();
+    s.device.driver = "llvmpipe Mesa 25.0.7".into();
     s.device.is_cpu = true;
+    s.device.ray_query = true;
+    s.device.ray_backend = Some(restir_render::tracing::RayBackend::RayQuery);
     s
 }
 
@@ -115,6 +118,8 @@ fn the_stats_panel_summarises_reports() {
         with_reports(state()),
     );
     for text in [
+        "driver: llvmpipe Mesa 25.0.7",
+        "Rays: ray-query",
         "Frame 50.0 ms (20.0 fps)",
         "initial: 2.00 ms",
         "temporal 60.0 %",

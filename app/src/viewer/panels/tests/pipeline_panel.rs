@@ -152,3 +152,24 @@ fn initial_visibility_says_when_mis_visibility_traces_it_anyway() {
     let h = harness(panel, s);
     assert!(!shows(&h, note), "1/M has no MIS terms: no note");
 }
+
+#[test]
+fn the_ray_backend_says_what_runs_and_why_ray_queries_cannot() {
+    let panel = |ui: &mut egui::Ui, s: &mut ViewerState| {
+        ui.ctx().memory_mut(|m| m.set_everything_is_visible(true));
+        pipeline::ui(ui, s);
+    };
+    let mut s = state();
+    s.device.ray_query = true;
+    s.device.ray_backend = Some(restir_render::tracing::RayBackend::Software);
+    let h = harness(panel, s.clone());
+    assert!(shows(&h, "= software here"), "what auto chose is not shown");
+    // Forced on a device without them: the one-line refusal, and what renders instead.
+    s.device.ray_query = false;
+    s.settings.set_from_str("ray_backend", "ray-query").unwrap();
+    let h = harness(panel, s);
+    assert!(
+        shows(&h, "has no hardware ray queries") && shows(&h, "rendering with software"),
+        "the refusal is not shown"
+    );
+}

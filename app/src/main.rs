@@ -48,6 +48,8 @@ enum Command {
     BenchBvh(bench::bvh_cost::BvhCostArgs),
     /// Rays per second of each tracing backend (software BVH, hardware ray queries).
     BenchRays(bench::ray_cost::RayCostArgs),
+    /// How long each phase from file to first frame takes (load, upload, pipelines).
+    BenchLoad(bench::load_cost::LoadCostArgs),
 }
 
 fn main() {
@@ -64,6 +66,7 @@ fn main() {
         Some(Command::BenchEnv(a)) => bench::env_cost::run(a),
         Some(Command::BenchBvh(a)) => bench::bvh_cost::run(a),
         Some(Command::BenchRays(a)) => bench::ray_cost::run(a),
+        Some(Command::BenchLoad(a)) => bench::load_cost::run(a),
         Some(Command::Scenes) => {
             cli::params::print_scenes();
             Ok(())

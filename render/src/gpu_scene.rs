@@ -52,6 +52,10 @@ pub struct SceneInfo {
     pub bvh_nodes: usize,
     pub bvh_depth: usize,
     pub bvh_build_ms: f64,
+    /// The phases from file to uploaded scene (loader's, then upload's; `load_phases.rs`).
+    /// `render --stats` writes them, with the pipelines', as its own `load` block.
+    #[serde(skip)]
+    pub load: crate::load_phases::LoadPhases,
     pub bounds_min: [f32; 3],
     pub bounds_max: [f32; 3],
     /// The environment: name, size, strength, rotation, share of the light power and
@@ -210,6 +214,16 @@ impl GpuScene {
             });
         }
         let bvh_build_ms = start.elapsed().as_secs_f64() * 1e3;
+        // The loader's phases, then the upload's (load_phases.rs).
+        let mut load = scene.load_phases.clone();
+        let quiet = &crate::load_phases::unwatched;
+        load.record(
+            quiet,
+            "BVH build",
+            bvh_build_ms,
+            format!("{} triangles, {} nodes", positions.len(), bvh.nodes.len()),
+        );
+        let start = Instant::now();
         let (kept_materials, keep_punctual) = light_slots(scene);
         let lights = LightTable::build_with_slots(
             scene,
@@ -217,6 +231,13 @@ impl GpuScene {
             &kept_materials,
             keep_punctual,
         );
+        load.record(
+            quiet,
+            "light table",
+            start.elapsed().as_secs_f64() * 1e3,
+            format!("{} entries (alias table included)", lights.lights.len()),
+        );
+        let start = Instant::now();
         let (triangles, shading) = triangle_records(
             scene,
             &bvh.triangle_order,
@@ -276,10 +297,30 @@ impl GpuScene {
             layout: &layouts.software,
             entries: &entries,
         });
+        let texel_bytes = texels.len() * 4;
+        load.record(
+            quiet,
+            "records and upload",
+            start.elapsed().as_secs_f64() * 1e3,
+            format!(
+                "{} textures, {:.1} MiB of texels",
+                scene.textures.len(),
+                texel_bytes as f64 / (1 << 20) as f64
+            ),
+        );
+        let start = Instant::now();
         let accel = match &layouts.ray_query {
             Some(_) => Some(AccelStructures::build(gpu, scene, &bvh.triangle_order)?),
             None => None,
         };
+        if accel.is_some() {
+            load.record(
+                quiet,
+                "acceleration structures",
+                start.elapsed().as_secs_f64() * 1e3,
+                "ray-query BLAS and TLAS built".into(),
+            );
+        }
         let ray_query_groups = match (&accel, &layouts.ray_query) {
             (Some(accel), Some(rq_layout)) => accel
                 .tlas_pairs()
@@ -328,6 +369,7 @@ impl GpuScene {
             extensions: scene.extensions.clone(),
             camera_automatic: scene.camera_is_automatic(),
             accel: accel.as_ref().map(|a| a.info),
+            load,
         };
         let light_areas = if scene.animation.is_some() {
             light_areas(scene, &bvh.triangle_order, &lights)

@@ -137,79 +137,166 @@ fn walk_layers(origin: vec3<f32>, dir: vec3<f32>, first: Hit, kind: u32, max_lay
 }
 
 #ifdef TRANSPARENCY
-// One sample of the radiance a camera ray from `origin` along `dir` brings back, direct
-// light only: through the layers at random, the emission and the light (RIS) of the
-// surface it stops at, or the environment. For the share of a layer the primary surface
-// leaves out; `max_layers`: what is left of the ray's cap.
-fn add_radiance_along(walk: ptr<function, LayerWalk>, share: vec3<f32>, origin: vec3<f32>, dir: vec3<f32>, max_layers: u32, rng: ptr<function, u32>) {
-    var behind = walk_layers(origin, dir, trace_closest(Ray(origin, dir, FLT_MAX), true), WALK_GBUFFER_CAMERA, max_layers, rng);
-    var radiance = behind.in_front;
-    if behind.hit.t < 0.0 {
-#ifdef ENVIRONMENT
-        radiance += behind.weight * env_background(dir);
-#endif
-    } else {
-        let hs = hit_surface(behind.hit.triangle, behind.hit.u, behind.hit.v, behind.origin);
-        var direct = vec3<f32>(0.0);
-        behind.shadow_rays += add_layer_direct_light(WALK_GBUFFER_CAMERA, hit_shading_point(hs, -dir, hit_brdf(hs), 0.0), rng, &direct);
-        radiance += behind.weight * (emission_toward_viewer(hs) + direct);
-    }
-    (*walk).shadow_rays += behind.shadow_rays;
-    (*walk).in_front += (*walk).weight * share * radiance;
+// A light estimate the G-buffer's walk owes: `weight` × the direct light at `sp` (RIS).
+struct LightJob {
+    sp: ShadingPoint,
+    weight: vec3<f32>,
 }
+
+// The walk's state between steps (walk_to_primary).
+const STEP_PRIMARY: u32 = 0u;  // going on toward the primary surface
+const STEP_BEHIND: u32 = 1u;   // sampling, once, what passes a held layer
+const STEP_DONE: u32 = 2u;
 #endif
 
 // The G-buffer's walk (see the top of this file): from `first`, through transparent layers
 // without a random choice, to the pixel's primary surface. Its `weight` is what the primary
 // surface's shading is worth; `in_front` holds everything else, including the primary
 // layer's emission (the caller adds emission only for an opaque primary surface).
+//
+// Written as one loop of small steps with the light estimates queued and taken one per
+// step at a single call site: the drivers inline every call and unroll fixed-count loops,
+// so the nested form (a random walk behind a held layer, inside the layer loop, each layer
+// with two RIS estimates) grew to dozens of copies of RIS and traversal and took minutes to
+// compile on lavapipe. Behind a held layer, what passes is one `walk_layers`-style random
+// walk (stop at a layer with probability `solid`), ending in the emission and RIS light of
+// the surface it reaches, or the environment.
 fn walk_to_primary(origin: vec3<f32>, dir: vec3<f32>, first: Hit, rng: ptr<function, u32>) -> LayerWalk {
     var walk = LayerWalk(first, vec3<f32>(1.0), vec3<f32>(0.0), origin, 0u, WALK_GBUFFER_CAMERA);
 #ifdef TRANSPARENCY
-    for (var layer = 0u; layer < MAX_TRANSPARENT_LAYERS; layer++) {
-        if walk.hit.t < 0.0 || !is_transparent_triangle(walk.hit.triangle) {
-            return walk;
+    var jobs: array<LightJob, 2>;
+    var queued = 0u;
+    var step = STEP_PRIMARY;
+    var layer = 0u;
+    // The walk behind a held layer: its ray, how many layers it may still pass, whether it
+    // stopped at a layer (chosen as its surface), and what its light is worth.
+    var behind = LayerWalk(first, vec3<f32>(0.0), vec3<f32>(0.0), origin, 0u, WALK_GBUFFER_CAMERA);
+    var behind_left = 0u;
+    var behind_stopped = false;
+    // Each step queues at most two estimates and each estimate takes a step: the bound
+    // is never reached (8 layers ahead, 8 behind), it only makes termination evident.
+    for (var guard = 0u; guard < 8u * MAX_TRANSPARENT_LAYERS + 8u; guard++) {
+        if queued > 0u {
+            queued -= 1u;
+            let job = jobs[queued];
+            var reflected = vec3<f32>(0.0);
+            walk.shadow_rays += add_ris_direct_light(job.sp, LAYER_LIGHT_CANDIDATES, LAYER_BSDF_CANDIDATES, rng, &reflected);
+            walk.in_front += job.weight * reflected;
+            continue;
         }
-        let met = meet_layer(&walk, dir, rng);
-        let hs = met.hs;
-        let l = met.layer;
-        walk.in_front += walk.weight * emission_toward_viewer(hs);
-        let past = origin_past_layer(hs.position, walk.hit.triangle, dir);
-#ifdef PLANTED_RANDOM_LAYER_CHOICE
-        // Test only: the choice before, at random by solid, which a still view redraws every
-        // frame (the other share is then left to the choice, not sampled).
-        let hold = rand_f32(rng) < l.solid;
-        let held_share = 1.0;
-        let passed_share = l.pass_through / max(1.0 - l.solid, 1e-6);
-        let sample_other = false;
-#else
-        let hold = l.solid >= luminance(l.pass_through);
-        let held_share = l.solid;
-        let passed_share = l.pass_through;
-        let sample_other = true;
-#endif
-        if hold {
-            // The layer is the primary surface (ReSTIR shades its solid share); what passes
-            // is sampled once.
-            if sample_other && any(l.pass_through > vec3<f32>(0.0)) {
-                add_radiance_along(&walk, l.pass_through, past, dir, MAX_TRANSPARENT_LAYERS - layer - 1u, rng);
+        if step == STEP_DONE {
+            break;
+        }
+        if step == STEP_PRIMARY {
+            let transparent = walk.hit.t >= 0.0 && is_transparent_triangle(walk.hit.triangle);
+            if !transparent || layer >= MAX_TRANSPARENT_LAYERS {
+                if transparent {
+                    stop_at_cap(&walk);
+                }
+                step = STEP_DONE;
+                continue;
             }
-            walk.weight *= held_share;
-            return walk;
+            let hs = hit_surface(walk.hit.triangle, walk.hit.u, walk.hit.v, walk.origin);
+            let l = triangle_layer(walk.hit.triangle, walk.hit.u, walk.hit.v, dir);
+            queue_glass_reflection(&jobs, &queued, hs, l.glass, -dir, walk.weight);
+            walk.in_front += walk.weight * emission_toward_viewer(hs);
+            let past = origin_past_layer(hs.position, walk.hit.triangle, dir);
+#ifdef PLANTED_RANDOM_LAYER_CHOICE
+            // Test only: the choice before, at random by solid, which a still view redraws
+            // every frame (the other share is then left to the choice, not sampled).
+            let hold = rand_f32(rng) < l.solid;
+            let held_share = 1.0;
+            let passed_share = l.pass_through / max(1.0 - l.solid, 1e-6);
+            let sample_other = false;
+#else
+            let hold = l.solid >= luminance(l.pass_through);
+            let held_share = l.solid;
+            let passed_share = l.pass_through;
+            let sample_other = true;
+#endif
+            if hold {
+                // The layer is the primary surface (ReSTIR shades its solid share); what
+                // passes is sampled once, by the walk behind.
+                step = STEP_DONE;
+                if sample_other && any(l.pass_through > vec3<f32>(0.0)) {
+                    behind.origin = past;
+                    behind.hit = trace_closest(Ray(past, dir, FLT_MAX), true);
+                    behind.weight = walk.weight * l.pass_through;
+                    behind_left = MAX_TRANSPARENT_LAYERS - layer - 1u;
+                    step = STEP_BEHIND;
+                }
+                walk.weight *= held_share;
+                continue;
+            }
+            // What lies behind holds the primary surface; the layer's solid share is lit once.
+            if sample_other && l.solid > 0.0 {
+                jobs[queued] = LightJob(hit_shading_point(hs, -dir, hit_brdf(hs), 0.0), walk.weight * l.solid);
+                queued += 1u;
+            }
+            walk.weight *= passed_share;
+            if !any(walk.weight > vec3<f32>(0.0)) {
+                walk.hit.t = -1.0;
+                step = STEP_DONE;
+                continue;
+            }
+            walk.origin = past;
+            walk.hit = trace_closest(Ray(past, dir, FLT_MAX), true);
+            layer += 1u;
+            continue;
         }
-        // What lies behind holds the primary surface; the layer's solid share is lit once.
-        if sample_other && l.solid > 0.0 {
-            add_layer_light(&walk, hs, hit_brdf(hs), l.solid, -dir, rng);
+        // STEP_BEHIND: one layer of the random walk, or its end.
+        let at_layer = behind.hit.t >= 0.0 && is_transparent_triangle(behind.hit.triangle) && !behind_stopped;
+        if at_layer && behind_left == 0u {
+            stop_at_cap(&behind);
         }
-        walk.weight *= passed_share;
-        if !any(walk.weight > vec3<f32>(0.0)) {
-            walk.hit.t = -1.0;
-            return walk;
+        if !at_layer || behind_left == 0u {
+            step = STEP_DONE;
+            if behind.hit.t < 0.0 {
+#ifdef ENVIRONMENT
+                walk.in_front += behind.weight * env_background(dir);
+#endif
+            } else if any(behind.weight > vec3<f32>(0.0)) {
+                let hs = hit_surface(behind.hit.triangle, behind.hit.u, behind.hit.v, behind.origin);
+                walk.in_front += behind.weight * emission_toward_viewer(hs);
+                jobs[queued] = LightJob(hit_shading_point(hs, -dir, hit_brdf(hs), 0.0), behind.weight);
+                queued += 1u;
+            }
+            continue;
         }
-        walk.origin = past;
-        walk.hit = trace_closest(Ray(past, dir, FLT_MAX), true);
+        let hs = hit_surface(behind.hit.triangle, behind.hit.u, behind.hit.v, behind.origin);
+        let l = triangle_layer(behind.hit.triangle, behind.hit.u, behind.hit.v, dir);
+        queue_glass_reflection(&jobs, &queued, hs, l.glass, -dir, behind.weight);
+        if rand_f32(rng) < l.solid {
+            behind_stopped = true;  // this layer is the surface the walk reaches
+            continue;
+        }
+        walk.in_front += behind.weight * emission_toward_viewer(hs);
+        behind.weight *= l.pass_through / max(1.0 - l.solid, 1e-6);
+        if !any(behind.weight > vec3<f32>(0.0)) {
+            behind.hit.t = -1.0;
+            continue;
+        }
+        behind.origin = origin_past_layer(hs.position, behind.hit.triangle, dir);
+        behind.hit = trace_closest(Ray(behind.origin, dir, FLT_MAX), true);
+        behind_left -= 1u;
     }
-    stop_at_cap(&walk);
 #endif
     return walk;
 }
+
+#ifdef TRANSPARENCY
+// Queues what the glass share of a layer reflects (as `add_glass_reflection`, for the
+// G-buffer's walk): its specular lobe alone, worth `weight` × `glass`.
+fn queue_glass_reflection(jobs: ptr<function, array<LightJob, 2>>, queued: ptr<function, u32>, hs: HitSurface, glass: f32, wo: vec3<f32>, weight: vec3<f32>) {
+#ifdef SPECULAR
+#ifndef PLANTED_NO_FRESNEL
+    let m = eval_material(hs.material, hs.uv);
+    if glass > 0.0 && m.specular > 0.0 {
+        let lobe = make_brdf(vec3<f32>(0.0), 0.0, m.roughness, m.specular);
+        (*jobs)[*queued] = LightJob(hit_shading_point(hs, wo, lobe, 0.0), weight * glass);
+        *queued += 1u;
+    }
+#endif
+#endif
+}
+#endif

@@ -17,6 +17,7 @@ mod event_strip;
 mod events;
 /// The light-event rule (`event_frames`) is shared with the pixel history (probe.rs).
 pub(crate) mod lag;
+pub mod load_cost;
 mod markdown;
 mod plots;
 pub mod ray_cost;

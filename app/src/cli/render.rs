@@ -8,8 +8,9 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, bail};
 use clap::Args;
 use restir_render::gpu_scene::SceneUpdateTimes;
+use restir_render::load_phases::{LoadEvent, phase_line};
 use restir_render::view::auto_exposure_ev;
-use restir_render::{DebugView, Gpu, LinearImage, Renderer, ViewSettings, load_scene};
+use restir_render::{DebugView, Gpu, LinearImage, Renderer, ViewSettings, load_scene_watched};
 
 use super::render_job::Job;
 use super::render_loop::{Progress, SideRun};
@@ -145,7 +146,13 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     };
     let mut recorder = Recorder::start(&plan)?;
 
-    let mut loaded = load_scene(&job.scene)?;
+    // The phases print as they finish (the pipelines' after the first frame).
+    let print_phase = |e: LoadEvent| {
+        if let LoadEvent::Finished(p) = e {
+            eprintln!("{}", phase_line(p));
+        }
+    };
+    let mut loaded = load_scene_watched(&job.scene, &print_phase)?;
     job.env.apply(&mut loaded)?;
     check_comparable(&job, &args, loaded.animation.is_some())?;
     let gpu = Gpu::new_headless()?;
@@ -185,8 +192,21 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     let mut exposure = fixed_exposure;
     let mut history = Vec::new();
     let mut progress = Progress::new(args.frames);
+    let loader_phases = loaded.load_phases.phases.len();
+    for p in &left.renderer.scene_info().load.phases[loader_phases..] {
+        eprintln!("{}", phase_line(p));
+    }
     for frame in 0..args.frames {
         left.render(frame, &job, &args)?;
+        if frame == 0 {
+            let phases = left.renderer.load_phases();
+            for p in ["pipelines", "first frame"]
+                .iter()
+                .filter_map(|n| phases.get(n))
+            {
+                eprintln!("{}", phase_line(p));
+            }
+        }
         if let Some(r) = &mut right {
             r.render(frame, &job, &args)?;
         }

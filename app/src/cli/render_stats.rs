@@ -37,6 +37,13 @@ pub(super) struct SceneTimeStats {
     bvh_rebuild_ms: f64,
 }
 
+#[derive(Serialize)]
+struct LoadStats {
+    phases: Vec<restir_render::load_phases::Phase>,
+    total_ms: f64,
+    pipelines: Vec<restir_render::renderer::PipelineCompile>,
+}
+
 /// The `--stats` JSON document.
 #[derive(Serialize)]
 pub(super) struct StatsFile<'a> {
@@ -51,6 +58,9 @@ pub(super) struct StatsFile<'a> {
     ray_backend: Option<restir_render::tracing::RayBackend>,
     /// Whether the device could run the ray-query backend.
     ray_query_available: bool,
+    /// From file to first frame: each phase (loader, upload, the first frame's pipelines),
+    /// their total and every pipeline compiled (README "Load time").
+    load: LoadStats,
     mode: Mode,
     size: [u32; 2],
     /// The last frame's camera.
@@ -198,6 +208,14 @@ pub(super) fn side_stats(side: &Side) -> StatsFile<'_> {
         adapter_is_cpu: renderer.gpu().is_cpu(),
         ray_backend: renderer.last_ray_backend(),
         ray_query_available: renderer.gpu().ray_query,
+        load: {
+            let phases = renderer.load_phases();
+            LoadStats {
+                total_ms: phases.total_ms(),
+                phases: phases.phases,
+                pipelines: renderer.pipeline_compiles().to_vec(),
+            }
+        },
         mode: renderer.mode(),
         size: [renderer.size().0, height],
         camera: {

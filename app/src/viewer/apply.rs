@@ -83,6 +83,10 @@ pub fn after_frame(
     if state.scene.passes != renderer.last_passes() {
         state.scene.passes = renderer.last_passes().to_vec();
     }
+    // The pipelines phase joins after the scene's first frame.
+    if state.scene.load.phases.len() != renderer.load_phases().phases.len() {
+        state.scene.load = renderer.load_phases();
+    }
     // The environment's light share follows the `environment_share` setting.
     let share = renderer
         .scene_info()

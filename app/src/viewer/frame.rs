@@ -447,6 +447,7 @@ impl Viewer {
     /// environment (keeping scene and camera); a failed one keeps what there was and
     /// shows why.
     fn poll_loader(&mut self) {
+        self.state.scene.progress = self.loader.progress();
         let Some((spec, result)) = self.loader.poll() else {
             return;
         };

@@ -3,8 +3,11 @@
 //! ones meanwhile.
 
 use std::sync::mpsc::{Receiver, TryRecvError, channel};
+use std::sync::{Arc, Mutex};
 
-use restir_render::{Environment, Scene, load_environment, load_scene};
+use restir_render::load_phases::LoadEvent;
+
+use restir_render::{Environment, Scene, load_environment, load_scene_watched};
 
 /// What a background load produced.
 pub enum Loaded {
@@ -40,24 +43,61 @@ pub fn with_environment(scene: &Scene, env: Option<Environment>) -> Result<Scene
     })
 }
 
+/// Where a background load is: the phase running and, for a phase that counts (images),
+/// how far it is. The loader thread writes it, the Scene panel's progress bar reads it.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LoadProgress {
+    pub phase: String,
+    /// Done of total within the phase, 0..=1 (`None`: the phase does not count).
+    pub fraction: Option<f32>,
+    /// Phases finished so far.
+    pub finished: usize,
+}
+
+impl LoadProgress {
+    fn hear(&mut self, e: LoadEvent) {
+        match e {
+            LoadEvent::Started(name) => {
+                self.phase = name.to_string();
+                self.fraction = None;
+            }
+            LoadEvent::Progress { done, total, .. } => {
+                self.fraction = Some(done as f32 / total.max(1) as f32);
+            }
+            LoadEvent::Finished(_) => self.finished += 1,
+        }
+    }
+}
+
 #[derive(Default)]
 pub struct SceneLoader {
     pending: Option<(String, Receiver<Result<Loaded, String>>)>,
+    progress: Arc<Mutex<LoadProgress>>,
+}
+
+/// `load_scene`, telling `progress` as each phase begins, counts and ends.
+fn load_scene_with(spec: &str, progress: &Mutex<LoadProgress>) -> Result<Scene, String> {
+    let hear = |e: LoadEvent| {
+        if let Ok(mut p) = progress.lock() {
+            p.hear(e);
+        }
+    };
+    load_scene_watched(spec, &hear).map_err(|e| e.to_string())
 }
 
 impl SceneLoader {
     /// Starts loading the scene `spec`; a load already running is abandoned (its result
     /// dropped).
     pub fn start(&mut self, spec: String) {
-        self.start_with(spec, |s| {
-            load_scene(s)
-                .map(|s| Loaded::Scene(Box::new(s)))
-                .map_err(|e| e.to_string())
+        let progress = self.fresh_progress();
+        self.start_with(spec, move |s| {
+            load_scene_with(s, &progress).map(|s| Loaded::Scene(Box::new(s)))
         });
     }
 
     /// Starts loading the environment `spec` (.hdr, .exr or `builtin:sky`).
     pub fn start_environment(&mut self, spec: String) {
+        self.fresh_progress();
         self.start_with(spec, |s| {
             load_environment(s)
                 .map(Loaded::Environment)
@@ -68,8 +108,9 @@ impl SceneLoader {
     /// Starts loading a tour step's scene and its environment (`None`: none) together:
     /// one load, so neither abandons the other.
     pub fn start_with_environment(&mut self, spec: String, env: Option<String>) {
+        let progress = self.fresh_progress();
         let job = move |s: &str| {
-            let mut scene = load_scene(s).map_err(|e| e.to_string())?;
+            let mut scene = load_scene_with(s, &progress)?;
             if let Some(env) = &env {
                 let env = load_environment(env).map_err(|e| e.to_string())?;
                 scene.environment = Some(std::sync::Arc::new(env));
@@ -90,6 +131,20 @@ impl SceneLoader {
             let _ = tx.send(load(&job));
         });
         self.pending = Some((spec, rx));
+    }
+
+    /// A new progress record for a new load (an abandoned load keeps writing its own).
+    fn fresh_progress(&mut self) -> Arc<Mutex<LoadProgress>> {
+        self.progress = Arc::default();
+        self.progress.clone()
+    }
+
+    /// Where the running load is (default when none runs or it has not begun).
+    pub fn progress(&self) -> LoadProgress {
+        match &self.pending {
+            Some(_) => self.progress.lock().map(|p| p.clone()).unwrap_or_default(),
+            None => LoadProgress::default(),
+        }
     }
 
     pub fn loading(&self) -> Option<&str> {
@@ -113,6 +168,7 @@ impl SceneLoader {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use restir_render::load_scene;
 
     fn wait(loader: &mut SceneLoader) -> (String, Result<Loaded, String>) {
         for _ in 0..2000 {

@@ -229,6 +229,10 @@ pub struct SceneState {
     pub passes: Vec<&'static str>,
     /// A scene being loaded in the background.
     pub loading: Option<String>,
+    /// Where that load is (its phase and how far), for the progress bar.
+    pub progress: super::scene_loader::LoadProgress,
+    /// The current scene's load phases, file to first frame (`Renderer::load_phases`).
+    pub load: restir_render::load_phases::LoadPhases,
     /// The last load error (the old scene is kept).
     pub error: Option<String>,
     /// The path field of the Open row.

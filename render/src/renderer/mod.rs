@@ -10,6 +10,7 @@ mod bind_groups;
 mod comparison;
 pub mod frame_plan;
 mod inspect;
+mod pipelines;
 mod ray_bench;
 mod readback;
 mod record;
@@ -44,6 +45,10 @@ use crate::stats::FrameCounters;
 use crate::view::{Mode, ViewSettings};
 
 use bind_groups::BindGroupCache;
+pub use pipelines::PipelineCompile;
+
+/// What `Renderer::set_compile_watcher` takes: told as each pipeline compile finishes.
+pub type CompileWatcher = std::sync::Arc<dyn Fn(crate::load_phases::LoadEvent) + Send + Sync>;
 
 /// Largest output the renderer accepts (each side).
 pub const MAX_SIZE: u32 = 8192;
@@ -104,6 +109,15 @@ pub struct Renderer {
     last_final: Option<usize>,
     /// The effect set of the last frame (reused while its inputs stay the same).
     last_effects: Option<std::sync::Arc<record::ActiveEffects>>,
+    /// Every pipeline compiled so far and how long it took (`pipelines.rs`).
+    pipeline_compiles: Vec<pipelines::PipelineCompile>,
+    /// The first frame's pipelines as one load phase (`None` before the first frame).
+    first_frame_pipelines: Option<crate::load_phases::Phase>,
+    /// The scene's first frame, from recording to finished on the device, less the
+    /// pipelines' phase (`None` before it).
+    first_frame: Option<crate::load_phases::Phase>,
+    /// Hears pipeline compiles (headless `render` prints them, the viewer shows progress).
+    compile_watcher: Option<CompileWatcher>,
     last_passes: Vec<&'static str>,
     /// Radiance scale of the comparison image (1/N of an accumulated other side).
     comparison_scale: f32,
@@ -125,6 +139,25 @@ impl Renderer {
         &self.scene.info
     }
 
+    /// The phases from file to first frame: the loader's and the upload's (the scene's
+    /// info), then the first frame's pipelines once it has been rendered.
+    pub fn load_phases(&self) -> crate::load_phases::LoadPhases {
+        let mut phases = self.scene.info.load.clone();
+        phases.phases.extend(self.first_frame_pipelines.clone());
+        phases.phases.extend(self.first_frame.clone());
+        phases
+    }
+
+    /// Every pipeline compiled so far, with its compile time.
+    pub fn pipeline_compiles(&self) -> &[PipelineCompile] {
+        &self.pipeline_compiles
+    }
+
+    /// Who hears pipeline compiles from now on (`None`: nobody).
+    pub fn set_compile_watcher(&mut self, watcher: Option<CompileWatcher>) {
+        self.compile_watcher = watcher;
+    }
+
     pub fn scene_scale(&self) -> f32 {
         self.scene.scale
     }
@@ -137,6 +170,8 @@ impl Renderer {
     /// new scene's camera).
     pub fn set_scene(&mut self, scene: &Scene) -> anyhow::Result<()> {
         self.scene = GpuScene::upload(&self.gpu, scene, &self.layouts.scene)?;
+        self.first_frame_pipelines = None;
+        self.first_frame = None;
         self.features = SceneFeatures::of(scene);
         // The resolve group binds the scene's previous-triangle buffer.
         self.bind_groups.clear();

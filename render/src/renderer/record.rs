@@ -184,6 +184,7 @@ impl Renderer {
 
     /// Renders one frame with the current camera, mode, settings and view, and submits it.
     pub fn render_frame(&mut self) -> Result<(), GpuError> {
+        let frame_start = std::time::Instant::now();
         self.scene.begin_frame(&self.gpu);
         let settings = self.effective_settings();
         let camera = self.camera;
@@ -244,9 +245,22 @@ impl Renderer {
             self.bind_groups.clear();
         }
         let variant = self.variants.entry(key.to_string()).or_default();
-        for step in &plan {
-            variant.compile(&self.gpu, &self.layouts, defines, step.pass)?;
+        let missing = super::pipelines::missing(variant, plan.iter().map(|s| s.pass));
+        let compile_start = std::time::Instant::now();
+        let watch = self.compile_watcher.clone();
+        let compiled = super::pipelines::compile_all(
+            &self.gpu,
+            &self.layouts,
+            defines,
+            variant,
+            &missing,
+            &|e| watch.as_ref().map_or((), |w| w(e)),
+        )?;
+        if self.first_frame_pipelines.is_none() && !compiled.is_empty() {
+            let wall = compile_start.elapsed().as_secs_f64() * 1e3;
+            self.first_frame_pipelines = Some(super::pipelines::phase(&compiled, wall));
         }
+        self.pipeline_compiles.extend(compiled);
         let variant = &self.variants[key];
 
         self.accumulated_frames += 1;
@@ -331,6 +345,19 @@ impl Renderer {
             self.pending_inspections.insert(frame, c.into_pending());
         }
         self.gpu.check()?;
+        if self.first_frame.is_none() {
+            // The scene's first frame, waited for: a CPU driver (lavapipe) compiles its
+            // shaders at the first dispatch, not at pipeline creation, so on a cold shader
+            // cache this is where the compile time shows.
+            self.gpu.wait_idle();
+            let compiled_ms = self.first_frame_pipelines.as_ref().map_or(0.0, |p| p.ms);
+            let ms = frame_start.elapsed().as_secs_f64() * 1e3 - compiled_ms;
+            self.first_frame = Some(crate::load_phases::Phase {
+                name: "first frame",
+                ms,
+                detail: "recorded, run and waited for (lavapipe compiles its shaders here)".into(),
+            });
+        }
 
         // Hand over to the next frame.
         let final_reservoirs = resolved.finals.get(RESERVOIRS.name).copied();

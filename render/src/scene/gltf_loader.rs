@@ -19,13 +19,23 @@ use gltf::khr_lights_punctual::Kind;
 use super::animation::{CameraBinding, MeshBinding};
 use super::load::{SceneError, one_line, validate};
 use super::{Camera, Material, PunctualKind, PunctualLight, Scene};
+use crate::load_phases::{LoadPhases, Watcher, unwatched};
 use extensions::{ExtensionStatus, ExtensionUse};
 use primitives::{PrimitiveId, append_primitive};
 
 /// Load a .gltf or .glb file. The returned scene has passed `load::validate`.
 pub fn load_gltf(path: &Path) -> Result<Scene, SceneError> {
+    load_gltf_watched(path, &unwatched)
+}
+
+/// As `load_gltf`, timing each phase (in the scene's `load_phases`) and telling `watch`.
+pub fn load_gltf_watched(path: &Path, watch: Watcher) -> Result<Scene, SceneError> {
     let file = path.display().to_string();
-    let mut scene = match catch_unwind(AssertUnwindSafe(|| load_unvalidated(path, &file))) {
+    let mut phases = LoadPhases::default();
+    let loaded = catch_unwind(AssertUnwindSafe(|| {
+        load_unvalidated(path, &file, &mut phases, watch)
+    }));
+    let mut scene = match loaded {
         Ok(result) => result?,
         Err(payload) => {
             let detail = payload
@@ -39,11 +49,19 @@ pub fn load_gltf(path: &Path) -> Result<Scene, SceneError> {
             });
         }
     };
-    validate(&mut scene, &file)?;
+    phases.try_time(watch, "validate", || {
+        validate(&mut scene, &file).map(|()| ((), String::new()))
+    })?;
+    scene.load_phases = phases;
     Ok(scene)
 }
 
-fn load_unvalidated(path: &Path, file: &str) -> Result<Scene, SceneError> {
+fn load_unvalidated(
+    path: &Path,
+    file: &str,
+    phases: &mut LoadPhases,
+    watch: Watcher,
+) -> Result<Scene, SceneError> {
     let extension = path
         .extension()
         .and_then(|e| e.to_str())
@@ -54,36 +72,59 @@ fn load_unvalidated(path: &Path, file: &str) -> Result<Scene, SceneError> {
             detail: "expected a .gltf or .glb file".to_string(),
         });
     }
-    let bytes = std::fs::read(path).map_err(|source| SceneError::Io {
-        file: file.to_string(),
-        what: "the file".to_string(),
-        error: source,
-    })?;
-    let (gltf::Gltf { document, blob }, pointers, extensions) = open_document(file, &bytes)?;
+    let (document, blob, pointers, extensions) =
+        phases.try_time(watch, "read and parse", || {
+            let bytes = std::fs::read(path).map_err(|source| SceneError::Io {
+                file: file.to_string(),
+                what: "the file".to_string(),
+                error: source,
+            })?;
+            let (gltf::Gltf { document, blob }, pointers, extensions) =
+                open_document(file, &bytes)?;
+            let detail = format!("{} bytes", bytes.len());
+            Ok(((document, blob, pointers, extensions), detail))
+        })?;
     let base = path.parent().unwrap_or(Path::new("."));
-    let buffers = data::load_buffers(file, &document, base, blob)?;
+    let buffers = phases.try_time(watch, "buffers", || {
+        let buffers = data::load_buffers(file, &document, base, blob)?;
+        let bytes: usize = buffers.iter().map(Vec::len).sum();
+        let detail = format!("{} buffers, {bytes} bytes", buffers.len());
+        Ok((buffers, detail))
+    })?;
+    let materials = materials::load_materials(file, &document);
+    let textures = phases.try_time(watch, "images", || {
+        materials::load_textures(file, &document, base, &buffers, &materials, watch)
+    })?;
 
     let mut scene = Scene {
         name: path
             .file_name()
             .map_or_else(|| file.to_string(), |n| n.to_string_lossy().into_owned()),
-        materials: materials::load_materials(file, &document),
-        textures: materials::load_textures(file, &document, base, &buffers)?,
+        materials,
+        textures,
         extensions,
         ..Scene::default()
     };
-    let mut walker = Walker {
-        file,
-        buffers: &buffers,
-        scene: &mut scene,
-        default_material: None,
-        moving: animations::moving_nodes(&document),
-        records: animations::Records::default(),
-    };
-    walker.walk(&document)?;
-    let records = std::mem::take(&mut walker.records);
-    warn_rest_pose_only(file, &document);
-    scene.animation = animations::build(file, &document, &buffers, &pointers, records, &scene)?;
+    phases.try_time(watch, "geometry", || {
+        let mut walker = Walker {
+            file,
+            buffers: &buffers,
+            scene: &mut scene,
+            default_material: None,
+            moving: animations::moving_nodes(&document),
+            records: animations::Records::default(),
+        };
+        walker.walk(&document)?;
+        let records = std::mem::take(&mut walker.records);
+        warn_rest_pose_only(file, &document);
+        scene.animation = animations::build(file, &document, &buffers, &pointers, records, &scene)?;
+        let detail = format!(
+            "{} triangles, {} vertices",
+            scene.triangles.len(),
+            scene.vertices.len()
+        );
+        Ok(((), detail))
+    })?;
     Ok(scene)
 }
 

@@ -178,11 +178,14 @@ fn mean_linear_colour(texture: &Texture) -> Vec3 {
     if texture.texels.is_empty() {
         return Vec3::ZERO;
     }
+    // A 256-entry table: `powf` per channel of a 2048² texture was most of a model's
+    // light-table time (issue 28); the table holds the same f64 values.
+    let linear: [f64; 256] = std::array::from_fn(|c| srgb_to_linear(c as u8));
     let sum = texture.texels.iter().fold(DVec3::ZERO, |acc, t| {
         acc + DVec3::new(
-            srgb_to_linear(t[0]),
-            srgb_to_linear(t[1]),
-            srgb_to_linear(t[2]),
+            linear[t[0] as usize],
+            linear[t[1] as usize],
+            linear[t[2] as usize],
         )
     });
     (sum / texture.texels.len() as f64).as_vec3()

@@ -7,6 +7,7 @@ use std::path::Path;
 use glam::{Vec2, Vec3};
 
 use super::{Scene, builtin, gltf_loader};
+use crate::load_phases::{LoadPhases, Watcher, unwatched};
 
 /// Why a scene could not be loaded. `Display` is one line that starts with the file (as given)
 /// or the built-in name, then says what is wrong, e.g.
@@ -63,13 +64,28 @@ pub(crate) fn one_line(text: impl Into<String>) -> String {
 
 /// Load `builtin:NAME` (see `builtin::builtin_names`) or a .gltf/.glb file.
 pub fn load_scene(spec: &str) -> Result<Scene, SceneError> {
+    load_scene_watched(spec, &unwatched)
+}
+
+/// As `load_scene`, telling `watch` as each phase begins and ends; the phases are in the
+/// scene's `load_phases`.
+pub fn load_scene_watched(spec: &str, watch: Watcher) -> Result<Scene, SceneError> {
     if let Some(name) = spec.strip_prefix("builtin:") {
-        let mut scene = builtin::builtin_scene(name)?;
-        validate(&mut scene, spec)?;
+        let mut phases = LoadPhases::default();
+        let mut scene = phases.try_time(watch, "build", || {
+            builtin::builtin_scene(name).map(|s| {
+                let detail = format!("{} triangles", s.triangles.len());
+                (s, detail)
+            })
+        })?;
+        phases.try_time(watch, "validate", || {
+            validate(&mut scene, spec).map(|()| ((), String::new()))
+        })?;
+        scene.load_phases = phases;
         Ok(scene)
     } else {
         // load_gltf validates too: it is public and must not return unchecked scenes.
-        gltf_loader::load_gltf(Path::new(spec))
+        gltf_loader::load_gltf_watched(Path::new(spec), watch)
     }
 }
 

@@ -13,7 +13,7 @@ mod uv_transform;
 
 pub use camera::Camera;
 pub use gltf_loader::extensions::{ExtensionStatus, ExtensionUse};
-pub use load::load_scene;
+pub use load::{load_scene, load_scene_watched};
 
 use glam::{Vec2, Vec3, Vec4};
 
@@ -39,6 +39,8 @@ pub struct Scene {
     pub mesh_transforms: Vec<glam::Mat4>,
     /// What the loader did with each extension the file lists (empty for built-ins).
     pub extensions: Vec<ExtensionUse>,
+    /// How long the loader's phases took (`load_phases.rs`; the upload adds its own).
+    pub load_phases: crate::load_phases::LoadPhases,
 }
 
 /// A world-space vertex. `normal` is zero when the source had none: shaders then use the

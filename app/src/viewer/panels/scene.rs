@@ -54,6 +54,7 @@ pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
             ],
         );
         extensions(ui, &info.extensions);
+        load_phases(ui, &scene.load);
     }
     let mut pick = None;
     egui::ComboBox::from_label("Built-in scene")
@@ -124,13 +125,43 @@ fn builtin_label(spec: &str) -> &str {
     }
 }
 
+/// How long each phase from file to first frame took (`bench-load` prints the same).
+fn load_phases(ui: &mut Ui, load: &restir_render::load_phases::LoadPhases) {
+    if load.phases.is_empty() {
+        return;
+    }
+    let title = format!("Load phases ({:.1} s)", load.total_ms() / 1e3);
+    egui::CollapsingHeader::new(title)
+        .id_salt("load phases")
+        .show(ui, |ui| {
+            egui::Grid::new("load phase grid")
+                .num_columns(2)
+                .striped(true)
+                .show(ui, |ui| {
+                    for p in &load.phases {
+                        ui.label(p.name);
+                        ui.label(format!("{:.0} ms", p.ms)).on_hover_text(&p.detail);
+                        ui.end_row();
+                    }
+                });
+        });
+}
+
 fn status(ui: &mut Ui, state: &ViewerState) {
     if let Some(loading) = &state.scene.loading {
-        ui.horizontal(|ui| {
-            ui.spinner();
-            ui.label("loading…");
-        });
+        let progress = &state.scene.progress;
+        let phase = if progress.phase.is_empty() {
+            "starting".to_string()
+        } else {
+            progress.phase.clone()
+        };
+        // The phase's own count where it has one (images), else the phases done.
+        let bar = egui::ProgressBar::new(progress.fraction.unwrap_or(0.0))
+            .text(format!("loading: {phase}"))
+            .animate(progress.fraction.is_none());
+        ui.add(bar);
         ui.weak(loading);
+        ui.weak("The current scene stays interactive until the new one is ready.");
     }
     if let Some(error) = &state.scene.error {
         ui.colored_label(

@@ -9,6 +9,7 @@ use gltf::texture::WrappingMode;
 use super::super::load::{SceneError, one_line};
 use super::super::{AlphaMode, Material, Texture, TextureRef, UvTransform, Wrap};
 use super::data;
+use crate::load_phases::{LoadEvent, Watcher};
 
 /// Every material of the document, in order. Normal and occlusion textures are ignored: this
 /// renderer shades with vertex normals and computes its own visibility.
@@ -105,38 +106,125 @@ fn warn_on_disagreeing_uv_sets(file: &str, material: &Material) {
     }
 }
 
-/// Every texture of the document decoded to RGBA8. Each image is decoded once even when
-/// several textures (with different samplers) share it.
+/// Every texture of the document, the ones a material slot reads decoded to RGBA8 (in
+/// parallel, one image per thread at a time; each image once even when several textures
+/// share it). A texture no slot reads (normal and occlusion maps: see `load_materials`) is
+/// not decoded: it stays in the list as one white texel, so texture indices keep matching
+/// the file's. Returns the textures and the phase's detail line.
 pub(super) fn load_textures(
     file: &str,
     doc: &gltf::Document,
     base: &Path,
     buffers: &[Vec<u8>],
-) -> Result<Vec<Texture>, SceneError> {
-    let mut decoded: Vec<Option<::image::RgbaImage>> = vec![None; doc.images().len()];
+    materials: &[Material],
+    watch: Watcher,
+) -> Result<(Vec<Texture>, String), SceneError> {
+    let mut read = vec![false; doc.textures().len()];
+    for m in materials {
+        for r in m.texture_slots().into_iter().filter_map(|(_, r)| r) {
+            if let Some(flag) = read.get_mut(r.texture as usize) {
+                *flag = true;
+            }
+        }
+    }
+    let mut wanted: Vec<gltf::Image> = Vec::new();
+    for texture in doc.textures().filter(|t| read[t.index()]) {
+        let image = texture.source();
+        if !wanted.iter().any(|w| w.index() == image.index()) {
+            wanted.push(image);
+        }
+    }
+    let threads = std::thread::available_parallelism()
+        .map_or(1, |n| n.get())
+        .min(wanted.len())
+        .max(1);
+    let decoded = decode_in_parallel(&wanted, threads, watch, |image| {
+        decode_image(file, image, base, buffers)
+    })?;
+    let by_index = |i: usize| {
+        wanted
+            .iter()
+            .position(|w| w.index() == i)
+            .map(|k| &decoded[k])
+    };
     let mut textures = Vec::new();
     for texture in doc.textures() {
         let image = texture.source();
-        let slot = &mut decoded[image.index()];
-        if slot.is_none() {
-            *slot = Some(decode_image(file, &image, base, buffers)?);
-        }
-        let rgba = slot.as_ref().expect("decoded just above");
         let sampler = texture.sampler();
         let name = texture
             .name()
             .or(image.name())
             .map_or_else(|| format!("texture {}", texture.index()), str::to_string);
+        let (width, height, texels) =
+            match by_index(image.index()).filter(|_| read[texture.index()]) {
+                Some(rgba) => (
+                    rgba.width(),
+                    rgba.height(),
+                    rgba.pixels().map(|p| p.0).collect(),
+                ),
+                None => (1, 1, vec![[255; 4]]),
+            };
         textures.push(Texture {
             name,
-            width: rgba.width(),
-            height: rgba.height(),
-            texels: rgba.pixels().map(|p| p.0).collect(),
+            width,
+            height,
+            texels,
             wrap_u: wrap(sampler.wrap_s()),
             wrap_v: wrap(sampler.wrap_t()),
         });
     }
-    Ok(textures)
+    let largest = decoded
+        .iter()
+        .max_by_key(|i| i.width() as u64 * i.height() as u64)
+        .map_or_else(String::new, |i| {
+            format!(", {}×{} largest", i.width(), i.height())
+        });
+    let skipped = doc.images().len() - wanted.len();
+    let detail = format!(
+        "{} decoded{largest}, {skipped} not read by any material skipped, {threads} threads",
+        wanted.len()
+    );
+    Ok((textures, detail))
+}
+
+/// `decode` applied to every item on `threads` threads, results in item order; the first
+/// error (by item order) wins. Tells `watch` as each finishes.
+fn decode_in_parallel<T: Sync, R: Send>(
+    items: &[T],
+    threads: usize,
+    watch: Watcher,
+    decode: impl Fn(&T) -> Result<R, SceneError> + Sync,
+) -> Result<Vec<R>, SceneError> {
+    use std::sync::Mutex;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    let next = AtomicUsize::new(0);
+    let done = AtomicUsize::new(0);
+    let results: Mutex<Vec<Option<Result<R, SceneError>>>> =
+        Mutex::new((0..items.len()).map(|_| None).collect());
+    std::thread::scope(|scope| {
+        for _ in 0..threads {
+            scope.spawn(|| {
+                loop {
+                    let i = next.fetch_add(1, Ordering::Relaxed);
+                    let Some(item) = items.get(i) else { break };
+                    let result = decode(item);
+                    results.lock().expect("no decoder panics holding it")[i] = Some(result);
+                    let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
+                    watch(LoadEvent::Progress {
+                        phase: "images",
+                        done: finished,
+                        total: items.len(),
+                    });
+                }
+            });
+        }
+    });
+    results
+        .into_inner()
+        .expect("no decoder panics holding it")
+        .into_iter()
+        .map(|r| r.expect("every item is decoded"))
+        .collect()
 }
 
 fn wrap(mode: WrappingMode) -> Wrap {

@@ -195,6 +195,48 @@ fn the_scene_panel_lists_the_files_extensions() {
     assert!(!shows(&harness(scene::ui, s), "glTF extensions"));
 }
 
+/// Issue 28: the phases from file to first frame, and a load's phase on its progress bar.
+#[test]
+fn the_scene_panel_lists_load_phases_and_shows_a_loads_progress() {
+    use restir_render::load_phases::{LoadPhases, Phase};
+    let mut s = state();
+    s.scene.info = Some(scene_info(Vec::new()));
+    s.scene.load = LoadPhases {
+        phases: vec![
+            Phase {
+                name: "images",
+                ms: 812.0,
+                detail: "13 decoded".into(),
+            },
+            Phase {
+                name: "pipelines",
+                ms: 4200.0,
+                detail: "17 compiled".into(),
+            },
+        ],
+    };
+    s.scene.loading = Some("lamp.gltf".into());
+    s.scene.progress.phase = "images".into();
+    s.scene.progress.fraction = Some(0.5);
+    let h = harness(
+        |ui: &mut egui::Ui, s: &mut ViewerState| {
+            ui.ctx().memory_mut(|m| m.set_everything_is_visible(true));
+            scene::ui(ui, s);
+        },
+        s,
+    );
+    for text in [
+        "Load phases (5.0 s)",
+        "images",
+        "812 ms",
+        "4200 ms",
+        "loading: images",
+        "stays interactive",
+    ] {
+        assert!(shows(&h, text), "{text} is not shown");
+    }
+}
+
 #[test]
 fn the_camera_panel_says_when_the_camera_was_chosen_automatically() {
     let mut s = state();
@@ -237,6 +279,7 @@ fn scene_info(
         bvh_nodes: 1,
         bvh_depth: 1,
         bvh_build_ms: 0.1,
+        load: Default::default(),
         bounds_min: [0.0; 3],
         bounds_max: [1.0; 3],
         environment: None,

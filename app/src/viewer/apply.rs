@@ -84,7 +84,7 @@ pub fn after_frame(
         state.scene.passes = renderer.last_passes().to_vec();
     }
     // The pipelines phase joins after the scene's first frame.
-    if state.scene.load.phases.len() != renderer.load_phases().phases.len() {
+    if state.scene.load.phases.len() != renderer.load_phase_count() {
         state.scene.load = renderer.load_phases();
     }
     // The environment's light share follows the `environment_share` setting.

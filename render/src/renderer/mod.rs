@@ -148,6 +148,13 @@ impl Renderer {
         phases
     }
 
+    /// How many phases `load_phases` has (cheap: the viewer polls it every frame).
+    pub fn load_phase_count(&self) -> usize {
+        self.scene.info.load.phases.len()
+            + self.first_frame_pipelines.is_some() as usize
+            + self.first_frame.is_some() as usize
+    }
+
     /// Every pipeline compiled so far, with its compile time.
     pub fn pipeline_compiles(&self) -> &[PipelineCompile] {
         &self.pipeline_compiles

@@ -31,17 +31,12 @@ enum Compiled {
 }
 
 /// The passes of `plan` that `variant` has not compiled, each once.
-pub(super) fn missing<'p>(
+pub(super) fn missing(
     variant: &PipelineVariant,
-    plan: impl IntoIterator<Item = &'p PassDef>,
+    plan: impl IntoIterator<Item = &'static PassDef>,
 ) -> Vec<&'static PassDef> {
     let mut out: Vec<&'static PassDef> = Vec::new();
     for pass in plan {
-        let pass: &'static PassDef = crate::passes::ALL
-            .iter()
-            .copied()
-            .find(|p| p.name == pass.name)
-            .expect("every planned pass is in passes::ALL");
         let have = if pass.dispatch == Dispatch::Raster {
             variant.raster.is_some()
         } else {

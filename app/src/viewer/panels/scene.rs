@@ -161,7 +161,7 @@ fn status(ui: &mut Ui, state: &ViewerState) {
             .animate(progress.fraction.is_none());
         ui.add(bar);
         ui.weak(loading);
-        ui.weak("The current scene stays interactive until the new one is ready.");
+        ui.weak("The current scene stays interactive while the file loads.");
     }
     if let Some(error) = &state.scene.error {
         ui.colored_label(

@@ -231,7 +231,7 @@ fn the_scene_panel_lists_load_phases_and_shows_a_loads_progress() {
         "812 ms",
         "4200 ms",
         "loading: images",
-        "stays interactive",
+        "stays interactive while the file loads",
     ] {
         assert!(shows(&h, text), "{text} is not shown");
     }

@@ -698,3 +698,67 @@ fn ray_backends_are_named_refused_clearly_and_measured() {
         assert!(rays >= 16 * 16 * 12 / 2, "{line}");
     }
 }
+
+/// Issue 28: `bench-load` prints and writes each phase from file to first frame, and
+/// `render --stats` has the same phases in its `load` block.
+#[test]
+fn load_phases_are_printed_written_and_in_the_stats() {
+    let dir = temp_dir("load");
+    let csv = dir.join("load.csv");
+    let res = viewer(&[
+        "bench-load",
+        "builtin:cornell",
+        "--size",
+        "16x12",
+        "--csv",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(
+        res.status.success(),
+        "{}",
+        String::from_utf8_lossy(&res.stderr)
+    );
+    let text = std::fs::read_to_string(&csv).unwrap();
+    for phase in [
+        "build",
+        "validate",
+        "BVH build",
+        "light table",
+        "pipelines",
+        "first frame",
+    ] {
+        assert!(
+            text.contains(&format!(",{phase},")),
+            "load.csv lacks {phase}:\n{text}"
+        );
+    }
+    assert!(String::from_utf8_lossy(&res.stdout).contains("| pipelines |"));
+    let png = dir.join("x.png");
+    let stats = dir.join("x.json");
+    let res = render(
+        "builtin:cornell",
+        &["--frames", "2", "--stats", stats.to_str().unwrap()],
+        &png,
+    );
+    assert!(
+        res.status.success(),
+        "{}",
+        String::from_utf8_lossy(&res.stderr)
+    );
+    assert!(
+        String::from_utf8_lossy(&res.stderr).contains("BVH build"),
+        "render prints the phases as they finish"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+    let names: Vec<&str> = json["load"]["phases"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names.first(), Some(&"build"));
+    assert_eq!(names.last(), Some(&"first frame"));
+    assert!(json["load"]["total_ms"].as_f64().unwrap() > 0.0);
+    assert!(!json["load"]["pipelines"].as_array().unwrap().is_empty());
+}

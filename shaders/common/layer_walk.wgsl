@@ -10,8 +10,8 @@
 //   larger of a layer's two shares, solid or passing (by luminance), holds the pixel's
 //   primary surface, shaded by ReSTIR; the other is estimated once per frame without
 //   reuse: the layer's solid share lit where it is, or what lies behind it seen through a
-//   `walk_layers` ray. Clear glass (solid 0) and cut-out texels are passed, fully covered
-//   texels hold.
+//   random walk like `walk_layers`'. Clear glass (solid 0) and cut-out texels are passed,
+//   fully covered texels hold.
 //
 // Camera rays also collect what each layer's glass share reflects: direct light off its
 // specular lobe, estimated the same way per layer, whichever way the walk goes (the glass

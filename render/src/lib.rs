@@ -28,7 +28,7 @@ pub mod view;
 pub use environment::{Environment, load_environment};
 pub use gpu::{Gpu, GpuError};
 pub use image::LinearImage;
-pub use renderer::Renderer;
+pub use renderer::{PipelineCompile, PreparedScene, Renderer, ScenePreparer};
 pub use scene::{Camera, Scene, load_scene, load_scene_watched};
 pub use settings::Settings;
 pub use view::{DebugView, Mode, Tonemapper, ViewSettings};

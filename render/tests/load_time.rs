@@ -153,3 +153,101 @@ fn a_real_models_load_phases_are_timed_and_unread_images_are_not_decoded() {
         );
     }
 }
+
+mod common;
+
+use restir_render::load_phases::LoadEvent;
+use restir_render::{Mode, PipelineCompile, Renderer, Settings, load_scene};
+
+/// The viewer's scene swap: `scene` prepared by `preparer` (uploaded, pipelines warmed on
+/// a second device), shown, then a still and a moved frame. Returns what the warm-up
+/// compiled and what the renderer's own device compiled for those two frames.
+fn swap_and_compile(
+    main: &mut Renderer,
+    preparer: restir_render::ScenePreparer,
+    scene: &restir_render::Scene,
+) -> (Vec<PipelineCompile>, Vec<PipelineCompile>) {
+    let heard = std::sync::Mutex::new(Vec::new());
+    let watch = |e: LoadEvent| match e {
+        LoadEvent::Started(n) => heard.lock().unwrap().push(format!("start {n}")),
+        LoadEvent::Finished(p) => heard.lock().unwrap().push(format!("end {}", p.name)),
+        LoadEvent::Progress { .. } => {}
+    };
+    let mut prepared = preparer.prepare(scene, &watch).unwrap();
+    prepared.finish_warm_up();
+    let heard = heard.into_inner().unwrap();
+    for step in [
+        "start upload",
+        "end BVH build",
+        "start warm-up",
+        "end warm-up",
+    ] {
+        assert!(
+            heard.iter().any(|h| h == step),
+            "{step} not heard: {heard:?}"
+        );
+    }
+    let warm_up = prepared.load_phases().get("warm-up").unwrap();
+    assert!(
+        warm_up.detail.contains("pipelines compiled and run once"),
+        "{}",
+        warm_up.detail
+    );
+    let warmed = prepared.warmed().to_vec();
+    let before = main.pipeline_compiles().len();
+    main.set_prepared_scene(prepared);
+    main.render_frame().unwrap();
+    let mut camera = main.camera();
+    camera.position += camera.forward() * (0.01 * main.scene_scale());
+    main.set_camera(camera);
+    main.render_frame().unwrap();
+    assert_eq!(main.read_radiance().non_finite_count(), 0);
+    (warmed, main.pipeline_compiles()[before..].to_vec())
+}
+
+fn covered(warmed: &[PipelineCompile], c: &PipelineCompile) -> bool {
+    warmed
+        .iter()
+        .any(|w| w.pass == c.pass && w.variant == c.variant)
+}
+
+/// The background preparation compiles (on its second device) every pipeline the new
+/// scene's first frames then need on the renderer's device, in the renderer's mode,
+/// settings and view: so the driver's shader cache has them when the window asks. Planted
+/// twin: a preparer taken while the renderer was in another mode warms the wrong variants,
+/// and the check sees pipelines it missed.
+#[test]
+fn the_warm_up_compiles_every_pipeline_the_first_frames_need() {
+    // No frame before the swap: the renderer compiles pipelines once per variant, so
+    // everything it compiles afterwards is for the new scene.
+    let fresh = || {
+        common::renderer(
+            "builtin:plane-light",
+            24,
+            16,
+            Mode::Restir,
+            Settings::default(),
+        )
+    };
+    let mut main = fresh();
+    let scene = load_scene("builtin:cornell").unwrap();
+
+    let preparer = main.preparer();
+    let (warmed, compiled) = swap_and_compile(&mut main, preparer, &scene);
+    // The renderer's device compiles for itself (the driver's cache makes that quick), so
+    // there is something to cover; and the warm-up covered all of it.
+    assert!(!compiled.is_empty());
+    let missed: Vec<_> = compiled.iter().filter(|c| !covered(&warmed, c)).collect();
+    assert!(missed.is_empty(), "not warmed: {missed:?}");
+
+    // Planted: warmed for the reference, shown in restir.
+    let mut main = fresh();
+    main.set_mode(Mode::Reference);
+    let stale = main.preparer();
+    main.set_mode(Mode::Restir);
+    let (warmed, compiled) = swap_and_compile(&mut main, stale, &scene);
+    assert!(
+        compiled.iter().any(|c| !covered(&warmed, c)),
+        "a warm-up of the wrong mode went unnoticed"
+    );
+}

@@ -1,7 +1,8 @@
 //! `bench-load FILE`: how long each phase from file to first frame takes (issue 28): the
 //! loader's (read, buffers, images, geometry), the upload's (BVH, light table, GPU
 //! buffers, acceleration structures) and the first frame's pipelines. Prints the phases as
-//! they finish, then a Markdown table; `--csv` writes them. Never a timing assertion.
+//! they finish, then a Markdown table; `--csv` writes them; `--prepare` loads as the
+//! viewer does (pipelines warmed on a second device first). Never a timing assertion.
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -22,6 +23,10 @@ pub struct LoadCostArgs {
     /// Pipeline parameters, NAME=VALUE (as `render --set`).
     #[arg(long = "set", value_name = "NAME=VALUE")]
     pub set: Vec<String>,
+    /// Load as the viewer does: upload, then warm the first frames' pipelines on a second
+    /// device (`warm-up`), then the first frame on the renderer's own device.
+    #[arg(long)]
+    pub prepare: bool,
     /// Also write the phases as CSV here.
     #[arg(long, value_name = "FILE.csv")]
     pub csv: Option<PathBuf>,
@@ -36,8 +41,14 @@ pub fn run(args: LoadCostArgs) -> anyhow::Result<()> {
     let gpu = Gpu::new_headless()?;
     let device_ms = started.elapsed().as_secs_f64() * 1e3;
     let mut renderer = Renderer::new(gpu.clone(), &scene, size.0, size.1, settings)?;
-    for p in &renderer.scene_info().load.phases[scene.load_phases.phases.len()..] {
-        eprintln!("{}", phase_line(p));
+    if args.prepare {
+        // The viewer's path (the upload is repeated: `Renderer::new` needs a scene).
+        let prepared = renderer.preparer().prepare(&scene, &print)?;
+        renderer.set_prepared_scene(prepared);
+    } else {
+        for p in &renderer.scene_info().load.phases[scene.load_phases.phases.len()..] {
+            eprintln!("{}", phase_line(p));
+        }
     }
     renderer.set_compile_watcher(Some(std::sync::Arc::new(|e| print_event(&e))));
     renderer.render_frame()?;

@@ -8,7 +8,7 @@ use std::time::{Duration, Instant};
 use restir_render::reference_cache::ReferenceCache;
 use restir_render::timeline::AnimatedScene;
 use restir_render::view::auto_exposure_ev;
-use restir_render::{Environment, Gpu, Renderer, Scene};
+use restir_render::{Gpu, Renderer, Scene};
 use winit::dpi::PhysicalSize;
 use winit::window::Window;
 
@@ -391,14 +391,17 @@ impl Viewer {
             match action {
                 Action::LoadScene(spec) => {
                     self.state.scene.error = None;
-                    self.loader.start(spec);
+                    let env = self.scene.environment.clone();
+                    self.loader.start(spec, env, self.renderer.preparer());
                 }
                 Action::LoadEnvironment(Some(spec)) => {
                     self.state.scene.env_error = None;
-                    self.loader.start_environment(spec);
+                    let shown = self.scene.clone();
+                    self.loader
+                        .start_environment(spec, shown, self.renderer.preparer());
                 }
                 Action::LoadEnvironment(None) => {
-                    if let Err(e) = self.replace_environment(None) {
+                    if let Err(e) = self.remove_environment() {
                         self.state.scene.env_error = Some(e);
                     }
                 }
@@ -417,7 +420,8 @@ impl Viewer {
                 }
                 Action::LoadTourScene { scene, env } => {
                     self.state.scene.error = None;
-                    self.loader.start_with_environment(scene, env);
+                    self.loader
+                        .start_with_environment(scene, env, self.renderer.preparer());
                 }
                 Action::ExportPixelHistory => self.export_pixel_history(),
                 Action::StartRecording => self.start_recording(),
@@ -427,59 +431,50 @@ impl Viewer {
         self.state.scene.loading = self.loader.loading().map(str::to_string);
     }
 
-    /// The same scene under another environment (or none), seen from the same camera. On
-    /// failure nothing changes.
-    fn replace_environment(&mut self, env: Option<Environment>) -> Result<(), String> {
-        let scene = with_environment(&self.scene, env)?;
+    /// The same scene without its environment, seen from the same camera (uploaded here:
+    /// no image to decode). On failure nothing changes.
+    fn remove_environment(&mut self) -> Result<(), String> {
+        let scene = with_environment(&self.scene, None)?;
         let camera = self.renderer.camera();
         self.renderer
             .set_scene(&scene)
             .map_err(|e| format!("{e:#}"))?;
+        self.environment_replaced(scene, camera);
+        Ok(())
+    }
+
+    /// The renderer shows `scene`, the shown scene under another environment: the camera
+    /// stays where it was.
+    fn environment_replaced(&mut self, scene: Scene, camera: restir_render::Camera) {
         self.renderer.set_camera(camera);
         self.scene = Arc::new(scene);
         self.state.scene.info = Some(self.renderer.scene_info().clone());
         self.state.scene.env_error = None;
         self.state.stats.clear();
-        Ok(())
     }
 
-    /// A finished background load replaces the scene (keeping the environment) or the
-    /// environment (keeping scene and camera); a failed one keeps what there was and
-    /// shows why.
+    /// A finished background load replaces the scene or the environment (keeping scene
+    /// and camera); a failed one keeps what there was and shows why. The load prepared
+    /// the scene, so the swap itself is quick.
     fn poll_loader(&mut self) {
         self.state.scene.progress = self.loader.progress();
         let Some((spec, result)) = self.loader.poll() else {
             return;
         };
         self.state.scene.loading = None;
-        let result = match result {
-            Ok(Loaded::Environment(env)) => {
-                if let Err(e) = self.replace_environment(Some(env)) {
-                    log::warn!("cannot use {spec}: {e}");
-                    self.state.scene.env_error = Some(e);
-                }
-                return;
+        match result {
+            Ok(Loaded::Environment(ready)) => {
+                let camera = self.renderer.camera();
+                self.renderer.set_prepared_scene(ready.prepared);
+                self.environment_replaced(*ready.scene, camera);
             }
             Err(e) if is_environment_spec(&spec) => {
                 log::warn!("cannot load {spec}: {e}");
                 self.state.scene.env_error = Some(e);
-                return;
             }
-            Ok(Loaded::Scene(scene)) => Ok((*scene, false)),
-            Ok(Loaded::SceneWithEnvironment(scene)) => Ok((*scene, true)),
-            Err(e) => Err(e),
-        };
-        let uploaded = result.and_then(|(mut scene, own_environment)| {
-            if !own_environment {
-                scene.environment = self.scene.environment.clone();
-            }
-            self.renderer
-                .set_scene(&scene)
-                .map_err(|e| format!("{e:#}"))?;
-            Ok(scene)
-        });
-        match uploaded {
-            Ok(scene) => {
+            Ok(Loaded::Scene(ready) | Loaded::SceneWithEnvironment(ready)) => {
+                self.renderer.set_prepared_scene(ready.prepared);
+                let scene = *ready.scene;
                 self.clock = clock_for(&scene, &mut self.state.time);
                 self.scene = Arc::new(scene);
                 // B is rebuilt on the new scene at the next frame.

@@ -1,21 +1,31 @@
-//! Loads scenes and environments on a background thread (glTF import, BVH build and an
-//! HDRI's decode and distribution can take seconds), so the window keeps drawing the old
-//! ones meanwhile.
+//! Loads scenes and environments on a background thread and prepares them there (glTF
+//! import, an HDRI's decode and distribution, the BVH, the upload and the first frames'
+//! pipelines, warmed on a second device: `restir_render::ScenePreparer`), so the window
+//! keeps drawing the old scene until the new one can draw at once.
 
 use std::sync::mpsc::{Receiver, TryRecvError, channel};
 use std::sync::{Arc, Mutex};
 
 use restir_render::load_phases::LoadEvent;
 
-use restir_render::{Environment, Scene, load_environment, load_scene_watched};
+use restir_render::{
+    Environment, PreparedScene, Scene, ScenePreparer, load_environment, load_scene_watched,
+};
+
+/// A scene as loaded and uploaded (boxed: a scene is a few hundred bytes of handles).
+pub struct Ready {
+    pub scene: Box<Scene>,
+    pub prepared: PreparedScene,
+}
 
 /// What a background load produced.
 pub enum Loaded {
-    /// Boxed: a scene is a few hundred bytes of handles, an environment much less.
-    Scene(Box<Scene>),
-    Environment(Environment),
+    /// A new scene under the environment it was started with.
+    Scene(Ready),
+    /// The shown scene under a new environment (the camera stays).
+    Environment(Ready),
     /// A tour step's scene with the step's environment (or none) attached.
-    SceneWithEnvironment(Box<Scene>),
+    SceneWithEnvironment(Ready),
 }
 
 /// Whether a load request names an environment (by extension, or `builtin:sky`).
@@ -75,47 +85,78 @@ pub struct SceneLoader {
     progress: Arc<Mutex<LoadProgress>>,
 }
 
-/// `load_scene`, telling `progress` as each phase begins, counts and ends.
-fn load_scene_with(spec: &str, progress: &Mutex<LoadProgress>) -> Result<Scene, String> {
-    let hear = |e: LoadEvent| {
+/// Tells `progress` of each phase as it begins, counts and ends.
+fn listener(progress: &Mutex<LoadProgress>) -> impl Fn(LoadEvent) + Sync + '_ {
+    |e: LoadEvent| {
         if let Ok(mut p) = progress.lock() {
             p.hear(e);
         }
-    };
-    load_scene_watched(spec, &hear).map_err(|e| e.to_string())
+    }
+}
+
+/// `load_scene`, telling `progress`.
+fn load_scene_with(spec: &str, progress: &Mutex<LoadProgress>) -> Result<Scene, String> {
+    load_scene_watched(spec, &listener(progress)).map_err(|e| e.to_string())
+}
+
+/// Uploads `scene` and warms its pipelines, telling `progress`.
+fn prepare(
+    scene: Scene,
+    preparer: &ScenePreparer,
+    progress: &Mutex<LoadProgress>,
+) -> Result<Ready, String> {
+    let prepared = preparer
+        .prepare(&scene, &listener(progress))
+        .map_err(|e| format!("{e:#}"))?;
+    Ok(Ready {
+        scene: Box::new(scene),
+        prepared,
+    })
 }
 
 impl SceneLoader {
-    /// Starts loading the scene `spec`; a load already running is abandoned (its result
-    /// dropped).
-    pub fn start(&mut self, spec: String) {
+    /// Starts loading the scene `spec` under `environment` (the shown scene's); a load
+    /// already running is abandoned (its result dropped).
+    pub fn start(
+        &mut self,
+        spec: String,
+        environment: Option<Arc<Environment>>,
+        preparer: ScenePreparer,
+    ) {
         let progress = self.fresh_progress();
         self.start_with(spec, move |s| {
-            load_scene_with(s, &progress).map(|s| Loaded::Scene(Box::new(s)))
+            let mut scene = load_scene_with(s, &progress)?;
+            scene.environment = environment;
+            prepare(scene, &preparer, &progress).map(Loaded::Scene)
         });
     }
 
-    /// Starts loading the environment `spec` (.hdr, .exr or `builtin:sky`).
-    pub fn start_environment(&mut self, spec: String) {
-        self.fresh_progress();
-        self.start_with(spec, |s| {
-            load_environment(s)
-                .map(Loaded::Environment)
-                .map_err(|e| e.to_string())
+    /// Starts loading the environment `spec` (.hdr, .exr or `builtin:sky`) for `shown`.
+    pub fn start_environment(&mut self, spec: String, shown: Arc<Scene>, preparer: ScenePreparer) {
+        let progress = self.fresh_progress();
+        self.start_with(spec, move |s| {
+            let env = load_environment(s).map_err(|e| e.to_string())?;
+            let scene = with_environment(&shown, Some(env))?;
+            prepare(scene, &preparer, &progress).map(Loaded::Environment)
         });
     }
 
     /// Starts loading a tour step's scene and its environment (`None`: none) together:
     /// one load, so neither abandons the other.
-    pub fn start_with_environment(&mut self, spec: String, env: Option<String>) {
+    pub fn start_with_environment(
+        &mut self,
+        spec: String,
+        env: Option<String>,
+        preparer: ScenePreparer,
+    ) {
         let progress = self.fresh_progress();
         let job = move |s: &str| {
             let mut scene = load_scene_with(s, &progress)?;
             if let Some(env) = &env {
                 let env = load_environment(env).map_err(|e| e.to_string())?;
-                scene.environment = Some(std::sync::Arc::new(env));
+                scene.environment = Some(Arc::new(env));
             }
-            Ok(Loaded::SceneWithEnvironment(Box::new(scene)))
+            prepare(scene, &preparer, &progress).map(Loaded::SceneWithEnvironment)
         };
         self.start_with(spec, job);
     }
@@ -168,28 +209,42 @@ impl SceneLoader {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use restir_render::load_scene;
+    use restir_render::{Gpu, Renderer, Settings, load_scene};
 
     fn wait(loader: &mut SceneLoader) -> (String, Result<Loaded, String>) {
-        for _ in 0..2000 {
+        for _ in 0..6000 {
             if let Some(done) = loader.poll() {
                 return done;
             }
             std::thread::sleep(std::time::Duration::from_millis(5));
         }
-        panic!("the scene did not load in 10 s");
+        panic!("the scene did not load in 30 s");
+    }
+
+    /// A preparer of a small renderer; without the warm-up, which render/tests/load_time.rs
+    /// tests (here it would only add compile time).
+    fn preparer() -> ScenePreparer {
+        let gpu = Gpu::new_headless().unwrap_or_else(|e| panic!("{e}"));
+        let scene = load_scene("builtin:plane-light").unwrap();
+        let renderer = Renderer::new(gpu, &scene, 8, 8, Settings::default()).unwrap();
+        renderer.preparer().without_warm_up()
     }
 
     #[test]
     fn loads_in_the_background_and_reports_errors() {
         let mut loader = SceneLoader::default();
-        loader.start("builtin:cornell".into());
+        let preparer = preparer();
+        loader.start("builtin:cornell".into(), None, preparer.clone());
         assert_eq!(loader.loading(), Some("builtin:cornell"));
         let (spec, result) = wait(&mut loader);
         assert_eq!(spec, "builtin:cornell");
-        assert!(result.is_ok());
+        let Ok(Loaded::Scene(ready)) = result else {
+            panic!("cornell did not load");
+        };
+        // Loaded and uploaded: the BVH phase comes from the upload.
+        assert!(ready.prepared.load_phases().get("BVH build").is_some());
         assert_eq!(loader.loading(), None);
-        loader.start("/no/such/scene.gltf".into());
+        loader.start("/no/such/scene.gltf".into(), None, preparer);
         let (_, result) = wait(&mut loader);
         assert!(result.err().unwrap().contains("scene.gltf"));
     }
@@ -214,12 +269,17 @@ mod tests {
     }
 
     #[test]
-    fn loads_environments_and_names_a_bad_file() {
+    fn loads_environments_onto_the_shown_scene_and_names_a_bad_file() {
         let mut loader = SceneLoader::default();
-        loader.start_environment("builtin:sky".into());
+        let shown = Arc::new(load_scene("builtin:plane-light").unwrap());
+        loader.start_environment("builtin:sky".into(), shown.clone(), preparer());
         let (_, result) = wait(&mut loader);
-        assert!(matches!(result, Ok(Loaded::Environment(e)) if e.width == 512));
-        loader.start_environment("/no/such/sky.hdr".into());
+        let Ok(Loaded::Environment(ready)) = result else {
+            panic!("the sky did not load");
+        };
+        assert!(matches!(ready.scene.environment.as_deref(), Some(e) if e.width == 512));
+        assert_eq!(ready.scene.triangles, shown.triangles);
+        loader.start_environment("/no/such/sky.hdr".into(), shown, preparer());
         let (_, result) = wait(&mut loader);
         assert!(result.err().unwrap().starts_with("/no/such/sky.hdr: "));
     }

@@ -164,6 +164,13 @@ impl Gpu {
         })
     }
 
+    /// A second device on the same adapter with the same features: a scene's pipelines can
+    /// be compiled (and run once) there while this device keeps drawing, and the driver's
+    /// shader cache then has them for this device too (`renderer/prepare.rs`).
+    pub fn sibling(&self) -> Result<Gpu, GpuError> {
+        Gpu::from_adapter_with(self.instance.clone(), self.adapter.clone(), self.ray_query)
+    }
+
     pub fn adapter_name(&self) -> String {
         let info = self.adapter.get_info();
         format!("{} ({:?})", info.name, info.backend)

@@ -73,6 +73,7 @@ pub fn scene_layout_entries(backend: RayBackend) -> Vec<wgpu::BindGroupLayoutEnt
 
 /// The scene group's layouts: the software backend's always, the ray-query one where the
 /// device has ray queries.
+#[derive(Clone)]
 pub struct SceneLayouts {
     pub software: wgpu::BindGroupLayout,
     pub ray_query: Option<wgpu::BindGroupLayout>,

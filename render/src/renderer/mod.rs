@@ -4,13 +4,15 @@
 //! (the ping-pong); `record.rs` records the plan; `uniforms.rs` fills the per-frame
 //! uniforms; `bind_groups.rs` caches the bind groups; `reports.rs` gathers each
 //! frame's counters, times and inspected pixel; `readback.rs` brings images and per-pixel
-//! records back to the CPU; `inspect.rs` is the pixel inspector's capture.
+//! records back to the CPU; `inspect.rs` is the pixel inspector's capture; `prepare.rs`
+//! readies a new scene off the window thread.
 
 mod bind_groups;
 mod comparison;
 pub mod frame_plan;
 mod inspect;
 mod pipelines;
+mod prepare;
 mod ray_bench;
 mod readback;
 mod record;
@@ -21,6 +23,7 @@ mod uniforms;
 mod window;
 
 pub use inspect::{GiInspection, GiStageReservoir, PixelInspection, StageReservoir};
+pub use prepare::{PreparedScene, ScenePreparer};
 pub use ray_bench::{RayKind, RayRate};
 pub use setup::check_size;
 pub use window::TemporalWindow;
@@ -175,16 +178,14 @@ impl Renderer {
 
     /// Replaces the scene (history and accumulation restart; the camera moves to the
     /// new scene's camera).
+    /// The upload runs here, on the caller's thread; the viewer prepares scenes in the
+    /// background instead (`preparer`, `set_prepared_scene`).
     pub fn set_scene(&mut self, scene: &Scene) -> anyhow::Result<()> {
-        self.scene = GpuScene::upload(&self.gpu, scene, &self.layouts.scene)?;
-        self.first_frame_pipelines = None;
-        self.first_frame = None;
-        self.features = SceneFeatures::of(scene);
-        // The resolve group binds the scene's previous-triangle buffer.
-        self.bind_groups.clear();
-        self.camera = scene.default_camera();
-        self.invalidate_history();
-        self.reset_accumulation();
+        let prepared = self
+            .preparer()
+            .without_warm_up()
+            .prepare(scene, &crate::load_phases::unwatched)?;
+        self.set_prepared_scene(prepared);
         Ok(())
     }
 

@@ -19,6 +19,8 @@ use crate::passes::{ComputePass, PassDef, PassLayouts};
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct PipelineCompile {
     pub pass: &'static str,
+    /// The variant: its defines, comma-separated (the effect set and the ray backend).
+    pub variant: String,
     pub ms: f64,
 }
 
@@ -92,6 +94,7 @@ pub(super) fn compile_all(
             });
         }
     });
+    let variant_key = defines.iter().cloned().collect::<Vec<_>>().join(",");
     let mut times = Vec::new();
     for (pass, compiled, ms) in done.into_inner().expect("no compile panics holding it") {
         match compiled? {
@@ -103,6 +106,7 @@ pub(super) fn compile_all(
         log::info!("compiled {} in {ms:.0} ms", pass.name);
         times.push(PipelineCompile {
             pass: pass.name,
+            variant: variant_key.clone(),
             ms,
         });
     }

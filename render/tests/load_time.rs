@@ -251,3 +251,30 @@ fn the_warm_up_compiles_every_pipeline_the_first_frames_need() {
         "a warm-up of the wrong mode went unnoticed"
     );
 }
+
+/// A scene swapped in compiles its own effect set, not the one the old scene's frames
+/// cached (the set is cached while the settings stay the same): the viewer once showed
+/// StainedGlassLamp, loaded after cornell, with cornell's effects — no textures, every
+/// emitter a flat white.
+#[test]
+fn a_swapped_scene_renders_with_its_own_effects() {
+    let textured = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../assets/khronos/LightsPunctualLamp/glTF/LightsPunctualLamp.gltf"
+    );
+    let own = |spec: &str| {
+        let mut r = common::renderer(spec, 16, 12, Mode::Restir, Settings::default());
+        r.render_frame().unwrap();
+        r.last_effects().unwrap().clone()
+    };
+    let (before, after) = (own("builtin:cornell"), own(textured));
+    assert_ne!(
+        before, after,
+        "the two scenes must differ in effects for this test"
+    );
+    let mut main = common::renderer("builtin:cornell", 16, 12, Mode::Restir, Settings::default());
+    main.render_frame().unwrap();
+    main.set_scene(&load_scene(textured).unwrap()).unwrap();
+    main.render_frame().unwrap();
+    assert_eq!(main.last_effects(), Some(&after));
+}

@@ -51,6 +51,7 @@ pub struct Viewer {
     /// When the two sides were last scored (each score reads both images back).
     compare_scored: Option<Instant>,
     loader: SceneLoader,
+    startup: Startup,
     screenshots: screenshot::Schedule,
     exit_after_screenshot: bool,
     frames_rendered: u64,
@@ -67,6 +68,14 @@ pub struct Viewer {
     occluded: bool,
     /// The pixel history's frame facts and a recording (viewer/tour/driver.rs).
     pub(super) teaching: super::tour::driver::Teaching,
+}
+
+/// Where the viewer's start is: its first frame waits for the warm-up (`Viewer::started`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Startup {
+    NotStarted,
+    Warming,
+    Done,
 }
 
 /// How long a frozen viewer keeps redrawing after rendering a frame, so the frame's
@@ -144,6 +153,7 @@ impl Viewer {
             compare: None,
             compare_scored: None,
             loader: SceneLoader::default(),
+            startup: Startup::NotStarted,
             screenshots: screenshot::Schedule {
                 after: launch.screenshot_after,
                 ..Default::default()
@@ -305,8 +315,34 @@ impl Viewer {
         self.screenshots.hold = hold;
     }
 
+    /// The first frame waits until its pipelines are warm (`ScenePreparer`): a CPU driver
+    /// compiles at the first dispatch, on the thread that waits for the frame, and a cold
+    /// StainedGlassLamp takes minutes. Returns whether frames may render.
+    fn started(&mut self) -> bool {
+        if self.startup == Startup::NotStarted {
+            // The preparer warms what the first frame will use: the state as it applies.
+            apply::before_frame(&mut self.renderer, &self.state);
+            // A tour's first step may already be loading (and preparing) its own scene.
+            if self.loader.loading().is_none() {
+                let spec = self.state.scene.spec.clone();
+                let preparer = self.renderer.preparer();
+                self.loader
+                    .start_warm_up(spec, self.scene.clone(), preparer);
+            }
+            self.startup = Startup::Warming;
+        }
+        if self.startup == Startup::Warming && self.loader.loading().is_none() {
+            self.startup = Startup::Done;
+        }
+        self.state.scene.first_frame_waits = self.startup != Startup::Done;
+        self.startup == Startup::Done
+    }
+
     /// Renders a frame unless frozen (a Step renders one); returns whether it did.
     fn render(&mut self, area: (f32, f32)) -> anyhow::Result<bool> {
+        if !self.started() {
+            return Ok(false);
+        }
         let state = &mut self.state;
         let render_now = !state.inspector.frozen || std::mem::take(&mut state.inspector.step);
         if render_now {
@@ -463,6 +499,12 @@ impl Viewer {
         };
         self.state.scene.loading = None;
         match result {
+            Ok(Loaded::Warmed(prepared)) => {
+                let camera = self.renderer.camera();
+                self.renderer.set_prepared_scene(prepared);
+                self.renderer.set_camera(camera);
+                self.state.scene.info = Some(self.renderer.scene_info().clone());
+            }
             Ok(Loaded::Environment(ready)) => {
                 let camera = self.renderer.camera();
                 self.renderer.set_prepared_scene(ready.prepared);

@@ -26,6 +26,8 @@ pub enum Loaded {
     Environment(Ready),
     /// A tour step's scene with the step's environment (or none) attached.
     SceneWithEnvironment(Ready),
+    /// The shown scene prepared again: the viewer's start (`start_warm_up`).
+    Warmed(PreparedScene),
 }
 
 /// Whether a load request names an environment (by extension, or `builtin:sky`).
@@ -128,6 +130,19 @@ impl SceneLoader {
             let mut scene = load_scene_with(s, &progress)?;
             scene.environment = environment;
             prepare(scene, &preparer, &progress).map(Loaded::Scene)
+        });
+    }
+
+    /// Prepares the shown scene `spec` again (the viewer's start: its first frame waits for
+    /// the warm-up, so the window draws its panels and the progress meanwhile instead of
+    /// freezing while a CPU driver compiles).
+    pub fn start_warm_up(&mut self, spec: String, shown: Arc<Scene>, preparer: ScenePreparer) {
+        let progress = self.fresh_progress();
+        self.start_with(spec, move |_| {
+            preparer
+                .prepare(&shown, &listener(&progress))
+                .map(Loaded::Warmed)
+                .map_err(|e| format!("{e:#}"))
         });
     }
 

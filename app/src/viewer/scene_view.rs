@@ -105,6 +105,19 @@ fn pick_pixel(ui: &Ui, response: &egui::Response, rect: Rect, state: &mut Viewer
 /// The inspected pixel's outline and the status words over the image.
 fn overlay(ui: &Ui, rect: Rect, state: &ViewerState) {
     let painter = ui.painter_at(rect);
+    if state.scene.first_frame_waits {
+        let phase = &state.scene.progress.phase;
+        painter.text(
+            rect.center(),
+            egui::Align2::CENTER_CENTER,
+            format!(
+                "Preparing the first frame ({}): its shaders compile beside the window",
+                if phase.is_empty() { "starting" } else { phase }
+            ),
+            egui::FontId::proportional(16.0),
+            Color32::LIGHT_GRAY,
+        );
+    }
     let (w, h) = state.render_size;
     if let Some((x, y)) = state.inspector.pixel
         && w > 0

@@ -231,6 +231,8 @@ pub struct SceneState {
     pub loading: Option<String>,
     /// Where that load is (its phase and how far), for the progress bar.
     pub progress: super::scene_loader::LoadProgress,
+    /// The viewer's first frame waits for its pipelines to warm (`frame.rs`, `Startup`).
+    pub first_frame_waits: bool,
     /// The current scene's load phases, file to first frame (`Renderer::load_phases`).
     pub load: restir_render::load_phases::LoadPhases,
     /// The last load error (the old scene is kept).

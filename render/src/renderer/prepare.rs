@@ -92,6 +92,9 @@ impl Renderer {
     pub fn set_prepared_scene(&mut self, prepared: PreparedScene) {
         self.scene = prepared.scene;
         self.features = prepared.features;
+        // The effect set is cached while settings stay the same: the new scene's features
+        // decide it afresh (textures, glass, an environment).
+        self.last_effects = None;
         self.camera = prepared.camera;
         self.first_frame_pipelines = None;
         self.first_frame = None;

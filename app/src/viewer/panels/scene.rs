@@ -161,7 +161,11 @@ fn status(ui: &mut Ui, state: &ViewerState) {
             .animate(progress.fraction.is_none());
         ui.add(bar);
         ui.weak(loading);
-        ui.weak("The current scene stays interactive while the file loads.");
+        ui.weak(if state.scene.first_frame_waits {
+            "The first frame waits for its shaders; the panels work meanwhile."
+        } else {
+            "The current scene stays interactive while the file loads."
+        });
     }
     if let Some(error) = &state.scene.error {
         ui.colored_label(

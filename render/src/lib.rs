@@ -13,6 +13,7 @@ pub mod image;
 pub mod load_phases;
 pub mod metrics;
 pub mod passes;
+pub mod path_reuse;
 pub mod reference_cache;
 pub mod renderer;
 pub mod reservoir;

@@ -20,6 +20,10 @@ pub enum Planted {
     /// MIS weight but still counted in `c_total` (reported against RTXDI's ReSTIR PT in
     /// 2026: neighbours without a reconnection vertex still add to M).
     FailedShiftCountedInM,
+    /// A neighbour the canonical path cannot be shifted to is dropped altogether: out of
+    /// `c_total` and the weights. Whether it takes part then depends on a sample, not on
+    /// the G-buffer (DI's `SampleRule::Reject` in path form).
+    FailedShiftDropped,
 }
 
 /// A pixel and its reservoir of paths (finalised: `weight` is W, `p_hat` the target there).
@@ -33,6 +37,9 @@ pub fn target(scene: &ToyScene, pixel: &Pixel, path: &PathSample) -> f32 {
     evaluate(scene, pixel, path).contribution
 }
 
+/// A shifted path, its target where it was moved to, and `|J|`.
+type Moved = (PathSample, f32, f32);
+
 /// `path` (found at `from`) moved to `to`: the shifted path, its target at `to` and `|J|`;
 /// `None` where the shift fails.
 fn shifted(
@@ -42,7 +49,7 @@ fn shifted(
     to: &Pixel,
     shift: Shift,
     planted: Planted,
-) -> Option<(PathSample, f32, f32)> {
+) -> Option<Moved> {
     let s = shift_path(scene, path, from, to, shift).ok()?;
     let j = if planted == Planted::NoJacobian {
         1.0
@@ -63,14 +70,29 @@ pub fn pairwise_path_reuse(
     u: &mut dyn FnMut() -> f32,
 ) -> Reservoir<PathSample> {
     let here = canonical.pixel;
+    let canonical_shifts: Vec<_> = neighbours
+        .iter()
+        .map(|n| {
+            let y = canonical.reservoir.sample?;
+            shifted(scene, &y, here, n.pixel, shift, planted)
+        })
+        .collect();
+    // Each neighbour with the canonical path moved to it (for its MIS term).
+    let neighbours: Vec<(&Candidate, Option<Moved>)> = neighbours
+        .iter()
+        .zip(canonical_shifts)
+        .filter(|(_, s)| planted != Planted::FailedShiftDropped || s.is_some())
+        .collect();
     let c_c = canonical.reservoir.m;
-    let c_total = neighbours.iter().fold(c_c, |acc, n| acc + n.reservoir.m);
+    let c_total = neighbours
+        .iter()
+        .fold(c_c, |acc, (n, _)| acc + n.reservoir.m);
     let mut r = Reservoir::empty();
     if let Some(y) = canonical.reservoir.sample {
         let p_c = canonical.reservoir.p_hat;
         let mut m_c = c_c / c_total;
-        for n in neighbours {
-            match shifted(scene, &y, here, n.pixel, shift, planted) {
+        for (n, to_n) in &neighbours {
+            match to_n {
                 Some((_, t, j)) => {
                     m_c += pairwise_mis_canonical_term(c_total, c_c, n.reservoir.m, p_c, t * j)
                 }
@@ -81,7 +103,7 @@ pub fn pairwise_path_reuse(
         }
         r.update(y, p_c * canonical.reservoir.weight * m_c, p_c, u());
     }
-    for n in neighbours {
+    for (n, _) in &neighbours {
         let Some(y) = n.reservoir.sample else {
             continue;
         };

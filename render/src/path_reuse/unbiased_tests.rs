@@ -181,22 +181,34 @@ fn a_missing_jacobian_is_detected_for_every_shift() {
     }
 }
 
-/// The RTXDI bug class: a neighbour the canonical path cannot be shifted to still adds to
-/// M but leaves no term in the canonical weight, so the weights of the canonical path sum
-/// below one. Replay fails often here (a replayed path must find the emitter again).
+/// A neighbour the canonical path cannot be shifted to, mishandled two ways. Counted in M
+/// but left out of the canonical weight (the bug class reported against RTXDI's PT: the
+/// canonical path's weights sum below one: z = −138); dropped altogether (participation
+/// decided by a sample: the dropped neighbours' own paths are lost with them, z = −44).
+/// Replay fails often here (a replayed path must find the emitter again).
 #[test]
-fn a_failed_shift_counted_in_m_is_detected() {
+fn a_failed_shift_counted_in_m_or_dropped_is_detected() {
     let scene = glossy_scene();
     let truth = reference(&scene, &pixel(BY_THE_MIRROR));
+    let place = (BY_THE_MIRROR, &ALL_ROUND);
     for (shift, seed) in [(Shift::RandomReplay, 21), (HYBRID, 22)] {
         let z = z_score(
             &scene,
             truth,
-            (BY_THE_MIRROR, &ALL_ROUND),
+            place,
             shift,
             Planted::FailedShiftCountedInM,
             seed,
         );
-        assert!(z < -6.0, "{shift:?}: z = {z:.2}");
+        assert!(z < -6.0, "{shift:?} counted in M: z = {z:.2}");
+        let z = z_score(
+            &scene,
+            truth,
+            place,
+            shift,
+            Planted::FailedShiftDropped,
+            seed + 10,
+        );
+        assert!(z.abs() > 6.0, "{shift:?} dropped: z = {z:.2}");
     }
 }

@@ -278,3 +278,65 @@ fn a_swapped_scene_renders_with_its_own_effects() {
     main.render_frame().unwrap();
     assert_eq!(main.last_effects(), Some(&after));
 }
+
+/// A change that needs new pipelines (GI on) names its effect set before the frame, and
+/// the sibling's warm-up of that set compiles every pipeline the renderer's next two frames
+/// then compile (the second runs GI's temporal pass). Planted twin: a preparer taken
+/// before the change (GI still off) warms the same effect set without GI's passes.
+#[test]
+fn a_changes_pipelines_warm_beside_the_renderer() {
+    let scene = std::sync::Arc::new(load_scene("builtin:plane-light").unwrap());
+    let fresh = || {
+        let mut r = Renderer::new(common::gpu(), &scene, 24, 16, Settings::default()).unwrap();
+        r.render_frame().unwrap();
+        r.render_frame().unwrap();
+        assert_eq!(
+            r.effects_to_compile().unwrap(),
+            None,
+            "both frames compiled"
+        );
+        r
+    };
+    let with_gi = Settings {
+        gi: true,
+        ..Settings::default()
+    };
+    let warm_then_render =
+        |main: &mut Renderer, preparer: restir_render::ScenePreparer, effects| {
+            let warmed = preparer
+                .warm_effects(scene.clone(), effects)
+                .join()
+                .unwrap()
+                .unwrap();
+            let before = main.pipeline_compiles().len();
+            main.render_frame().unwrap();
+            main.render_frame().unwrap();
+            let compiled = main.pipeline_compiles()[before..].to_vec();
+            assert!(!compiled.is_empty());
+            (warmed, compiled)
+        };
+
+    let mut main = fresh();
+    main.set_settings(with_gi.clone());
+    let effects = main
+        .effects_to_compile()
+        .unwrap()
+        .expect("GI needs new pipelines");
+    let preparer = main.preparer();
+    let (warmed, compiled) = warm_then_render(&mut main, preparer, effects);
+    let missed: Vec<_> = compiled.iter().filter(|c| !covered(&warmed, c)).collect();
+    assert!(missed.is_empty(), "not warmed: {missed:?}");
+
+    let mut main = fresh();
+    let stale = main.preparer();
+    main.set_settings(with_gi);
+    let effects = main
+        .effects_to_compile()
+        .unwrap()
+        .expect("GI needs new pipelines");
+    let (warmed, compiled) = warm_then_render(&mut main, stale, effects);
+    assert!(
+        compiled.iter().any(|c| !covered(&warmed, c)),
+        "a warm-up of the old effects went unnoticed"
+    );
+}

@@ -5,10 +5,11 @@
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
+use restir_render::effects::EffectSet;
 use restir_render::reference_cache::ReferenceCache;
 use restir_render::timeline::AnimatedScene;
 use restir_render::view::auto_exposure_ev;
-use restir_render::{Gpu, Renderer, Scene};
+use restir_render::{Gpu, PipelineCompile, Renderer, Scene};
 use winit::dpi::PhysicalSize;
 use winit::window::Window;
 
@@ -52,6 +53,11 @@ pub struct Viewer {
     compare_scored: Option<Instant>,
     loader: SceneLoader,
     startup: Startup,
+    /// A change's pipelines warming beside the window (CPU adapters): the effect set and
+    /// the job (`Viewer::pipelines_ready`).
+    warming: Option<(EffectSet, WarmJob)>,
+    /// A prepared scene was just swapped in: its load warmed the next frame's pipelines.
+    just_prepared: bool,
     screenshots: screenshot::Schedule,
     exit_after_screenshot: bool,
     frames_rendered: u64,
@@ -69,6 +75,9 @@ pub struct Viewer {
     /// The pixel history's frame facts and a recording (viewer/tour/driver.rs).
     pub(super) teaching: super::tour::driver::Teaching,
 }
+
+/// A change's pipelines compiling on a sibling device (`ScenePreparer::warm_effects`).
+type WarmJob = std::thread::JoinHandle<Result<Vec<PipelineCompile>, String>>;
 
 /// Where the viewer's start is: its first frame waits for the warm-up (`Viewer::started`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -154,6 +163,8 @@ impl Viewer {
             compare_scored: None,
             loader: SceneLoader::default(),
             startup: Startup::NotStarted,
+            warming: None,
+            just_prepared: false,
             screenshots: screenshot::Schedule {
                 after: launch.screenshot_after,
                 ..Default::default()
@@ -338,9 +349,50 @@ impl Viewer {
         self.startup == Startup::Done
     }
 
+    /// Whether the next frame's pipelines are ready to run. On a CPU adapter a change that
+    /// needs new ones (GI on, another debug view, a mode) first warms them beside the
+    /// window, as a scene load does, and the window shows the last frame meanwhile: the
+    /// driver would compile them at the first dispatch, on the thread that waits for it.
+    fn pipelines_ready(&mut self) -> anyhow::Result<bool> {
+        apply::before_frame(&mut self.renderer, &self.state);
+        if std::mem::take(&mut self.just_prepared) {
+            return Ok(true);
+        }
+        let needed = self.renderer.effects_to_compile()?;
+        if let Some((warmed, job)) = self.warming.take() {
+            if !job.is_finished() {
+                self.warming = Some((warmed, job));
+                return Ok(false);
+            }
+            match job.join() {
+                Ok(Ok(_)) => {}
+                Ok(Err(e)) => log::warn!("pipeline warm-up failed ({e}): compiling here"),
+                Err(_) => log::warn!("pipeline warm-up stopped: compiling here"),
+            }
+            if needed.as_ref().is_none_or(|n| *n == warmed) {
+                return Ok(true);
+            }
+        }
+        let Some(effects) = needed.filter(|_| self.gpu.is_cpu()) else {
+            return Ok(true);
+        };
+        let job = self
+            .renderer
+            .preparer()
+            .warm_effects(self.scene.clone(), effects.clone());
+        self.warming = Some((effects, job));
+        Ok(false)
+    }
+
     /// Renders a frame unless frozen (a Step renders one); returns whether it did.
     fn render(&mut self, area: (f32, f32)) -> anyhow::Result<bool> {
         if !self.started() {
+            return Ok(false);
+        }
+        let render_now = !self.state.inspector.frozen || self.state.inspector.step;
+        let ready = !render_now || self.pipelines_ready()?;
+        self.state.scene.pipelines_warming = !ready;
+        if !ready {
             return Ok(false);
         }
         let state = &mut self.state;
@@ -502,12 +554,14 @@ impl Viewer {
             Ok(Loaded::Warmed(prepared)) => {
                 let camera = self.renderer.camera();
                 self.renderer.set_prepared_scene(prepared);
+                self.just_prepared = true;
                 self.renderer.set_camera(camera);
                 self.state.scene.info = Some(self.renderer.scene_info().clone());
             }
             Ok(Loaded::Environment(ready)) => {
                 let camera = self.renderer.camera();
                 self.renderer.set_prepared_scene(ready.prepared);
+                self.just_prepared = true;
                 self.environment_replaced(*ready.scene, camera);
             }
             Err(e) if is_environment_spec(&spec) => {
@@ -516,6 +570,7 @@ impl Viewer {
             }
             Ok(Loaded::Scene(ready) | Loaded::SceneWithEnvironment(ready)) => {
                 self.renderer.set_prepared_scene(ready.prepared);
+                self.just_prepared = true;
                 let scene = *ready.scene;
                 self.clock = clock_for(&scene, &mut self.state.time);
                 self.scene = Arc::new(scene);

@@ -105,18 +105,27 @@ fn pick_pixel(ui: &Ui, response: &egui::Response, rect: Rect, state: &mut Viewer
 /// The inspected pixel's outline and the status words over the image.
 fn overlay(ui: &Ui, rect: Rect, state: &ViewerState) {
     let painter = ui.painter_at(rect);
-    if state.scene.first_frame_waits {
+    let waiting = if state.scene.first_frame_waits {
         let phase = &state.scene.progress.phase;
-        painter.text(
-            rect.center(),
-            egui::Align2::CENTER_CENTER,
-            format!(
-                "Preparing the first frame ({}): its shaders compile beside the window",
-                if phase.is_empty() { "starting" } else { phase }
-            ),
-            egui::FontId::proportional(16.0),
-            Color32::LIGHT_GRAY,
+        Some(format!(
+            "Preparing the first frame ({}): its shaders compile beside the window",
+            if phase.is_empty() { "starting" } else { phase }
+        ))
+    } else if state.scene.pipelines_warming {
+        Some("Compiling the pipelines this change needs, beside the window…".to_string())
+    } else {
+        None
+    };
+    if let Some(text) = waiting {
+        let galley =
+            painter.layout_no_wrap(text, egui::FontId::proportional(16.0), Color32::LIGHT_GRAY);
+        let at = rect.center() - galley.size() / 2.0;
+        painter.rect_filled(
+            egui::Rect::from_min_size(at, galley.size()).expand(6.0),
+            4.0,
+            Color32::from_black_alpha(200),
         );
+        painter.galley(at, galley, Color32::LIGHT_GRAY);
     }
     let (w, h) = state.render_size;
     if let Some((x, y)) = state.inspector.pixel

@@ -233,6 +233,8 @@ pub struct SceneState {
     pub progress: super::scene_loader::LoadProgress,
     /// The viewer's first frame waits for its pipelines to warm (`frame.rs`, `Startup`).
     pub first_frame_waits: bool,
+    /// A change's new pipelines are warming beside the window (`Viewer::pipelines_ready`).
+    pub pipelines_warming: bool,
     /// The current scene's load phases, file to first frame (`Renderer::load_phases`).
     pub load: restir_render::load_phases::LoadPhases,
     /// The last load error (the old scene is kept).

@@ -163,17 +163,7 @@ impl ScenePreparer {
         Vec<PipelineCompile>,
         std::thread::JoinHandle<Vec<PipelineCompile>>,
     )> {
-        let sibling = self.gpu.sibling()?;
-        let mut warm = Renderer::new(
-            sibling,
-            scene,
-            WARM_UP_SIZE,
-            WARM_UP_SIZE,
-            self.settings.clone(),
-        )?;
-        warm.set_mode(self.mode);
-        warm.set_view(self.view);
-        warm.force_effects(self.forced_effects.clone());
+        let mut warm = self.sibling_renderer(scene)?;
         warm.render_frame()?;
         warm.gpu().wait_idle();
         warm.gpu().check()?;
@@ -190,5 +180,43 @@ impl ScenePreparer {
             warm.pipeline_compiles()[before..].to_vec()
         });
         Ok((still, moving))
+    }
+
+    /// Compiles and runs the pipelines of `effects` for `scene` on a sibling device, in a
+    /// thread: two tiny frames, the second with history (temporal passes run from the
+    /// second frame on). The viewer renders again once it is done: its own device then
+    /// finds the shaders in the driver's cache.
+    pub fn warm_effects(
+        mut self,
+        scene: std::sync::Arc<Scene>,
+        effects: EffectSet,
+    ) -> std::thread::JoinHandle<Result<Vec<PipelineCompile>, String>> {
+        self.forced_effects = Some(effects);
+        std::thread::spawn(move || {
+            let run = || -> anyhow::Result<Vec<PipelineCompile>> {
+                let mut warm = self.sibling_renderer(&scene)?;
+                warm.render_frame()?;
+                warm.render_frame()?;
+                warm.gpu().wait_idle();
+                warm.gpu().check()?;
+                Ok(warm.pipeline_compiles().to_vec())
+            };
+            run().map_err(|e| format!("{e:#}"))
+        })
+    }
+
+    /// A tiny renderer of `scene` on a sibling device, set up as this preparer's renderer.
+    fn sibling_renderer(&self, scene: &Scene) -> anyhow::Result<Renderer> {
+        let mut warm = Renderer::new(
+            self.gpu.sibling()?,
+            scene,
+            WARM_UP_SIZE,
+            WARM_UP_SIZE,
+            self.settings.clone(),
+        )?;
+        warm.set_mode(self.mode);
+        warm.set_view(self.view);
+        warm.force_effects(self.forced_effects.clone());
+        Ok(warm)
     }
 }

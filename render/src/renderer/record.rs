@@ -182,6 +182,53 @@ impl Renderer {
         s
     }
 
+    /// Which passes this frame runs. The reference traces its own camera rays, except with
+    /// jitter off, where it shades the rasterised surfaces (see reference.wgsl).
+    fn frame_switches(&self, settings: &Settings, effects: &EffectSet) -> FrameSwitches {
+        let realtime = self.mode != Mode::Reference;
+        let spatial_on = realtime && settings.spatial && settings.spatial_neighbours > 0;
+        FrameSwitches {
+            realtime,
+            gbuffer: realtime || !settings.jitter,
+            light_tiles: realtime && effects.contains(Effect::LightTiles),
+            temporal: realtime && settings.temporal,
+            spatial_passes: if spatial_on {
+                settings.spatial_passes.min(MAX_SPATIAL_PASSES)
+            } else {
+                0
+            },
+            // Samples in chunks, one dispatch each (see REFERENCE_SAMPLES_PER_DISPATCH).
+            reference_chunks: settings
+                .reference_spp
+                .max(1)
+                .div_ceil(REFERENCE_SAMPLES_PER_DISPATCH)
+                .min(PASS_INFO_SLOTS),
+            gi: realtime && settings.gi,
+            // A chain has a history only if last frame used it (GI switched on again, or
+            // back from the reference, starts fresh).
+            gi_temporal: settings.gi_temporal && self.carried.has_history(&GI_RESERVOIRS),
+            gi_spatial: settings.gi_spatial && settings.gi_spatial_neighbours > 0,
+            gi_view: self.view.view.is_indirect(),
+            bias_view: self.view.view == DebugView::Bias,
+            temporal_window: self.view.view.uses_temporal_window(),
+        }
+    }
+
+    /// The effect set of the next `render_frame` if that frame would compile pipelines
+    /// (`None`: its variant is ready). The viewer warms them beside the window first where
+    /// compiling on its thread would freeze it (a CPU driver compiles at the first
+    /// dispatch): `ScenePreparer::warm_effects`.
+    pub fn effects_to_compile(&mut self) -> Result<Option<EffectSet>, GpuError> {
+        let settings = self.effective_settings();
+        let moved = self.prev_camera.is_some_and(|p| p != self.camera);
+        let active = self.active_effects(&settings, moved)?;
+        let plan = frame_plan(&self.frame_switches(&settings, &active.set));
+        let empty = PipelineVariant::default();
+        let variant = self.variants.get(&active.key).unwrap_or(&empty);
+        let missing = super::pipelines::missing(variant, plan.iter().map(|s| s.pass));
+        Ok((!missing.is_empty()).then(|| active.set.clone()))
+    }
+
     /// Renders one frame with the current camera, mode, settings and view, and submits it.
     pub fn render_frame(&mut self) -> Result<(), GpuError> {
         let frame_start = std::time::Instant::now();
@@ -209,35 +256,7 @@ impl Renderer {
             bytemuck::bytes_of(&settings.gpu_params(self.targets.height)),
         );
 
-        // Which passes run. The reference traces its own camera rays, except with jitter
-        // off, where it shades the rasterised surfaces (see reference.wgsl).
-        let realtime = self.mode != Mode::Reference;
-        let spatial_on = realtime && settings.spatial && settings.spatial_neighbours > 0;
-        let switches = FrameSwitches {
-            realtime,
-            gbuffer: realtime || !settings.jitter,
-            light_tiles: realtime && effects.contains(Effect::LightTiles),
-            temporal: realtime && settings.temporal,
-            spatial_passes: if spatial_on {
-                settings.spatial_passes.min(MAX_SPATIAL_PASSES)
-            } else {
-                0
-            },
-            // Samples in chunks, one dispatch each (see REFERENCE_SAMPLES_PER_DISPATCH).
-            reference_chunks: settings
-                .reference_spp
-                .max(1)
-                .div_ceil(REFERENCE_SAMPLES_PER_DISPATCH)
-                .min(PASS_INFO_SLOTS),
-            gi: realtime && settings.gi,
-            // A chain has a history only if last frame used it (GI switched on again, or
-            // back from the reference, starts fresh).
-            gi_temporal: settings.gi_temporal && self.carried.has_history(&GI_RESERVOIRS),
-            gi_spatial: settings.gi_spatial && settings.gi_spatial_neighbours > 0,
-            gi_view: self.view.view.is_indirect(),
-            bias_view: self.view.view == DebugView::Bias,
-            temporal_window: self.view.view.uses_temporal_window(),
-        };
+        let switches = self.frame_switches(&settings, effects);
         let plan = frame_plan(&switches);
         if switches.light_tiles
             && super::setup::ensure_light_tiles(&self.gpu, &mut self.light_tiles)
@@ -365,8 +384,12 @@ impl Renderer {
         self.carried.history = resolved.finals;
         self.carried.surfaces = resolved.surfaces;
         self.carried.surface_buffers = self.targets.surfaces.len();
-        self.history_valid = realtime;
-        self.last_final = if realtime { final_reservoirs } else { None };
+        self.history_valid = switches.realtime;
+        self.last_final = if switches.realtime {
+            final_reservoirs
+        } else {
+            None
+        };
         self.prev_camera = Some(camera);
         self.prev_view_proj = Some(view_proj);
         self.prev_jitter = jitter;

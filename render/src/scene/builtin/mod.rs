@@ -5,6 +5,7 @@
 mod concourse;
 mod cornell;
 pub mod dynamic;
+mod glossy;
 mod hard;
 mod lamps;
 mod many_lights;
@@ -40,6 +41,7 @@ const SCENES: &[(&str, Generator)] = &[
     }),
     ("plane-light", plane_light::plane_light),
     ("lamps", lamps::lamps),
+    ("glossy", glossy::glossy_room),
     ("hard:tiny-bright", hard::tiny_bright),
     ("hard:touching", hard::touching),
     ("hard:back-facing", hard::back_facing),

@@ -50,6 +50,8 @@ enum Command {
     BenchRays(bench::ray_cost::RayCostArgs),
     /// How long each phase from file to first frame takes (load, upload, pipelines).
     BenchLoad(bench::load_cost::LoadCostArgs),
+    /// ReSTIR PT's path shifts on the CPU toy scene: bias, variance, how shifts fail.
+    BenchShifts(bench::shift_cost::ShiftCostArgs),
 }
 
 fn main() {
@@ -67,6 +69,7 @@ fn main() {
         Some(Command::BenchBvh(a)) => bench::bvh_cost::run(a),
         Some(Command::BenchRays(a)) => bench::ray_cost::run(a),
         Some(Command::BenchLoad(a)) => bench::load_cost::run(a),
+        Some(Command::BenchShifts(a)) => bench::shift_cost::run(a),
         Some(Command::Scenes) => {
             cli::params::print_scenes();
             Ok(())

@@ -762,3 +762,45 @@ fn load_phases_are_printed_written_and_in_the_stats() {
     assert!(json["load"]["total_ms"].as_f64().unwrap() > 0.0);
     assert!(!json["load"]["pipelines"].as_array().unwrap().is_empty());
 }
+
+/// Issue 27: `bench-shifts` prints one row per place and shift (against the place's
+/// reference) and writes the same rows as CSV; a bad count is a one-line error.
+#[test]
+fn bench_shifts_prints_and_writes_a_row_per_place_and_shift() {
+    let dir = temp_dir("shifts");
+    let csv = dir.join("shifts.csv");
+    let res = viewer(&[
+        "bench-shifts",
+        "--trials",
+        "200",
+        "--reference-paths",
+        "20000",
+        "--csv",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(
+        res.status.success(),
+        "{}",
+        String::from_utf8_lossy(&res.stderr)
+    );
+    let stdout = String::from_utf8_lossy(&res.stdout);
+    assert!(stdout.contains("| place | shift |"), "{stdout}");
+    let text = std::fs::read_to_string(&csv).unwrap();
+    // A header and 4 places × 3 shifts.
+    assert_eq!(text.lines().count(), 1 + 4 * 3, "{text}");
+    for shift in ["reconnection", "random replay", "hybrid"] {
+        assert!(text.contains(&format!(",{shift},")), "{text}");
+        assert!(stdout.contains(&format!("| {shift} |")), "{stdout}");
+    }
+    // Every row's neighbours were shifted at least once (200 trials × 4 neighbours).
+    for line in text.lines().skip(1) {
+        let counts: u64 = line
+            .rsplit(',')
+            .skip(1)
+            .take(6)
+            .map(|c| c.parse::<u64>().unwrap())
+            .sum();
+        assert!(counts > 0, "{line}");
+    }
+    assert_one_line_error(&viewer(&["bench-shifts", "--trials", "1"]), &["--trials"]);
+}

@@ -33,6 +33,7 @@
 //! A shift that cannot be made is a zero-target domain in the MIS (`pairwise.rs`): its
 //! neighbour still counts in the confidence sum and its term is still there, with target 0.
 
+pub mod experiment;
 pub mod lobe;
 pub mod pairwise;
 pub mod path;

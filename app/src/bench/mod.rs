@@ -24,6 +24,7 @@ pub mod ray_cost;
 mod references;
 mod run_loop;
 mod scoring;
+pub mod shift_cost;
 mod strip;
 mod sweep;
 

@@ -1,77 +1,33 @@
 //! Each shift unbiased in a pairwise-MIS spatial reuse step on the glossy toy scene (a
 //! near-mirror at roughness 0.03): the mean of the reused estimate at the canonical pixel
-//! over many independent trials against that pixel's path integral (2 M BSDF-sampled paths,
-//! f64). Planted twins: the same step without Jacobians, and with failed shifts dropped
-//! from the canonical weight but kept in M; the detector must fire on each.
+//! over many independent trials (`experiment.rs`) against that pixel's path integral (8 M
+//! BSDF-sampled paths, f64). Planted twins: the same step without Jacobians, and with failed
+//! shifts mishandled; the detector must fire on each.
 
-use super::fixtures::{pixel, random_numbers};
+use super::experiment::{
+    ALL_ROUND, BY_THE_MIRROR, BY_THE_WALL, HYBRID, ONE_SIDED, Place, glossy_scene, initial,
+    mean_and_se, pixel, spatial_trials,
+};
 use super::pairwise::{Candidate, Planted, pairwise_path_reuse};
-use super::path::{PathSample, Pixel, evaluate, trace};
+use super::path::{PathSample, Pixel};
 use super::shift::Shift;
 use super::toy_scene::ToyScene;
 use crate::reservoir::Reservoir;
-use crate::reservoir::test_support::{Rng, mean_and_se};
+use crate::scene::builtin::rng::SplitMix64;
 
-/// The canonical pixel where glossy chains by the mirror carry much of the light.
-const BY_THE_MIRROR: [f32; 2] = [0.2, -0.6];
-/// The canonical pixel 0.5 from the back wall: the reconnection distances of neighbours
-/// differ by tens of percent, so its Jacobian is far from 1.
-const BY_THE_WALL: [f32; 2] = [0.2, 1.1];
-/// Neighbours 0.2–0.3 away all round, so the floor's roughness and view angle differ.
-const ALL_ROUND: [[f32; 2]; 4] = [[0.25, 0.1], [-0.2, 0.2], [0.15, -0.25], [-0.25, -0.1]];
-/// Neighbours 0.6–0.8 to one side (−y): farther from the back wall, where reconnections to
-/// the wall carry Jacobians of 2–5 one way, and on smoother floor, where replayed bounces
-/// meet narrower lobes. A symmetric set partly cancels either.
-const ONE_SIDED: [[f32; 2]; 4] = [[0.0, -0.6], [0.3, -0.6], [-0.3, -0.6], [0.15, -0.8]];
-const CANDIDATES: usize = 4;
 const TRIALS: usize = 20_000;
 /// The missing-Jacobian detector's trials: its bias is 5–10 %, partly masked by the MIS.
 const PLANTED_TRIALS: usize = 80_000;
 
-const HYBRID: Shift = Shift::Hybrid {
-    rough_threshold: 0.2,
-    min_distance: 0.1,
-};
-
-fn glossy_scene() -> ToyScene {
-    ToyScene::new(0.35, 0.03)
-}
-
-/// An initial reservoir of `CANDIDATES` BSDF-sampled paths (RIS, target = contribution).
-fn initial(scene: &ToyScene, pixel: &Pixel, rng: &mut Rng) -> Reservoir<PathSample> {
-    let mut r = Reservoir::empty();
-    for _ in 0..CANDIDATES {
-        if let Some(p) = trace(scene, pixel, random_numbers(rng)) {
-            let e = evaluate(scene, pixel, &p);
-            if e.pdf > 0.0 {
-                let w = e.contribution / (e.pdf * CANDIDATES as f32);
-                r.update(p, w, e.contribution, rng.f32());
-            }
-        }
-    }
-    r.finalize_initial();
-    r
-}
-
-/// The pixel's indirect light (paths of two or more bounces), by path tracing: 8 M paths,
-/// a standard error of 0.15 % (by the wall) to 0.1 % (by the mirror).
+/// 8 M paths: a standard error of 0.2 % (by the wall) to 0.1 % (by the mirror).
 fn reference(scene: &ToyScene, pixel: &Pixel) -> (f64, f64) {
-    let mut rng = Rng::new(99);
-    let values: Vec<f64> = (0..8_000_000)
-        .map(|_| {
-            trace(scene, pixel, random_numbers(&mut rng)).map_or(0.0, |p| {
-                let e = evaluate(scene, pixel, &p);
-                e.contribution as f64 / e.pdf as f64
-            })
-        })
-        .collect();
-    mean_and_se(&values)
+    super::experiment::reference(scene, pixel, 8_000_000)
 }
 
-/// Mean and standard error of the reused estimate `p̂(y)·W` at the canonical pixel.
+/// Mean and standard error of the reused estimate at `at` with neighbours at `offsets`.
 fn reused(
     scene: &ToyScene,
-    (at, offsets): Place,
+    (at, offsets): ([f32; 2], &'static [[f32; 2]; 4]),
     shift: Shift,
     planted: Planted,
     seed: u64,
@@ -81,42 +37,22 @@ fn reused(
     } else {
         TRIALS
     };
-    let mut rng = Rng::new(seed);
-    let here = pixel(at);
-    let around: Vec<Pixel> = offsets
-        .iter()
-        .map(|o| pixel([at[0] + o[0], at[1] + o[1]]))
-        .collect();
-    let values: Vec<f64> = (0..trials)
-        .map(|_| {
-            let canonical = Candidate {
-                pixel: &here,
-                reservoir: initial(scene, &here, &mut rng),
-            };
-            let neighbours: Vec<Candidate> = around
-                .iter()
-                .map(|p| Candidate {
-                    pixel: p,
-                    reservoir: initial(scene, p, &mut rng),
-                })
-                .collect();
-            let r =
-                pairwise_path_reuse(scene, &canonical, &neighbours, shift, planted, &mut || {
-                    rng.f32()
-                });
-            (r.p_hat * r.weight) as f64
-        })
-        .collect();
-    mean_and_se(&values)
+    let place = Place {
+        name: "",
+        at,
+        offsets,
+    };
+    let t = spatial_trials(scene, &place, shift, planted, trials, seed);
+    (t.mean, t.se)
 }
 
 /// A canonical pixel and its neighbours' offsets.
-type Place = ([f32; 2], &'static [[f32; 2]; 4]);
+type PlaceSpec = ([f32; 2], &'static [[f32; 2]; 4]);
 
 fn z_score(
     scene: &ToyScene,
     (truth, truth_se): (f64, f64),
-    place: Place,
+    place: PlaceSpec,
     shift: Shift,
     planted: Planted,
     seed: u64,
@@ -136,7 +72,7 @@ fn z_score(
 fn every_shift_is_unbiased_under_pairwise_mis() {
     let scene = glossy_scene();
     let mut seed = 0;
-    let places: [Place; 4] = [
+    let places: [PlaceSpec; 4] = [
         (BY_THE_MIRROR, &ALL_ROUND),
         (BY_THE_MIRROR, &ONE_SIDED),
         (BY_THE_WALL, &ALL_ROUND),
@@ -235,7 +171,7 @@ fn temporal_chains_of_shifts_stay_unbiased() {
         .collect();
     let truth = reference(&scene, &pixels[FRAMES - 1]);
     let run = |shift: Shift, planted: Planted, seed: u64| {
-        let mut rng = Rng::new(seed);
+        let mut rng = SplitMix64::new(seed);
         let chains = if planted == Planted::None {
             CHAINS
         } else {
@@ -266,7 +202,7 @@ fn temporal_chains_of_shifts_stay_unbiased() {
                         &neighbours,
                         shift,
                         planted,
-                        &mut || rng.f32(),
+                        &mut || rng.next_f32(),
                     ));
                 }
                 history.map_or(0.0, |r| (r.p_hat * r.weight) as f64)

@@ -10,7 +10,7 @@ mod hard;
 mod lamps;
 mod many_lights;
 mod plane_light;
-mod rng;
+pub(crate) mod rng;
 mod shapes;
 
 use super::Scene;

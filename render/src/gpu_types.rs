@@ -279,7 +279,16 @@ pub struct GpuParams {
     pub gi_jacobian_max: f32,
     /// Path vertices the reference shades, 1..=MAX_BOUNCES (1 = direct light only).
     pub max_bounces: u32,
-    pub _pad: [u32; 3],
+    // ReSTIR PT (issue 27).
+    /// `PT_SHIFT_*`.
+    pub pt_shift: u32,
+    pub pt_rough_threshold: f32,
+    /// World units.
+    pub pt_min_distance: f32,
+    pub pt_spatial_neighbours: u32,
+    /// In pixels of this image (scaled from the 1080p value).
+    pub pt_spatial_radius: f32,
+    pub _pad: [u32; 2],
 }
 
 /// What the display pass shows and how (view settings, not pipeline parameters).
@@ -392,6 +401,33 @@ impl GpuGiReservoir {
     pub fn age(&self) -> u32 {
         self.packed >> crate::shader_constants::GI_AGE_SHIFT
     }
+}
+
+/// A ReSTIR PT path reservoir (`PtReservoir` in types.wgsl, which documents each field):
+/// the sample is a path from the pixel's visible point, stored as what its shifts need.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuPtReservoir {
+    pub value: [f32; 3],
+    pub p_hat: f32,
+    pub w_sum: f32,
+    pub weight: f32,
+    pub m: f32,
+    pub seed: u32,
+    pub packed: u32,
+    pub rc_triangle: u32,
+    pub rc_u: f32,
+    pub rc_v: f32,
+    pub rc_out: u32,
+    pub light: u32,
+    pub light_u: f32,
+    pub light_v: f32,
+    pub rc_suffix: [f32; 3],
+    pub replay_pdf: f32,
+    pub rc_from_d2: f32,
+    pub rc_from_cos: f32,
+    pub jacobian: f32,
+    pub _pad: u32,
 }
 
 /// Per-pixel ReSTIR GI debug record (the GI views and the stats): the stages' rejection

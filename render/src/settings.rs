@@ -91,6 +91,31 @@ pub enum BiasCorrection {
 
 pub const BIAS_CORRECTION_NAMES: &[&str] = &["one-over-m", "pairwise"];
 
+/// How ReSTIR PT moves a path found at one pixel to another (issue 27; the CPU model's
+/// `path_reuse::shift::Shift`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PtShift {
+    /// Keep every vertex after the primary; connect the new primary to the second.
+    Reconnection,
+    /// Trace again from the new primary with the path's random numbers.
+    RandomReplay,
+    /// Replay up to the first bounce with two rough ends far enough apart, reconnect there.
+    Hybrid,
+}
+
+pub const PT_SHIFT_NAMES: &[&str] = &["reconnection", "random-replay", "hybrid"];
+
+impl PtShift {
+    /// The shader's `PT_SHIFT_*`.
+    pub fn gpu(self) -> u32 {
+        match self {
+            PtShift::Reconnection => PT_SHIFT_RECONNECTION,
+            PtShift::RandomReplay => PT_SHIFT_RANDOM_REPLAY,
+            PtShift::Hybrid => PT_SHIFT_HYBRID,
+        }
+    }
+}
+
 /// Whether light candidates come from presampled light tiles (restir-notes.md §6).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LightTiles {
@@ -186,6 +211,11 @@ macro_rules! choice_param {
 
 choice_param!(BiasCorrection, BIAS_CORRECTION_NAMES, [OneOverM, Pairwise]);
 choice_param!(LightTiles, LIGHT_TILES_NAMES, [Auto, On, Off]);
+choice_param!(
+    PtShift,
+    PT_SHIFT_NAMES,
+    [Reconnection, RandomReplay, Hybrid]
+);
 choice_param!(
     RayBackendChoice,
     RAY_BACKEND_NAMES,
@@ -332,6 +362,20 @@ parameter_table! {
             "Pairwise, with GI reconnection visibility: also trace from each neighbour's visible point to this pixel's own sample point, so its MIS weight knows which neighbours could have found it. Off: one ray fewer per neighbour, darker behind occluders (−5 % in the same test; unbiased with it on).";
         gi_bias_correction: BiasCorrection = BiasCorrection::Pairwise, ParamKind::Choice(BIAS_CORRECTION_NAMES), "GI bias correction",
             "pairwise (default): pairwise MIS with each target expressed in this pixel's measure through the Jacobian (unbiased). one-over-m: 1/M weights with rejection (biased: darker where a neighbour cannot see or reconnect part of this pixel's hemisphere).";
+        pt: bool = false, ParamKind::Bool, "Indirect (ReSTIR PT)",
+            "Multi-bounce indirect light with path reuse (GRIS / ReSTIR PT, Lin et al. 2022): each pixel traces one path of up to max_bounces (at least 2) bounces with next-event estimation and MIS at every vertex past the first; its sub-paths are the candidates of one path reservoir, reused over space through a shift mapping (pt_shift) under pairwise MIS. The image is direct (ReSTIR DI) + indirect; replaces ReSTIR GI while on. Off: no PT code is compiled or run.";
+        pt_shift: PtShift = PtShift::Hybrid, ParamKind::Choice(PT_SHIFT_NAMES), "PT shift mapping",
+            "How a neighbour's path is moved to this pixel. reconnection: keep its vertices from the second on and connect to it (fails where the first bounce is glossy: the new angle misses the lobe). random-replay: trace again with its random numbers (fails when the replayed path leaves it; exact in glossy chains). hybrid (default): replay up to the first bounce whose two ends are rough (pt_rough_threshold) and far enough apart (pt_min_distance), reconnect there. All three unbiased under pairwise MIS: a path that cannot be moved is a zero in its domain, never dropped.";
+        pt_spatial: bool = true, ParamKind::Bool, "PT spatial reuse",
+            "Merge the path reservoirs of nearby pixels, each path shifted to this pixel (and this pixel's path shifted to each of them for the pairwise weights).";
+        pt_spatial_neighbours: u32 = 3, ParamKind::Int { min: 0, max: MAX_SPATIAL_NEIGHBOURS as i64 }, "PT neighbours",
+            "Neighbours tried per pixel in PT spatial reuse; each costs two shifts (a replayed prefix is up to max_bounces − 1 rays, a reconnection one visibility ray).";
+        pt_spatial_radius: f32 = 30.0, ParamKind::Float { min: 1.0, max: 1024.0 }, "PT radius (px at 1080p)",
+            "Radius of the PT neighbour disk in pixels of a 1080-pixel-high image, scaled with the height (at least 2 px).";
+        pt_rough_threshold: f32 = 0.3, ParamKind::Float { min: 0.0, max: 1.0 }, "PT roughness threshold",
+            "Hybrid shift: a vertex is rough enough to reconnect at when its material roughness is at least this, or it has no specular lobe. 0: every vertex (hybrid = reconnection at the first far-enough pair); 1: only purely rough ones.";
+        pt_min_distance: f32 = 0.02, ParamKind::Float { min: 0.0, max: 1.0 }, "PT reconnection distance",
+            "Hybrid shift: the two ends of the reconnected segment must be at least this far apart, as a fraction of the scene's size (a near reconnection has a Jacobian far from 1).";
     }
 }
 
@@ -527,7 +571,12 @@ impl Settings {
             gi_spatial_radius: self.effective_gi_spatial_radius(height),
             gi_jacobian_max: self.gi_jacobian_max.max(1.0),
             max_bounces: self.reference_bounces(),
-            _pad: [0; 3],
+            pt_shift: self.pt_shift.gpu(),
+            pt_rough_threshold: self.pt_rough_threshold,
+            pt_min_distance: self.pt_min_distance,
+            pt_spatial_neighbours: self.pt_spatial_neighbours.min(MAX_SPATIAL_NEIGHBOURS),
+            pt_spatial_radius: self.effective_pt_spatial_radius(height),
+            _pad: [0; 2],
         }
     }
 
@@ -545,10 +594,11 @@ impl Settings {
     }
 
     /// The Indirect stage's `PARAM_FLAG_GI_*` bits of `GpuParams::flags`.
-    /// The bounces the reference traces: `max_bounces`, and at least 2 while ReSTIR GI is on
-    /// (GI adds one indirect bounce, so its image is compared with a 2-bounce reference).
+    /// The bounces the reference traces: `max_bounces`, and at least 2 while ReSTIR GI or PT
+    /// is on (GI adds one indirect bounce, so its image is compared with a 2-bounce
+    /// reference; PT's paths have up to this many).
     pub fn reference_bounces(&self) -> u32 {
-        let wanted = if self.gi {
+        let wanted = if self.gi || self.pt {
             self.max_bounces.max(2)
         } else {
             self.max_bounces

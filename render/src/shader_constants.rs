@@ -279,6 +279,11 @@ pub const PARAM_FLAG_GI_SPATIAL_VISIBILITY: u32 = 1 << 7;
 pub const PARAM_FLAG_GI_PAIRWISE: u32 = 1 << 8;
 pub const PARAM_FLAG_GI_MIS_VISIBILITY: u32 = 1 << 9;
 
+/// ReSTIR PT's shift mappings (`Params.pt_shift`, settings `pt_shift`).
+pub const PT_SHIFT_RECONNECTION: u32 = 0;
+pub const PT_SHIFT_RANDOM_REPLAY: u32 = 1;
+pub const PT_SHIFT_HYBRID: u32 = 2;
+
 /// The WGSL prelude: every constant above as a `const` declaration.
 pub fn wgsl_prelude() -> String {
     let u32s: &[(&str, u32)] = &[
@@ -427,6 +432,9 @@ pub fn wgsl_prelude() -> String {
         ),
         ("PARAM_FLAG_GI_PAIRWISE", PARAM_FLAG_GI_PAIRWISE),
         ("PARAM_FLAG_GI_MIS_VISIBILITY", PARAM_FLAG_GI_MIS_VISIBILITY),
+        ("PT_SHIFT_RECONNECTION", PT_SHIFT_RECONNECTION),
+        ("PT_SHIFT_RANDOM_REPLAY", PT_SHIFT_RANDOM_REPLAY),
+        ("PT_SHIFT_HYBRID", PT_SHIFT_HYBRID),
     ];
     let mut out = String::from("// Generated from render/src/shader_constants.rs: edit there.\n");
     for (name, value) in u32s {

@@ -333,7 +333,38 @@ fn host_structs_match_wgsl_layouts() {
             gi_spatial_neighbours,
             gi_spatial_radius,
             gi_jacobian_max,
-            max_bounces
+            max_bounces,
+            pt_shift,
+            pt_rough_threshold,
+            pt_min_distance,
+            pt_spatial_neighbours,
+            pt_spatial_radius
+        ]
+    );
+    check_struct!(
+        m,
+        "PtReservoir",
+        GpuPtReservoir,
+        [
+            value,
+            p_hat,
+            w_sum,
+            weight,
+            m,
+            seed,
+            packed,
+            rc_triangle,
+            rc_u,
+            rc_v,
+            rc_out,
+            light,
+            light_u,
+            light_v,
+            rc_suffix,
+            replay_pdf,
+            rc_from_d2,
+            rc_from_cos,
+            jacobian
         ]
     );
     check_struct!(

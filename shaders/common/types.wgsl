@@ -163,9 +163,14 @@ struct Params {
     gi_spatial_radius: f32,       // pixels of this image
     gi_jacobian_max: f32,         // window [1/max, max]
     max_bounces: u32,             // path vertices the reference shades (1 = direct only)
+    // ReSTIR PT (issue 27; pt on): the shift mapping and the hybrid's thresholds
+    pt_shift: u32,                // PT_SHIFT_*
+    pt_rough_threshold: f32,
+    pt_min_distance: f32,         // world units
+    pt_spatial_neighbours: u32,
+    pt_spatial_radius: f32,       // pixels of this image
     _pad0: u32,
     _pad1: u32,
-    _pad2: u32,
 }
 
 struct Display {
@@ -217,6 +222,34 @@ struct GiReservoir {
     m: f32,
     p_hat: f32,           // p̂ at the pixel that selected it
     packed: u32,          // SOURCE_* | GI flags << GI_FLAGS_SHIFT | age << GI_AGE_SHIFT
+}
+
+// A ReSTIR PT path reservoir (issue 27; functions in common/pt_reservoir.wgsl and
+// common/pt_path.wgsl, the CPU model in render/src/path_reuse). The pixel's Surface is the
+// path's first vertex x_1; the path x_1 → … → x_n → z (a light point) is stored as what
+// its shifts need: its random seed (replay), its reconnection vertex x_{k+1} and what lies
+// beyond it (reconnection), and the densities and geometry of the side it was found on.
+struct PtReservoir {
+    value: vec3<f32>,     // f(x̄) at this pixel: the path's integrand (rgb), visibility included
+    p_hat: f32,           // luminance(value)
+    w_sum: f32,
+    weight: f32,          // W; 0 for the null sample
+    m: f32,
+    seed: u32,            // the path's random numbers (pt_rng)
+    packed: u32,          // source | n | end | k | lobes (pt_reservoir.wgsl)
+    rc_triangle: u32,     // x_{k+1}: triangle and barycentrics (unused when k is PT_RC_NONE)
+    rc_u: f32,
+    rc_v: f32,
+    rc_out: u32,          // octahedral direction leaving x_{k+1} (to x_{k+2} or to z)
+    light: u32,           // z: light_table index and uv
+    light_u: f32,
+    light_v: f32,
+    rc_suffix: vec3<f32>, // the integrand beyond x_{k+1}'s own factor
+    replay_pdf: f32,      // density of the replayed directions (and a BSDF end) where found
+    rc_from_d2: f32,      // |x_k − x_{k+1}|² where found
+    rc_from_cos: f32,     // cos at x_{k+1} toward x_k (signed, triangle's own normal)
+    jacobian: f32,        // |J| of the shift that brought it here (1: found here)
+    _pad: u32,
 }
 
 // Per-pixel ReSTIR GI debug record (GpuGiPixelDebug).

@@ -1,7 +1,7 @@
 //! The configurations a bench compares: built-in names (`nee`, `ris`, `ris+temporal`,
-//! `ris+spatial`, `restir`, `restir-pairwise`, `path-2b`, `restir+gi`, ...) and preset files, each a mode
-//! plus settings on top of the bench's base settings. A configuration is scored against the
-//! reference of its own `max_bounces` (references.rs).
+//! `ris+spatial`, `restir`, `restir-pairwise`, `path-2b`, `restir+gi`, `restir+pt`, ...) and
+//! preset files, each a mode plus settings on top of the bench's base settings. A
+//! configuration is scored against the reference of its own `max_bounces` (references.rs).
 
 use std::path::Path;
 
@@ -67,6 +67,36 @@ const BUILTIN: &[(&str, Mode, &[&str], &str)] = &[
         Mode::Restir,
         &["gi=true", "gi_bias_correction=pairwise", "max_bounces=2"],
         "restir (DI) + ReSTIR GI with pairwise MIS (the GI default); scored against a 2-bounce reference",
+    ),
+    (
+        "path-3b",
+        Mode::Reference,
+        &["reference_spp=1", "max_bounces=3"],
+        "one-sample brute-force path tracing, 3 bounces; scored against a 3-bounce reference",
+    ),
+    (
+        "restir+pt",
+        Mode::Restir,
+        &["pt=true", "pt_shift=hybrid", "max_bounces=2"],
+        "restir (DI) + ReSTIR PT, hybrid shift, paths of 2 bounces (GI's path space); scored against a 2-bounce reference",
+    ),
+    (
+        "restir+pt-reconnection",
+        Mode::Restir,
+        &["pt=true", "pt_shift=reconnection", "max_bounces=2"],
+        "restir (DI) + ReSTIR PT, reconnection shift, 2 bounces",
+    ),
+    (
+        "restir+pt-replay",
+        Mode::Restir,
+        &["pt=true", "pt_shift=random-replay", "max_bounces=2"],
+        "restir (DI) + ReSTIR PT, random-replay shift, 2 bounces",
+    ),
+    (
+        "restir+pt-3b",
+        Mode::Restir,
+        &["pt=true", "pt_shift=hybrid", "max_bounces=3"],
+        "restir (DI) + ReSTIR PT, hybrid shift, paths of up to 3 bounces; scored against a 3-bounce reference",
     ),
     (
         "tiles-on",

@@ -19,6 +19,9 @@ pub mod gi_view;
 pub mod initial;
 pub mod moments;
 pub mod presample;
+pub mod pt_initial;
+pub mod pt_shade;
+pub mod pt_spatial;
 pub mod ray_bench;
 pub mod reference;
 pub mod shade;
@@ -34,7 +37,7 @@ pub use compile::{
 pub use pass::PassDef;
 
 /// Every pass, in pipeline order (a layout is created for each; tests validate each).
-pub const ALL: [&PassDef; 19] = [
+pub const ALL: [&PassDef; 22] = [
     &gbuffer::RASTER,
     &gbuffer::RESOLVE,
     &presample::PASS,
@@ -46,6 +49,9 @@ pub const ALL: [&PassDef; 19] = [
     &gi_temporal::PASS,
     &gi_spatial::PASS,
     &gi_shade::PASS,
+    &pt_initial::PASS,
+    &pt_spatial::PASS,
+    &pt_shade::PASS,
     &reference::PASS,
     &moments::PASS,
     &temporal_window::PASS,

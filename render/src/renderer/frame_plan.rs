@@ -1,7 +1,8 @@
 //! The frame as an ordered list of passes, read top to bottom like the pipeline diagram
 //! (README): G-buffer → (light tiles) → DI initial → temporal → spatial × P → shade →
-//! (GI initial → temporal → spatial → shade) → moments → (temporal window) → display
-//! (→ GI view) (→ bias view) (→ window view), or G-buffer (jitter off) → reference → moments
+//! (GI initial → temporal → spatial → shade, or PT initial → spatial → shade) → moments →
+//! (temporal window) → display (→ GI view) (→ bias view) (→ window view), or G-buffer
+//! (jitter off) → reference → moments
 //! → (temporal window) → display. A stage the settings switch off is not in the list, hence
 //! never dispatched or compiled.
 
@@ -10,7 +11,8 @@ use std::ops::Range;
 use crate::passes::resources::{Chain, RESERVOIRS};
 use crate::passes::{
     PassDef, bias_view, display, gbuffer, gi_initial, gi_shade, gi_spatial, gi_temporal, gi_view,
-    initial, moments, presample, reference, shade, spatial, temporal, temporal_window, window_view,
+    initial, moments, presample, pt_initial, pt_shade, pt_spatial, reference, shade, spatial,
+    temporal, temporal_window, window_view,
 };
 
 /// One pass of the frame.
@@ -79,6 +81,9 @@ pub struct FrameSwitches {
     pub gi: bool,
     pub gi_temporal: bool,
     pub gi_spatial: bool,
+    /// ReSTIR PT (real-time frames only; GI is off while it is on) and its spatial reuse.
+    pub pt: bool,
+    pub pt_spatial: bool,
     /// A GI debug view is shown (drawn over the display's output).
     pub gi_view: bool,
     /// The bias view is shown (drawn over the display's output).
@@ -115,6 +120,13 @@ pub fn frame_plan(f: &FrameSwitches) -> Vec<Step> {
                 steps.push(Step::new(&gi_spatial::PASS).inspect_gi("gi spatial"));
             }
             steps.push(Step::new(&gi_shade::PASS));
+        }
+        if f.pt {
+            steps.push(Step::new(&pt_initial::PASS));
+            if f.pt_spatial {
+                steps.push(Step::new(&pt_spatial::PASS));
+            }
+            steps.push(Step::new(&pt_shade::PASS));
         }
     } else {
         steps.push(Step::new(&reference::PASS).slots(0..f.reference_chunks.max(1)));

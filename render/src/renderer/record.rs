@@ -203,7 +203,9 @@ impl Renderer {
                 .max(1)
                 .div_ceil(REFERENCE_SAMPLES_PER_DISPATCH)
                 .min(PASS_INFO_SLOTS),
-            gi: realtime && settings.gi,
+            gi: realtime && settings.gi && !settings.pt,
+            pt: realtime && settings.pt,
+            pt_spatial: settings.pt_spatial && settings.pt_spatial_neighbours > 0,
             // A chain has a history only if last frame used it (GI switched on again, or
             // back from the reference, starts fresh).
             gi_temporal: settings.gi_temporal && self.carried.has_history(&GI_RESERVOIRS),
@@ -415,7 +417,10 @@ impl Renderer {
         };
         let shown_accumulation = self.shows_accumulation();
         let variant = self.variants.entry(active.key.clone()).or_default();
-        let gi_view = settings.gi && self.mode != Mode::Reference && self.view.view.is_indirect();
+        let gi_view = settings.gi
+            && !settings.pt
+            && self.mode != Mode::Reference
+            && self.view.view.is_indirect();
         let plan = frame_plan::display_only(
             gi_view,
             self.view.view == DebugView::Bias,

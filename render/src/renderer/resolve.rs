@@ -178,7 +178,7 @@ mod tests {
         for realtime in [true, false] {
             for temporal in [false, true] {
                 for spatial_passes in [0, 1, 3] {
-                    for gi in [false, true] {
+                    for (gi, pt) in [(false, false), (true, false), (false, true)] {
                         out.push(FrameSwitches {
                             realtime,
                             gbuffer: true,
@@ -189,6 +189,8 @@ mod tests {
                             gi,
                             gi_temporal: temporal,
                             gi_spatial: spatial_passes > 0,
+                            pt,
+                            pt_spatial: spatial_passes > 0,
                             gi_view: gi,
                             bias_view: !gi,
                             temporal_window: gi,

@@ -42,12 +42,17 @@ impl Settings {
         scale_to_height(self.gi_spatial_radius, height, MIN_SPATIAL_RADIUS_PX)
     }
 
+    pub fn effective_pt_spatial_radius(&self, height: u32) -> f32 {
+        scale_to_height(self.pt_spatial_radius, height, MIN_SPATIAL_RADIUS_PX)
+    }
+
     /// For a pixel-unit parameter, the value used at `height`; `None` for the others.
     /// (The one list of such parameters: the UI and `params` ask here.)
     pub fn effective_pixels(&self, name: &str, height: u32) -> Option<f32> {
         match name {
             "spatial_radius" => Some(self.effective_spatial_radius(height)),
             "gi_spatial_radius" => Some(self.effective_gi_spatial_radius(height)),
+            "pt_spatial_radius" => Some(self.effective_pt_spatial_radius(height)),
             _ => None,
         }
     }

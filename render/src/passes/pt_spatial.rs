@@ -1,0 +1,17 @@
+//! ReSTIR PT spatial reuse (pt_spatial.wgsl): neighbours' paths shifted here by the chosen
+//! shift mapping, merged under pairwise MIS.
+
+use super::pass::{Dispatch, PassDef, read, write};
+use super::pt_initial::PT_RESERVOIRS;
+use super::resources::{Resource::*, Role};
+
+pub const PASS: PassDef = PassDef {
+    name: "pt spatial",
+    shader: "pt_spatial.wgsl",
+    group: &[
+        read(Surfaces),
+        read(Chain(&PT_RESERVOIRS, Role::In)),
+        write(Chain(&PT_RESERVOIRS, Role::Out)),
+    ],
+    dispatch: Dispatch::Pixels,
+};

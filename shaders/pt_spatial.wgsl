@@ -1,0 +1,111 @@
+// ReSTIR PT spatial reuse (issue 27): k neighbours in a disk of pt_spatial_radius pixels,
+// chosen and validated by G-buffer checks alone (never by their paths). Each neighbour's
+// path is shifted here (pt_shift: reconnection, random replay or hybrid, its Jacobian, its
+// visibility traced), and this pixel's path is shifted to each neighbour for its pairwise
+// MIS weight (Bitterli et al. 2020's defensive pairwise MIS, the targets in this pixel's
+// measure through |J|, as gi_spatial.wgsl). A path that cannot be shifted is a zero in its
+// domain: the neighbour keeps its confidence in the sum and its term in the weights.
+#include "common/pt_path.wgsl"
+#include "common/reuse.wgsl"
+
+@group(2) @binding(0) var<storage, read> surfaces: array<Surface>;
+@group(2) @binding(1) var<storage, read> pt_in: array<PtReservoir>;
+@group(2) @binding(2) var<storage, read_write> pt_out: array<PtReservoir>;
+
+struct PtNeighbour {
+    index: u32,
+    shifted: PtShifted,   // its path moved here (jacobian 0: failed or null)
+}
+
+// The candidate step with an explicit MIS weight: w = p̂_here(T(y)) · W · m · |J|.
+fn pt_merge_mis(r: ptr<function, PtReservoir>, other: PtReservoir, moved: PtShifted, mis_weight: f32, u: f32) -> bool {
+    if pt_reservoir_is_null(other) {
+        return false;
+    }
+    let w = moved.path.p_hat * other.weight * (sanitize(mis_weight) * sanitize(moved.jacobian));
+    var sample = moved.path;
+    sample.jacobian = moved.jacobian;
+    return pt_reservoir_update(r, sample, w, u);
+}
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if !pixel_in_frame(id) {
+        return;
+    }
+    let index = pixel_index(id.xy);
+    let s = surfaces[index];
+    let canonical = pt_checked(pt_in[index], GI_PASS_SPATIAL);
+    if !surface_is_valid(s) {
+        pt_out[index] = canonical;
+        return;
+    }
+    let sp = shading_point_from_surface(s, frame.camera_position);
+    var rng = rng_seed(id.xy, STREAM_GI_SPATIAL);
+    var accepted: array<PtNeighbour, MAX_SPATIAL_NEIGHBOURS>;
+    var n_accepted = 0u;
+    var c_total = canonical.m;
+    let size = vec2<i32>(frame.size);
+    let k = min(params.pt_spatial_neighbours, MAX_SPATIAL_NEIGHBOURS);
+    for (var i = 0u; i < k; i++) {
+        let offset = disk_neighbour_offset(rand_vec2(&rng), params.pt_spatial_radius);
+        let q = vec2<i32>(id.xy) + offset;
+        var mask = 0u;
+        var n: PtNeighbour;
+        if any(q < vec2<i32>(0)) || any(q >= size) {
+            mask |= REJECT_OFFSCREEN;
+        } else {
+            n.index = pixel_index(vec2<u32>(q));
+            let ns = surfaces[n.index];
+            if !surface_is_valid(ns) {
+                mask |= REJECT_SURFACE;
+            } else {
+                mask |= surface_dissimilarity(s, ns, false);
+            }
+        }
+        if mask == 0u {
+            let nr = pt_checked(pt_in[n.index], GI_PASS_SPATIAL);
+            if pt_reservoir_is_null(nr) {
+                n.shifted = pt_shift_failed(nr, PT_FAIL_NONE);
+            } else {
+                n.shifted = pt_shift(nr, sp);
+            }
+            accepted[n_accepted] = n;
+            n_accepted++;
+            c_total += nr.m;
+        }
+        count_rejections(mask, STAT_GI_SPATIAL_REJECT);
+    }
+
+    var r = pt_reservoir_empty();
+    var m_canonical = confidence_share(canonical.m, c_total);
+    for (var i = 0u; i < n_accepted; i++) {
+        let n = accepted[i];
+        let nr = pt_checked(pt_in[n.index], GI_PASS_SPATIAL);
+        if !pt_reservoir_is_null(nr) {
+            let m_i = gi_pairwise_noncanonical(c_total, canonical.m, nr.m, nr.p_hat, n.shifted.path.p_hat, n.shifted.jacobian);
+            var moved = n.shifted;
+            moved.path.packed = pt_with_source(moved.path.packed, SOURCE_SPATIAL);
+            pt_merge_mis(&r, nr, moved, m_i, rand_f32(&rng));
+        }
+        if !pt_reservoir_is_null(canonical) {
+            // Could the neighbour have found this pixel's path? Shift it there and ask.
+            let neighbour_sp = shading_point_from_surface(surfaces[n.index], frame.camera_position);
+            let back = pt_shift(canonical, neighbour_sp);
+#ifdef PLANTED_PT_FAILED_SHIFT_DROPPED
+            // Test-only planted error: a neighbour this path cannot be shifted to still counts
+            // in M but leaves the canonical weight (RTXDI PT's 2026 bug class).
+            if back.jacobian == 0.0 {
+                continue;
+            }
+#endif
+            m_canonical += gi_pairwise_canonical_term(c_total, canonical.m, nr.m, canonical.p_hat, back.path.p_hat, back.jacobian);
+        }
+    }
+    var own = PtShifted(canonical, 1.0, PT_FAIL_NONE);
+    pt_merge_mis(&r, canonical, own, m_canonical, rand_f32(&rng));
+    r.m = c_total;
+    pt_reservoir_finalize(&r);
+    r = pt_guarded(r, GI_PASS_SPATIAL);
+    pt_out[index] = r;
+}

@@ -6,26 +6,18 @@
 // measure through |J|, as gi_spatial.wgsl). A path that cannot be shifted is a zero in its
 // domain: the neighbour keeps its confidence in the sum and its term in the weights.
 #include "common/pt_path.wgsl"
+#include "common/pt_probe.wgsl"
 #include "common/reuse.wgsl"
 
 @group(2) @binding(0) var<storage, read> surfaces: array<Surface>;
 @group(2) @binding(1) var<storage, read> pt_in: array<PtReservoir>;
 @group(2) @binding(2) var<storage, read_write> pt_out: array<PtReservoir>;
+@group(2) @binding(3) var<storage, read_write> pt_debug: array<PtPixelDebug>;
+@group(2) @binding(4) var<storage, read_write> pt_probe: array<PtProbeStage>;
 
 struct PtNeighbour {
     index: u32,
     shifted: PtShifted,   // its path moved here (jacobian 0: failed or null)
-}
-
-// The candidate step with an explicit MIS weight: w = p̂_here(T(y)) · W · m · |J|.
-fn pt_merge_mis(r: ptr<function, PtReservoir>, other: PtReservoir, moved: PtShifted, mis_weight: f32, u: f32) -> bool {
-    if pt_reservoir_is_null(other) {
-        return false;
-    }
-    let w = moved.path.p_hat * other.weight * (sanitize(mis_weight) * sanitize(moved.jacobian));
-    var sample = moved.path;
-    sample.jacobian = moved.jacobian;
-    return pt_reservoir_update(r, sample, w, u);
 }
 
 @compute @workgroup_size(8, 8)
@@ -36,6 +28,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let index = pixel_index(id.xy);
     let s = surfaces[index];
     let canonical = pt_checked(pt_in[index], GI_PASS_SPATIAL);
+    var d = pt_debug[index];
     if !surface_is_valid(s) {
         pt_out[index] = canonical;
         return;
@@ -69,6 +62,12 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
                 n.shifted = pt_shift_failed(nr, PT_FAIL_NONE);
             } else {
                 n.shifted = pt_shift(nr, sp);
+                d.spatial_tried += 1u;
+                // Saturating 4-bit counters, one per outcome (MAX_SPATIAL_NEIGHBOURS ≤ 15).
+                let shift = 4u * min(n.shifted.failure, 7u);
+                if ((d.spatial_outcomes >> shift) & 0xfu) < 0xfu {
+                    d.spatial_outcomes += 1u << shift;
+                }
             }
             accepted[n_accepted] = n;
             n_accepted++;
@@ -103,9 +102,15 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         }
     }
     var own = PtShifted(canonical, 1.0, PT_FAIL_NONE);
-    pt_merge_mis(&r, canonical, own, m_canonical, rand_f32(&rng));
+    if pt_merge_mis(&r, canonical, own, m_canonical, rand_f32(&rng)) {
+        r.jacobian = canonical.jacobian;  // its last shift is still the temporal one
+    }
     r.m = c_total;
     pt_reservoir_finalize(&r);
     r = pt_guarded(r, GI_PASS_SPATIAL);
+    d.jacobian = r.jacobian;
+    d.m_spatial = r.m;
+    pt_debug[index] = d;
+    pt_probe_write(PT_PROBE_SPATIAL, index, sp, r);
     pt_out[index] = r;
 }

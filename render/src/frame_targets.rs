@@ -136,6 +136,7 @@ impl FrameTargets {
                 let count = match buffer.allocation {
                     Allocation::Full => pixels,
                     Allocation::Placeholder => 0,
+                    Allocation::Fixed(count) => count,
                 };
                 pixel_buffer(gpu, buffer.name, count, buffer.stride)
             });

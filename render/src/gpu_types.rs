@@ -246,7 +246,10 @@ pub struct GpuFrame {
     /// The previous frame's jitter: reprojection lands on the pixel whose (jittered)
     /// sample was nearest to the point.
     pub prev_jitter: [f32; 2],
-    pub _pad: [u32; 2],
+    /// The pixel inspector's pixel (y · width + x), or `NO_INSPECT_PIXEL`: the PT passes
+    /// write that pixel's path into the path probe.
+    pub inspect_pixel: u32,
+    pub _pad: u32,
 }
 
 /// Pipeline parameters as the shaders see them (built from `Settings`).
@@ -288,7 +291,9 @@ pub struct GpuParams {
     pub pt_spatial_neighbours: u32,
     /// In pixels of this image (scaled from the 1080p value).
     pub pt_spatial_radius: f32,
-    pub _pad: [u32; 2],
+    pub pt_m_cap: f32,
+    /// The biased Jacobian clamp [1/c, c] (0 = off).
+    pub pt_jacobian_clamp: f32,
 }
 
 /// What the display pass shows and how (view settings, not pipeline parameters).
@@ -444,6 +449,49 @@ pub struct GpuGiPixelDebug {
     pub m_temporal: f32,
     pub m_spatial: f32,
     pub _pad: u32,
+}
+
+/// Per-pixel ReSTIR PT debug record (the PT views, the inspector): how the shifts into the
+/// pixel went this frame and M after each stage.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuPtPixelDebug {
+    /// `REJECT_*` bits of the previous pixel's G-buffer checks (0: the history was merged).
+    pub temporal_mask: u32,
+    /// `PT_FAIL_*` of the previous path's shift to this pixel, `PT_FAIL_NOT_TRIED` when
+    /// there was none.
+    pub temporal_failure: u32,
+    /// Four bits per `PT_FAIL_*` value (bits 4f..4f+4): how many neighbours' shifts to this
+    /// pixel ended that way (`PT_FAIL_NONE`: moved).
+    pub spatial_outcomes: u32,
+    /// Neighbours that passed the G-buffer checks with a path to shift.
+    pub spatial_tried: u32,
+    /// |J| of the survivor's last shift (1 for the pixel's own path).
+    pub jacobian: f32,
+    pub m_initial: f32,
+    pub m_temporal: f32,
+    pub m_spatial: f32,
+}
+
+impl GpuPtPixelDebug {
+    /// Neighbours whose shift to this pixel ended with `failure` (`PT_FAIL_*`).
+    pub fn spatial_count(&self, failure: u32) -> u32 {
+        (self.spatial_outcomes >> (4 * failure)) & 0xf
+    }
+}
+
+/// One PT stage's path at the inspected pixel (pt_probe.wgsl): the reservoir it kept and
+/// the path's vertices x_1 … x_n and z, rebuilt on the GPU from the record.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuPtProbeStage {
+    /// 1 when the stage ran this frame (the probe is cleared before each frame).
+    pub written: u32,
+    pub vertex_count: u32,
+    pub _pad: [u32; 2],
+    pub reservoir: GpuPtReservoir,
+    /// xyz; w holds `PT_VERTEX_*` bits (as f32 bits).
+    pub vertices: [[f32; 4]; crate::shader_constants::PT_PROBE_VERTICES as usize],
 }
 
 /// One pixel's temporal window (the `temporal window` pass, passes/temporal_window.rs):

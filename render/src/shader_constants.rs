@@ -211,6 +211,12 @@ pub const BIAS_SIGNIFICANCE: f32 = 3.0;
 pub const BIAS_NEGLIGIBLE: f32 = 0.01;
 pub const VIEW_BOILING: u32 = 18;
 pub const VIEW_SURVIVOR_CHANGE: u32 = 19;
+/// ReSTIR PT's views (pt_view.wgsl): the survivor's path length n, its reconnection
+/// vertex's depth, why shifts to the pixel failed, and log2 |J| of its last shift.
+pub const VIEW_PT_LENGTH: u32 = 20;
+pub const VIEW_PT_RECONNECTION: u32 = 21;
+pub const VIEW_PT_FAILURE: u32 = 22;
+pub const VIEW_PT_JACOBIAN: u32 = 23;
 /// Frames in the temporal window of the boiling and survivor-change views (the
 /// `temporal window` pass): long enough that the relative standard deviation of a steady
 /// pixel is estimated to ±18 % (1/√(2·15)), short enough that a switched light leaves it
@@ -283,6 +289,50 @@ pub const PARAM_FLAG_GI_MIS_VISIBILITY: u32 = 1 << 9;
 pub const PT_SHIFT_RECONNECTION: u32 = 0;
 pub const PT_SHIFT_RANDOM_REPLAY: u32 = 1;
 pub const PT_SHIFT_HYBRID: u32 = 2;
+/// A path reservoir's `packed` word (pt_reservoir.wgsl): source | n << 4 | end << 8 |
+/// k << 9 | lobes << 13. The end technique of x_n → z:
+pub const PT_END_NEE: u32 = 0;
+pub const PT_END_BSDF: u32 = 1;
+/// k for a path that is replayed whole (no reconnection).
+pub const PT_RC_NONE: u32 = 15;
+pub const PT_LOBE_DIFFUSE: u32 = 0;
+pub const PT_LOBE_SPECULAR: u32 = 1;
+/// Why a path could not be moved to another pixel (pt_shift in pt_path.wgsl; the CPU
+/// model's `path_reuse::shift::Failure`). `PT_FAIL_NONE`: it moved and carries light there.
+pub const PT_FAIL_NONE: u32 = 0;
+/// The replayed prefix left the path (missed, met another lobe's zero, left the scene).
+pub const PT_FAIL_REPLAY: u32 = 1;
+/// The reconnection is undefined (too near or far, grazing, the other side of its surface).
+pub const PT_FAIL_UNDEFINED: u32 = 2;
+/// The reconnection segment is blocked.
+pub const PT_FAIL_OCCLUDED: u32 = 3;
+/// Hybrid: the shifted path would reconnect at another bounce (not a bijection there).
+pub const PT_FAIL_ELSEWHERE: u32 = 4;
+/// Moved, but its integrand is zero at the new pixel (below the surface, outside the lobe).
+pub const PT_FAIL_ZERO: u32 = 5;
+pub const PT_FAIL_REASON_COUNT: usize = 6;
+pub const PT_FAIL_NAMES: [&str; PT_FAIL_REASON_COUNT] = [
+    "moved",
+    "replay left the path",
+    "reconnection undefined",
+    "reconnection occluded",
+    "reconnects elsewhere (hybrid)",
+    "zero where moved",
+];
+/// `PtPixelDebug.temporal_failure` when no temporal shift was tried (no history, or the
+/// previous surface failed the G-buffer checks).
+pub const PT_FAIL_NOT_TRIED: u32 = 0xff;
+/// The PT stages the pixel inspector's path probe keeps (pt initial, temporal, spatial),
+/// and the vertices one stage's path can have: x_1 … x_n and the light point z.
+pub const PT_PROBE_STAGES: u32 = 3;
+pub const PT_PROBE_VERTICES: u32 = MAX_BOUNCES + 1;
+/// `PtProbeVertex.flags` bits.
+pub const PT_VERTEX_RECONNECTION: u32 = 1;
+pub const PT_VERTEX_LIGHT: u32 = 2;
+/// The light end is a direction (the environment), not a point.
+pub const PT_VERTEX_DIRECTION: u32 = 4;
+/// `GpuFrame.inspect_pixel` when no pixel is inspected.
+pub const NO_INSPECT_PIXEL: u32 = 0xffff_ffff;
 
 /// The WGSL prelude: every constant above as a `const` declaration.
 pub fn wgsl_prelude() -> String {
@@ -435,6 +485,29 @@ pub fn wgsl_prelude() -> String {
         ("PT_SHIFT_RECONNECTION", PT_SHIFT_RECONNECTION),
         ("PT_SHIFT_RANDOM_REPLAY", PT_SHIFT_RANDOM_REPLAY),
         ("PT_SHIFT_HYBRID", PT_SHIFT_HYBRID),
+        ("PT_END_NEE", PT_END_NEE),
+        ("PT_END_BSDF", PT_END_BSDF),
+        ("PT_RC_NONE", PT_RC_NONE),
+        ("PT_LOBE_DIFFUSE", PT_LOBE_DIFFUSE),
+        ("PT_LOBE_SPECULAR", PT_LOBE_SPECULAR),
+        ("PT_FAIL_NONE", PT_FAIL_NONE),
+        ("PT_FAIL_REPLAY", PT_FAIL_REPLAY),
+        ("PT_FAIL_UNDEFINED", PT_FAIL_UNDEFINED),
+        ("PT_FAIL_OCCLUDED", PT_FAIL_OCCLUDED),
+        ("PT_FAIL_ELSEWHERE", PT_FAIL_ELSEWHERE),
+        ("PT_FAIL_ZERO", PT_FAIL_ZERO),
+        ("PT_FAIL_REASON_COUNT", PT_FAIL_REASON_COUNT as u32),
+        ("PT_FAIL_NOT_TRIED", PT_FAIL_NOT_TRIED),
+        ("PT_PROBE_STAGES", PT_PROBE_STAGES),
+        ("PT_PROBE_VERTICES", PT_PROBE_VERTICES),
+        ("PT_VERTEX_RECONNECTION", PT_VERTEX_RECONNECTION),
+        ("PT_VERTEX_LIGHT", PT_VERTEX_LIGHT),
+        ("PT_VERTEX_DIRECTION", PT_VERTEX_DIRECTION),
+        ("NO_INSPECT_PIXEL", NO_INSPECT_PIXEL),
+        ("VIEW_PT_LENGTH", VIEW_PT_LENGTH),
+        ("VIEW_PT_RECONNECTION", VIEW_PT_RECONNECTION),
+        ("VIEW_PT_FAILURE", VIEW_PT_FAILURE),
+        ("VIEW_PT_JACOBIAN", VIEW_PT_JACOBIAN),
     ];
     let mut out = String::from("// Generated from render/src/shader_constants.rs: edit there.\n");
     for (name, value) in u32s {

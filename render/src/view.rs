@@ -57,6 +57,12 @@ pub enum DebugView {
     GiM,
     GiRejection,
     GiJacobian,
+    /// ReSTIR PT (drawn by pt_view): the survivor's path length, the depth of its
+    /// reconnection vertex, why shifts to the pixel failed, log2 |J| of its last shift.
+    PtLength,
+    PtReconnection,
+    PtFailure,
+    PtJacobian,
     /// σ/mean of each pixel's luminance over the temporal window: where the image flickers.
     Boiling,
     /// How often the survivor's light changed within the temporal window.
@@ -64,7 +70,7 @@ pub enum DebugView {
 }
 
 impl DebugView {
-    pub const ALL: [DebugView; 20] = [
+    pub const ALL: [DebugView; 24] = [
         DebugView::Final,
         DebugView::Source,
         DebugView::M,
@@ -83,6 +89,10 @@ impl DebugView {
         DebugView::GiM,
         DebugView::GiRejection,
         DebugView::GiJacobian,
+        DebugView::PtLength,
+        DebugView::PtReconnection,
+        DebugView::PtFailure,
+        DebugView::PtJacobian,
         DebugView::Boiling,
         DebugView::SurvivorChange,
     ];
@@ -107,6 +117,10 @@ impl DebugView {
             DebugView::GiM => "gi-m",
             DebugView::GiRejection => "gi-rejection",
             DebugView::GiJacobian => "gi-jacobian",
+            DebugView::PtLength => "pt-length",
+            DebugView::PtReconnection => "pt-reconnection",
+            DebugView::PtFailure => "pt-failure",
+            DebugView::PtJacobian => "pt-jacobian",
             DebugView::Boiling => "boiling",
             DebugView::SurvivorChange => "survivor-change",
         }
@@ -136,6 +150,10 @@ impl DebugView {
             DebugView::GiM => VIEW_GI_M,
             DebugView::GiRejection => VIEW_GI_REJECTION,
             DebugView::GiJacobian => VIEW_GI_JACOBIAN,
+            DebugView::PtLength => VIEW_PT_LENGTH,
+            DebugView::PtReconnection => VIEW_PT_RECONNECTION,
+            DebugView::PtFailure => VIEW_PT_FAILURE,
+            DebugView::PtJacobian => VIEW_PT_JACOBIAN,
             DebugView::Boiling => VIEW_BOILING,
             DebugView::SurvivorChange => VIEW_SURVIVOR_CHANGE,
         }
@@ -155,6 +173,18 @@ impl DebugView {
                 | DebugView::GiM
                 | DebugView::GiRejection
                 | DebugView::GiJacobian
+        )
+    }
+
+    /// Whether the view shows ReSTIR PT's path reservoirs (drawn by the pt_view pass, only
+    /// when PT runs; `Indirect` is drawn there too while PT is on).
+    pub fn is_path_view(self) -> bool {
+        matches!(
+            self,
+            DebugView::PtLength
+                | DebugView::PtReconnection
+                | DebugView::PtFailure
+                | DebugView::PtJacobian
         )
     }
 

@@ -7,12 +7,10 @@
 
 mod common;
 
-use std::collections::BTreeSet;
-
+use common::indirect::mean_luma;
 use glam::Vec3;
-use restir_render::effects::{EffectSet, SceneFeatures};
 use restir_render::shader_constants::{GI_PASS_TEMPORAL, STAT_GI_NONFINITE};
-use restir_render::{Camera, LinearImage, Mode, Renderer, Scene, load_scene};
+use restir_render::{Camera, Mode, Renderer, Scene, load_scene};
 
 const W: u32 = 64;
 const H: u32 = 48;
@@ -25,32 +23,9 @@ const WIDE: [&str; 3] = [
     "gi_spatial_neighbours=5",
 ];
 
-fn mean_luma(img: &LinearImage) -> f64 {
-    let n = img.pixels.len() as f64;
-    (0..img.height)
-        .flat_map(|y| (0..img.width).map(move |x| (x, y)))
-        .map(|(x, y)| img.luminance_at(x, y) as f64)
-        .sum::<f64>()
-        / n
-}
 
 fn render(scene: &Scene, assignments: &[&str], planted: Option<&str>, frames: u32) -> Renderer {
-    let mut all = vec!["jitter=false"];
-    all.extend_from_slice(assignments);
-    let settings = common::settings(&all);
-    let mut effects = EffectSet::detect(&SceneFeatures::of(scene), &settings, false);
-    effects.planted = planted
-        .map(str::to_string)
-        .into_iter()
-        .collect::<BTreeSet<_>>();
-    let mut r = Renderer::new(common::gpu(), scene, W, H, settings).unwrap();
-    r.force_effects(Some(effects));
-    r.set_mode(Mode::Restir);
-    r.reset_accumulation();
-    for _ in 0..frames {
-        r.render_frame().unwrap();
-    }
-    r
+    common::indirect::render_planted(scene, (W, H), assignments, planted, frames)
 }
 
 /// (gi on − gi off, same other settings) / (2-bounce − 1-bounce reference) in mean luma

@@ -309,7 +309,8 @@ fn host_structs_match_wgsl_layouts() {
             history_valid,
             light_count,
             punctual_count,
-            prev_jitter
+            prev_jitter,
+            inspect_pixel
         ]
     );
     check_struct!(
@@ -338,7 +339,9 @@ fn host_structs_match_wgsl_layouts() {
             pt_rough_threshold,
             pt_min_distance,
             pt_spatial_neighbours,
-            pt_spatial_radius
+            pt_spatial_radius,
+            pt_m_cap,
+            pt_jacobian_clamp
         ]
     );
     check_struct!(
@@ -402,6 +405,27 @@ fn host_structs_match_wgsl_layouts() {
         "GiReservoir",
         GpuGiReservoir,
         [position, normal, radiance, w_sum, weight, m, p_hat, packed]
+    );
+    check_struct!(
+        m,
+        "PtPixelDebug",
+        GpuPtPixelDebug,
+        [
+            temporal_mask,
+            temporal_failure,
+            spatial_outcomes,
+            spatial_tried,
+            jacobian,
+            m_initial,
+            m_temporal,
+            m_spatial
+        ]
+    );
+    check_struct!(
+        m,
+        "PtProbeStage",
+        GpuPtProbeStage,
+        [written, vertex_count, reservoir, vertices]
     );
     check_struct!(
         m,

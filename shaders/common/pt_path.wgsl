@@ -116,20 +116,27 @@ fn pt_bounce(sp: ShadingPoint, seed: u32, bounce: u32) -> PtBounce {
         return out;
     }
     out.ok = true;
+    pt_follow(sp, &out, &rng);
+    return out;
+}
+
+// Traces `bn.wi` from `sp` (the walk's choices drawn from `rng`, the bounce's numbers after
+// its direction): the emitter it meets first, and the surface where the walk stops.
+fn pt_follow(sp: ShadingPoint, bn: ptr<function, PtBounce>, rng: ptr<function, u32>) {
+    let wi = (*bn).wi;
     let origin = offset_ray_origin(sp.position, sp.geo_normal);
-    let first = trace_closest(Ray(origin, bs.wi, FLT_MAX), false);
+    let first = trace_closest(Ray(origin, wi, FLT_MAX), false);
     if frame.light_count > 0u {
-        out.found = find_light_from(origin, bs.wi, first);
+        (*bn).found = find_light_from(origin, wi, first);
     }
-    let walk = walk_layers(sp.position, bs.wi, first, WALK_PATH, MAX_TRANSPARENT_LAYERS, &rng);
-    out.walk_weight = walk.weight;
+    let walk = walk_layers(sp.position, wi, first, WALK_PATH, MAX_TRANSPARENT_LAYERS, rng);
+    (*bn).walk_weight = walk.weight;
     if walk.hit.t > 0.0 && any(walk.weight > vec3<f32>(0.0)) {
-        out.hit = true;
+        (*bn).hit = true;
         let hs = hit_surface(walk.hit.triangle, walk.hit.u, walk.hit.v, walk.origin);
-        out.next = hit_shading_point(hs, -bs.wi, hit_brdf(hs), sp.depth + length(hs.position - sp.position));
+        (*bn).next = hit_shading_point(hs, -wi, hit_brdf(hs), sp.depth + length(hs.position - sp.position));
         pt_last_hit = walk.hit;
     }
-    return out;
 }
 
 // The hit of the last pt_bounce that reached a surface (its triangle and barycentrics: what
@@ -314,6 +321,17 @@ struct PtShifted {
     failure: u32,
 }
 
+// The candidate step with an explicit MIS weight: w = p̂_here(T(y)) · W · m · |J|.
+fn pt_merge_mis(r: ptr<function, PtReservoir>, other: PtReservoir, moved: PtShifted, mis_weight: f32, u: f32) -> bool {
+    if pt_reservoir_is_null(other) {
+        return false;
+    }
+    let w = moved.path.p_hat * other.weight * (sanitize(mis_weight) * sanitize(moved.jacobian));
+    var sample = moved.path;
+    sample.jacobian = moved.jacobian;
+    return pt_reservoir_update(r, sample, w, u);
+}
+
 fn pt_shift_failed(r: PtReservoir, failure: u32) -> PtShifted {
     var out = r;
     out.value = vec3<f32>(0.0);
@@ -425,6 +443,10 @@ fn pt_shift(r: PtReservoir, to: ShadingPoint) -> PtShifted {
 #ifdef PLANTED_PT_INVERTED_JACOBIAN
     jacobian = 1.0 / jacobian;
 #endif
+    if params.pt_jacobian_clamp > 0.0 && jacobian > 0.0 {
+        // The biased option (off by default): a wrong change of measure, bounded fireflies.
+        jacobian = clamp(jacobian, 1.0 / params.pt_jacobian_clamp, params.pt_jacobian_clamp);
+    }
     out.value = value;
     out.p_hat = luminance(value);
     out.packed = pt_pack(pt_source(r), n, end, k, lobes);

@@ -8,20 +8,8 @@
 // n: the path's last surface vertex x_n (2..max_bounces); end: PT_END_*; k: the step that
 // is reconnected (y_k → x_{k+1}), PT_RC_NONE for a pure replay; lobes: bit b = the lobe
 // that sampled ω_b at x_b (PT_LOBE_*, b = 1..8). Shifts report why they failed as
-// PT_FAIL_* (pt_path.wgsl), for the views to come.
-
-const PT_END_NEE: u32 = 0u;
-const PT_END_BSDF: u32 = 1u;
-const PT_RC_NONE: u32 = 15u;
-const PT_LOBE_DIFFUSE: u32 = 0u;
-const PT_LOBE_SPECULAR: u32 = 1u;
-
-const PT_FAIL_NONE: u32 = 0u;
-const PT_FAIL_REPLAY: u32 = 1u;       // the replayed prefix left the path
-const PT_FAIL_UNDEFINED: u32 = 2u;    // the reconnection is undefined (distance, angle, side)
-const PT_FAIL_OCCLUDED: u32 = 3u;     // the reconnection segment is blocked
-const PT_FAIL_ELSEWHERE: u32 = 4u;    // hybrid: the shifted path would reconnect elsewhere
-const PT_FAIL_ZERO: u32 = 5u;         // moved, but its integrand is zero here
+// PT_FAIL_*. These constants, and the packing, are render/src/shader_constants.rs's and
+// the inspector's (renderer/inspect_pt.rs) as well.
 
 fn pt_pack(source: u32, n: u32, end: u32, k: u32, lobes: u32) -> u32 {
     return (source & 0xfu) | ((n & 0xfu) << 4u) | ((end & 1u) << 8u) | ((k & 0xfu) << 9u) | ((lobes & 0x1ffu) << 13u);

@@ -140,8 +140,8 @@ struct Frame {
     light_count: u32,
     punctual_count: u32,
     prev_jitter: vec2<f32>,       // the previous frame's jitter, for reprojection
+    inspect_pixel: u32,           // the inspector's pixel index, or NO_INSPECT_PIXEL
     _pad0: u32,
-    _pad1: u32,
 }
 
 struct Params {
@@ -169,8 +169,8 @@ struct Params {
     pt_min_distance: f32,         // world units
     pt_spatial_neighbours: u32,
     pt_spatial_radius: f32,       // pixels of this image
-    _pad0: u32,
-    _pad1: u32,
+    pt_m_cap: f32,
+    pt_jacobian_clamp: f32,       // biased: |J| clamped into [1/c, c]; 0 = off
 }
 
 struct Display {
@@ -250,6 +250,29 @@ struct PtReservoir {
     rc_from_cos: f32,     // cos at x_{k+1} toward x_k (signed, triangle's own normal)
     jacobian: f32,        // |J| of the shift that brought it here (1: found here)
     _pad: u32,
+}
+
+// Per-pixel ReSTIR PT debug record (GpuPtPixelDebug): how the shifts into this pixel went.
+struct PtPixelDebug {
+    temporal_mask: u32,     // REJECT_* bits of the previous pixel's G-buffer checks
+    temporal_failure: u32,  // PT_FAIL_* of the previous path's shift here; PT_FAIL_NOT_TRIED
+    spatial_outcomes: u32,  // 4 bits per PT_FAIL_* value: the neighbours' shifts here by outcome
+    spatial_tried: u32,     // neighbours that passed the G-buffer checks with a path to shift
+    jacobian: f32,          // |J| of the survivor's last shift (1: found here)
+    m_initial: f32,
+    m_temporal: f32,
+    m_spatial: f32,
+}
+
+// One PT stage's path at the inspected pixel (GpuPtProbeStage): the reservoir the stage
+// kept and its vertices x_1 … x_n, z rebuilt from the record (pt_probe.wgsl).
+struct PtProbeStage {
+    written: u32,           // 1 when the stage ran this frame
+    vertex_count: u32,
+    _pad0: u32,
+    _pad1: u32,
+    reservoir: PtReservoir,
+    vertices: array<vec4<f32>, PT_PROBE_VERTICES>,  // xyz; w: PT_VERTEX_* bits (bitcast)
 }
 
 // Per-pixel ReSTIR GI debug record (GpuGiPixelDebug).

@@ -3,6 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
+use restir_render::settings::PtShift;
 use restir_render::{DebugView, Mode};
 
 use super::{LiveNumber, Tour};
@@ -14,7 +15,7 @@ fn shipped() -> PathBuf {
 #[test]
 fn the_shipped_tour_covers_the_issue_list() {
     let tour = Tour::load(&shipped()).unwrap_or_else(|e| panic!("{e:#}"));
-    assert!(tour.steps.len() >= 10, "{} steps", tour.steps.len());
+    assert!(tour.steps.len() >= 13, "{} steps", tour.steps.len());
     let first = &tour.steps[0];
     assert_eq!(
         (first.mode, first.compare.as_ref().map(|c| c.mode)),
@@ -43,6 +44,21 @@ fn the_shipped_tour_covers_the_issue_list() {
         tour.steps
             .iter()
             .any(|s| s.env.as_deref() == Some("builtin:sky"))
+    );
+    // Path reuse: reconnection against hybrid where it matters, a glossy chain.
+    let shifts = tour
+        .steps
+        .iter()
+        .find(|s| s.settings.pt)
+        .expect("a ReSTIR PT step");
+    assert_eq!(
+        (shifts.scene.as_str(), shifts.settings.max_bounces),
+        ("builtin:glossy", 3)
+    );
+    let b = &shifts.compare.as_ref().expect("a split screen").settings;
+    assert_eq!(
+        (shifts.settings.pt_shift, b.pt_shift, b.pt),
+        (PtShift::Reconnection, PtShift::Hybrid, true)
     );
     assert!(tour.steps.iter().all(|s| !s.caption.is_empty()));
 }

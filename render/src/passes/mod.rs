@@ -22,6 +22,8 @@ pub mod presample;
 pub mod pt_initial;
 pub mod pt_shade;
 pub mod pt_spatial;
+pub mod pt_temporal;
+pub mod pt_view;
 pub mod ray_bench;
 pub mod reference;
 pub mod shade;
@@ -37,7 +39,7 @@ pub use compile::{
 pub use pass::PassDef;
 
 /// Every pass, in pipeline order (a layout is created for each; tests validate each).
-pub const ALL: [&PassDef; 22] = [
+pub const ALL: [&PassDef; 24] = [
     &gbuffer::RASTER,
     &gbuffer::RESOLVE,
     &presample::PASS,
@@ -50,6 +52,7 @@ pub const ALL: [&PassDef; 22] = [
     &gi_spatial::PASS,
     &gi_shade::PASS,
     &pt_initial::PASS,
+    &pt_temporal::PASS,
     &pt_spatial::PASS,
     &pt_shade::PASS,
     &reference::PASS,
@@ -57,6 +60,7 @@ pub const ALL: [&PassDef; 22] = [
     &temporal_window::PASS,
     &display::PASS,
     &gi_view::PASS,
+    &pt_view::PASS,
     &bias_view::PASS,
     &window_view::PASS,
     &ray_bench::PASS,

@@ -2,7 +2,7 @@
 //! shift mapping, merged under pairwise MIS.
 
 use super::pass::{Dispatch, PassDef, read, write};
-use super::pt_initial::PT_RESERVOIRS;
+use super::pt_initial::{PT_DEBUG, PT_PROBE, PT_RESERVOIRS};
 use super::resources::{Resource::*, Role};
 
 pub const PASS: PassDef = PassDef {
@@ -12,6 +12,8 @@ pub const PASS: PassDef = PassDef {
         read(Surfaces),
         read(Chain(&PT_RESERVOIRS, Role::In)),
         write(Chain(&PT_RESERVOIRS, Role::Out)),
+        write(Pixels(&PT_DEBUG)),
+        write(Pixels(&PT_PROBE)),
     ],
     dispatch: Dispatch::Pixels,
 };

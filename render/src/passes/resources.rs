@@ -13,6 +13,8 @@ pub enum Allocation {
     /// A 16-byte placeholder until `FrameTargets::ensure_full` (the comparison image:
     /// 16 bytes per pixel that only a split screen needs).
     Placeholder,
+    /// This many records of `stride` bytes, whatever the image size (the PT path probe).
+    Fixed(u64),
 }
 
 /// One buffer of `stride` bytes per pixel.

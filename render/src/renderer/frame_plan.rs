@@ -1,7 +1,8 @@
 //! The frame as an ordered list of passes, read top to bottom like the pipeline diagram
 //! (README): G-buffer → (light tiles) → DI initial → temporal → spatial × P → shade →
-//! (GI initial → temporal → spatial → shade, or PT initial → spatial → shade) → moments →
-//! (temporal window) → display (→ GI view) (→ bias view) (→ window view), or G-buffer
+//! (GI initial → temporal → spatial → shade, or PT initial → temporal → spatial → shade) →
+//! moments → (temporal window) → display (→ GI or PT view) (→ bias view) (→ window view),
+//! or G-buffer
 //! (jitter off) → reference → moments
 //! → (temporal window) → display. A stage the settings switch off is not in the list, hence
 //! never dispatched or compiled.
@@ -11,8 +12,8 @@ use std::ops::Range;
 use crate::passes::resources::{Chain, RESERVOIRS};
 use crate::passes::{
     PassDef, bias_view, display, gbuffer, gi_initial, gi_shade, gi_spatial, gi_temporal, gi_view,
-    initial, moments, presample, pt_initial, pt_shade, pt_spatial, reference, shade, spatial,
-    temporal, temporal_window, window_view,
+    initial, moments, presample, pt_initial, pt_shade, pt_spatial, pt_temporal, pt_view,
+    reference, shade, spatial, temporal, temporal_window, window_view,
 };
 
 /// One pass of the frame.
@@ -81,9 +82,12 @@ pub struct FrameSwitches {
     pub gi: bool,
     pub gi_temporal: bool,
     pub gi_spatial: bool,
-    /// ReSTIR PT (real-time frames only; GI is off while it is on) and its spatial reuse.
+    /// ReSTIR PT (real-time frames only; GI is off while it is on) and its reuse stages.
     pub pt: bool,
+    pub pt_temporal: bool,
     pub pt_spatial: bool,
+    /// A PT debug view (or the indirect light) is shown (drawn over the display's output).
+    pub pt_view: bool,
     /// A GI debug view is shown (drawn over the display's output).
     pub gi_view: bool,
     /// The bias view is shown (drawn over the display's output).
@@ -123,6 +127,9 @@ pub fn frame_plan(f: &FrameSwitches) -> Vec<Step> {
         }
         if f.pt {
             steps.push(Step::new(&pt_initial::PASS));
+            if f.pt_temporal {
+                steps.push(Step::new(&pt_temporal::PASS));
+            }
             if f.pt_spatial {
                 steps.push(Step::new(&pt_spatial::PASS));
             }
@@ -146,6 +153,9 @@ pub fn frame_plan(f: &FrameSwitches) -> Vec<Step> {
     if f.realtime && f.gi && f.gi_view {
         steps.push(Step::new(&gi_view::PASS));
     }
+    if f.realtime && f.pt && f.pt_view {
+        steps.push(Step::new(&pt_view::PASS));
+    }
     if f.bias_view {
         steps.push(Step::new(&bias_view::PASS));
     }
@@ -155,12 +165,15 @@ pub fn frame_plan(f: &FrameSwitches) -> Vec<Step> {
     steps
 }
 
-/// Only the display (and GI, bias or window view) passes, on the last frame's buffers
+/// Only the display (and GI, PT, bias or window view) passes, on the last frame's buffers
 /// (`Renderer::redisplay`).
-pub fn display_only(gi_view: bool, bias_view: bool, window_view: bool) -> Vec<Step> {
+pub fn display_only(gi_view: bool, pt_view: bool, bias_view: bool, window_view: bool) -> Vec<Step> {
     let mut steps = vec![Step::new(&display::PASS)];
     if gi_view {
         steps.push(Step::new(&gi_view::PASS));
+    }
+    if pt_view {
+        steps.push(Step::new(&pt_view::PASS));
     }
     if bias_view {
         steps.push(Step::new(&bias_view::PASS));

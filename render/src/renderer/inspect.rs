@@ -2,6 +2,7 @@
 //! reservoir after each stage, its surface and its debug record into a small buffer that
 //! comes back asynchronously with the frame's report.
 
+use super::inspect_pt::{PT_BYTES, PT_DEBUG_BYTES, PtInspection};
 use crate::gpu::readback::ReadbackRing;
 use crate::gpu_types::{
     GpuGiPixelDebug, GpuGiReservoir, GpuPixelDebug, GpuReservoir, GpuSurface, NO_LIGHT,
@@ -21,7 +22,9 @@ const MAX_GI_STAGES: u64 = 3;
 const GI_BYTES: u64 = GI_DEBUG_BYTES + MAX_GI_STAGES * GI_RESERVOIR_BYTES;
 /// Last, the pixel's radiance this frame (what the image shows there before tonemapping).
 const RADIANCE_BYTES: u64 = 16;
-pub const INSPECT_BYTES: u64 = DI_BYTES + GI_BYTES + RADIANCE_BYTES;
+/// Then ReSTIR PT's debug record and path probe (inspect_pt.rs).
+const PT_AT: u64 = DI_BYTES + GI_BYTES + RADIANCE_BYTES;
+pub const INSPECT_BYTES: u64 = PT_AT + PT_BYTES;
 
 /// One stage's reservoir at the inspected pixel.
 #[derive(Clone, Debug, PartialEq)]
@@ -101,6 +104,8 @@ pub struct PixelInspection {
     pub debug: GpuPixelDebug,
     pub stages: Vec<StageReservoir>,
     pub gi: Option<GiInspection>,
+    /// ReSTIR PT's paths, per stage (present when PT ran that frame).
+    pub pt: Option<PtInspection>,
     /// The pixel's linear radiance this frame (the value the pixel history plots).
     pub radiance: [f32; 3],
 }
@@ -144,6 +149,7 @@ pub struct InspectCapture {
     stages: Vec<String>,
     gi_stages: Vec<String>,
     gi: bool,
+    pt: bool,
 }
 
 /// A capture in flight: the stage names, waiting for its bytes.
@@ -152,6 +158,7 @@ pub struct PendingInspection {
     pub stages: Vec<String>,
     pub gi_stages: Vec<String>,
     pub gi: bool,
+    pub pt: bool,
 }
 
 impl InspectCapture {
@@ -164,6 +171,7 @@ impl InspectCapture {
             stages: Vec::new(),
             gi_stages: Vec::new(),
             gi: false,
+            pt: false,
         }
     }
 
@@ -243,6 +251,31 @@ impl InspectCapture {
         );
     }
 
+    /// Copies the pixel's PT debug record and the PT path probe (frames where PT ran; the
+    /// probe was cleared before the frame, so a stage that did not run reads as absent).
+    pub fn copy_pt(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        pt_debug: &wgpu::Buffer,
+        pt_probe: &wgpu::Buffer,
+    ) {
+        self.pt = true;
+        encoder.copy_buffer_to_buffer(
+            pt_debug,
+            self.index * PT_DEBUG_BYTES,
+            &self.staging,
+            PT_AT,
+            PT_DEBUG_BYTES,
+        );
+        encoder.copy_buffer_to_buffer(
+            pt_probe,
+            0,
+            &self.staging,
+            PT_AT + PT_DEBUG_BYTES,
+            PT_BYTES - PT_DEBUG_BYTES,
+        );
+    }
+
     /// Copies the pixel's surface, final debug record and radiance.
     pub fn copy_pixel_records(
         &self,
@@ -292,6 +325,7 @@ impl InspectCapture {
             stages: self.stages,
             gi_stages: self.gi_stages,
             gi: self.gi,
+            pt: self.pt,
         }
     }
 }
@@ -363,6 +397,10 @@ impl PendingInspection {
             debug,
             stages,
             gi,
+            pt: self
+                .pt
+                .then(|| PtInspection::decode(&bytes[PT_AT as usize..]))
+                .flatten(),
             radiance: [radiance[0], radiance[1], radiance[2]],
         })
     }

@@ -11,6 +11,7 @@ mod bind_groups;
 mod comparison;
 pub mod frame_plan;
 mod inspect;
+mod inspect_pt;
 mod pipelines;
 mod prepare;
 mod ray_bench;
@@ -23,6 +24,7 @@ mod uniforms;
 mod window;
 
 pub use inspect::{GiInspection, GiStageReservoir, PixelInspection, StageReservoir};
+pub use inspect_pt::{PtInspection, PtStagePath, PtVertex};
 pub use prepare::{PreparedScene, ScenePreparer};
 pub use ray_bench::{RayKind, RayRate};
 pub use setup::check_size;

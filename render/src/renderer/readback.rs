@@ -76,6 +76,22 @@ impl Renderer {
         self.pixel_records(self.targets.chain(&GI_RESERVOIRS, final_buffer))
     }
 
+    /// The last frame's final ReSTIR PT path reservoirs (empty unless the last frame ran PT).
+    pub fn read_pt_reservoirs(&self) -> Vec<crate::gpu_types::GpuPtReservoir> {
+        use crate::passes::pt_initial::PT_RESERVOIRS;
+        if !self.carried.has_history(&PT_RESERVOIRS) {
+            return Vec::new();
+        }
+        let final_buffer = self.carried.history(&PT_RESERVOIRS);
+        self.pixel_records(self.targets.chain(&PT_RESERVOIRS, final_buffer))
+    }
+
+    /// The last frame's ReSTIR PT debug records (the PT views' data; meaningful only after a
+    /// frame that ran PT).
+    pub fn read_pt_debug(&self) -> Vec<crate::gpu_types::GpuPtPixelDebug> {
+        self.pixel_records(self.targets.pixels(&crate::passes::pt_initial::PT_DEBUG))
+    }
+
     /// The last frame's G-buffer surfaces.
     pub fn read_surfaces(&self) -> Vec<GpuSurface> {
         self.pixel_records(&self.targets.surfaces[self.carried.surfaces])

@@ -16,6 +16,7 @@ use crate::gpu::timing::FrameRecorder;
 use crate::gpu::{Gpu, GpuError};
 use crate::passes::gbuffer::RasterPass;
 use crate::passes::gi_initial::{GI_DEBUG, GI_RESERVOIRS};
+use crate::passes::pt_initial::{PT_DEBUG, PT_PROBE, PT_RESERVOIRS};
 use crate::passes::pass::Dispatch;
 use crate::passes::resources::{DEBUG, RADIANCE, RESERVOIRS};
 use crate::passes::{ComputePass, PASS_INFO_SLOTS, PASS_INFO_STRIDE, PassDef, PassLayouts};
@@ -205,7 +206,9 @@ impl Renderer {
                 .min(PASS_INFO_SLOTS),
             gi: realtime && settings.gi && !settings.pt,
             pt: realtime && settings.pt,
+            pt_temporal: settings.pt_temporal && self.carried.has_history(&PT_RESERVOIRS),
             pt_spatial: settings.pt_spatial && settings.pt_spatial_neighbours > 0,
+            pt_view: self.view.view.is_path_view() || self.view.view == DebugView::Indirect,
             // A chain has a history only if last frame used it (GI switched on again, or
             // back from the reference, starts fresh).
             gi_temporal: settings.gi_temporal && self.carried.has_history(&GI_RESERVOIRS),
@@ -305,6 +308,10 @@ impl Renderer {
             .map(|p| InspectCapture::new(p, size, self.inspect_staging.clone()));
         let mut rec = FrameRecorder::new(&self.gpu, &mut self.timer, self.timing_mode);
         rec.encoder().clear_buffer(&self.stats_buffer, 0, None);
+        if capture.is_some() && switches.pt {
+            rec.encoder()
+                .clear_buffer(self.targets.pixels(&PT_PROBE), 0, None);
+        }
         let uniforms = Uniforms {
             pass_info: &self.pass_info,
             display: &self.display_uniform,
@@ -343,6 +350,13 @@ impl Renderer {
             );
             if switches.gi {
                 c.copy_gi_debug(rec.encoder(), self.targets.pixels(&GI_DEBUG));
+            }
+            if switches.pt {
+                c.copy_pt(
+                    rec.encoder(),
+                    self.targets.pixels(&PT_DEBUG),
+                    self.targets.pixels(&PT_PROBE),
+                );
             }
         }
 
@@ -421,8 +435,12 @@ impl Renderer {
             && !settings.pt
             && self.mode != Mode::Reference
             && self.view.view.is_indirect();
+        let pt_view = settings.pt
+            && self.mode != Mode::Reference
+            && (self.view.view.is_path_view() || self.view.view == DebugView::Indirect);
         let plan = frame_plan::display_only(
             gi_view,
+            pt_view,
             self.view.view == DebugView::Bias,
             self.view.view.uses_temporal_window(),
         );

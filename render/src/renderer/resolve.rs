@@ -190,7 +190,9 @@ mod tests {
                             gi_temporal: temporal,
                             gi_spatial: spatial_passes > 0,
                             pt,
+                            pt_temporal: temporal,
                             pt_spatial: spatial_passes > 0,
+                            pt_view: pt,
                             gi_view: gi,
                             bias_view: !gi,
                             temporal_window: gi,
@@ -211,14 +213,18 @@ mod tests {
             let plan = frame_plan(&switches);
             for history in 0..3 {
                 let carried = Carried {
-                    history: [("reservoirs", history), ("gi reservoirs", history)]
+                    history: [
+                        ("reservoirs", history),
+                        ("gi reservoirs", history),
+                        ("pt reservoirs", history),
+                    ]
                         .into_iter()
                         .collect(),
                     surfaces: 1,
                     surface_buffers: 2,
                 };
                 let resolved = resolve(&plan, &carried, true, false);
-                for chain in ["reservoirs", "gi reservoirs"] {
+                for chain in ["reservoirs", "gi reservoirs", "pt reservoirs"] {
                     let reads_history = |step: &Step| {
                         step.pass.group.iter().any(|b| {
                             matches!(b.resource, Resource::Chain(c, Role::History) if c.name == chain)

@@ -5,7 +5,7 @@ use glam::Vec2;
 use super::Renderer;
 use crate::gpu_types::{GpuDisplay, GpuFrame};
 use crate::settings::Settings;
-use crate::shader_constants::{MAX_SPATIAL_NEIGHBOURS, MAX_SPATIAL_PASSES};
+use crate::shader_constants::{MAX_SPATIAL_NEIGHBOURS, MAX_SPATIAL_PASSES, NO_INSPECT_PIXEL};
 use crate::view::Mode;
 
 /// Radical inverse in base b (Halton sequence) for sub-pixel jitter.
@@ -57,7 +57,11 @@ impl Renderer {
             light_count: self.scene.sampled_light_count(),
             punctual_count: self.scene.punctual_count,
             prev_jitter: self.prev_jitter.into(),
-            _pad: [0; 2],
+            inspect_pixel: self
+                .inspected_pixel
+                .filter(|&(x, y)| x < width && y < height)
+                .map_or(NO_INSPECT_PIXEL, |(x, y)| y * width + x),
+            _pad: 0,
         };
         self.gpu
             .queue

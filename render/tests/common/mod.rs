@@ -3,6 +3,7 @@
 #![allow(dead_code)]
 
 pub mod furnace;
+pub mod indirect;
 pub mod scene_parts;
 
 use restir_render::{Gpu, LinearImage, Mode, Renderer, Settings, load_scene};

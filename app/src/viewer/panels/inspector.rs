@@ -1,5 +1,6 @@
 //! The pixel inspector: one pixel's reservoir after each stage (light id, sample point,
-//! p_hat, W, M, w_sum, source), its surface, and which rejection tests fired and why.
+//! p_hat, W, M, w_sum, source), its surface, and which rejection tests fired and why;
+//! then ReSTIR GI's reservoirs and ReSTIR PT's paths (inspector_pt.rs) when they ran.
 //! Freeze stops new frames; Step renders exactly one.
 
 use egui::{RichText, Ui};
@@ -45,7 +46,7 @@ pub fn ui(ui: &mut Ui, inspector: &mut InspectorState) {
     }
 }
 
-fn vec3(v: [f32; 3]) -> String {
+pub(super) fn vec3(v: [f32; 3]) -> String {
     format!("({:.3}, {:.3}, {:.3})", v[0], v[1], v[2])
 }
 
@@ -85,6 +86,10 @@ pub fn inspection(ui: &mut Ui, i: &PixelInspection) {
     if let Some(gi) = &i.gi {
         ui.separator();
         gi_inspection(ui, gi);
+    }
+    if let Some(pt) = &i.pt {
+        ui.separator();
+        super::inspector_pt::pt_inspection(ui, pt);
     }
 }
 
@@ -248,15 +253,7 @@ fn reservoir_grid(ui: &mut Ui, i: &PixelInspection) {
 fn di_rejections(ui: &mut Ui, stage: &str, mask: u32, merged: bool) {
     let surface = mask & REJECT_SURFACE_CHECKS;
     let sample = mask & !REJECT_SURFACE_CHECKS;
-    let names = |m: u32| -> Vec<&'static str> {
-        REJECT_REASON_NAMES
-            .iter()
-            .enumerate()
-            .filter(|(b, _)| m & (1 << b) != 0)
-            .map(|(_, n)| *n)
-            .collect()
-    };
-    rejections(ui, stage, surface, &names(surface));
+    rejections(ui, stage, surface, &reject_names(surface));
     if sample == 0 {
         return;
     }
@@ -267,7 +264,7 @@ fn di_rejections(ui: &mut Ui, stage: &str, mask: u32, merged: bool) {
     };
     let text = format!(
         "{stage} sample checks: {sample:#010b} {} — {how}",
-        names(sample).join(", ")
+        reject_names(sample).join(", ")
     );
     ui.label(if merged {
         RichText::new(text)
@@ -276,7 +273,18 @@ fn di_rejections(ui: &mut Ui, stage: &str, mask: u32, merged: bool) {
     });
 }
 
-fn rejections(ui: &mut Ui, stage: &str, mask: u32, names: &[&str]) {
+/// The names of DI's `REJECT_*` bits set in `mask` (PT's previous-pixel checks are the
+/// same G-buffer checks).
+pub(super) fn reject_names(mask: u32) -> Vec<&'static str> {
+    REJECT_REASON_NAMES
+        .iter()
+        .enumerate()
+        .filter(|(b, _)| mask & (1 << b) != 0)
+        .map(|(_, n)| *n)
+        .collect()
+}
+
+pub(super) fn rejections(ui: &mut Ui, stage: &str, mask: u32, names: &[&str]) {
     let text = if names.is_empty() {
         "none".to_string()
     } else {

@@ -7,6 +7,7 @@ pub mod camera;
 pub mod compare;
 pub mod environment;
 pub mod inspector;
+mod inspector_pt;
 pub mod palette;
 pub mod pipeline;
 pub mod pixel_history;

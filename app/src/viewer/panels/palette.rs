@@ -1,11 +1,12 @@
 //! The debug views' colours for the legends: a mirror of the palettes in
-//! shaders/display.wgsl (`source_color`, `reason_color`, `heatmap`). Those are linear
+//! shaders/display.wgsl (`source_color`, `reason_color`, `heatmap`), gi_view.wgsl and
+//! pt_view.wgsl (the tests below read them from the WGSL). Those are linear
 //! colours that the display pass sRGB-encodes; `egui::Rgba` is linear too, so the legend
 //! swatches match the image exactly.
 
 use egui::{Color32, Rgba};
 use restir_render::shader_constants::{
-    SOURCE_INITIAL, SOURCE_NAMES, SOURCE_SPATIAL, SOURCE_TEMPORAL,
+    PT_FAIL_REASON_COUNT, SOURCE_INITIAL, SOURCE_NAMES, SOURCE_SPATIAL, SOURCE_TEMPORAL,
 };
 
 fn linear(c: [f32; 3]) -> Color32 {
@@ -58,7 +59,8 @@ pub fn gi_reason_color(bit: u32) -> Color32 {
     check_or_own(bit, &[[0.55, 0.0, 1.0], [1.0, 1.0, 1.0], [0.1, 0.9, 0.2]])
 }
 
-/// The GI Jacobian view's three anchors: |J| at the window's low end, 1, the high end.
+/// The Jacobian views' three anchors (gi-jacobian's and pt-jacobian's): |J| at the low
+/// end, 1, the high end.
 pub fn jacobian_colors() -> [Color32; 3] {
     [
         linear([0.1, 0.3, 1.0]),
@@ -66,6 +68,52 @@ pub fn jacobian_colors() -> [Color32; 3] {
         linear([1.0, 0.1, 0.05]),
     ]
 }
+
+/// ReSTIR PT's depth palette (pt_view.wgsl `pt_depth_color`): the path length n of
+/// pt-length and the reconnection vertex's depth k + 1 of pt-reconnection, 2 to 8.
+const PT_DEPTH_COLOURS: [[f32; 3]; 7] = [
+    [0.15, 0.35, 1.0],
+    [0.1, 0.85, 0.25],
+    [1.0, 0.9, 0.1],
+    [1.0, 0.55, 0.05],
+    [1.0, 0.1, 0.05],
+    [0.6, 0.3, 0.1],
+    [1.0, 1.0, 1.0],
+];
+/// The depths the PT palette tells apart (a path has at least two surface vertices).
+pub const PT_DEPTHS: std::ops::RangeInclusive<u32> = 2..=8;
+
+/// A path length or reconnection depth `d` (clamped into `PT_DEPTHS`, as the shader does).
+pub fn pt_depth_color(d: u32) -> Color32 {
+    let d = d.clamp(*PT_DEPTHS.start(), *PT_DEPTHS.end());
+    linear(PT_DEPTH_COLOURS[(d - PT_DEPTHS.start()) as usize])
+}
+
+/// pt-reconnection where the path has no reconnection vertex (replayed whole): magenta.
+const PT_PURE_REPLAY: [f32; 3] = [1.0, 0.0, 1.0];
+
+pub fn pt_pure_replay_color() -> Color32 {
+    linear(PT_PURE_REPLAY)
+}
+
+/// A shift's outcome (`PT_FAIL_*`), as pt-failure paints the commonest one (at full
+/// brightness: the view dims it where fewer of the shifts failed).
+const PT_FAILURE_COLOURS: [[f32; 3]; PT_FAIL_REASON_COUNT] = [
+    [0.0, 0.35, 0.0],
+    [1.0, 0.55, 0.05],
+    [0.55, 0.0, 1.0],
+    [0.1, 0.9, 0.2],
+    [0.0, 0.8, 1.0],
+    [1.0, 1.0, 0.0],
+];
+
+pub fn pt_failure_color(failure: u32) -> Color32 {
+    linear(PT_FAILURE_COLOURS[(failure as usize).min(PT_FAIL_REASON_COUNT - 1)])
+}
+
+/// |J| at which pt-jacobian saturates: 2^`PT_JACOBIAN_SPAN` of pt_view.wgsl (its low end
+/// is the reciprocal). Its colours are `jacobian_colors`, GI's.
+pub const PT_JACOBIAN_SATURATION: f32 = 16.0;
 
 /// The bias view's diverging ramp at t in [−1, 1] (darker blue, 0 white, brighter red), as
 /// bias_view.wgsl's `bias_palette` draws it; t = 4 · (average − reference) / reference.
@@ -187,17 +235,37 @@ mod tests {
     fn wgsl_palette(source: &str, name: &str) -> Vec<[f32; 3]> {
         let body = &source[source.find(&format!("fn {name}(")).expect("the function")..];
         let array = &body[body.find("array<").unwrap()..body.find(");").unwrap()];
-        array
-            .split("vec3<f32>(")
-            .skip(1) // what comes before the first entry
+        vec3_literals(array)
+            .into_iter()
+            .map(|numbers| [numbers[0], numbers[1], numbers[2]])
+            .collect()
+    }
+
+    /// The numbers of each `vec3<f32>(…)` literal in `text`, in order.
+    fn vec3_literals(text: &str) -> Vec<Vec<f32>> {
+        text.split("vec3<f32>(")
+            .skip(1) // what comes before the first literal
             .map(|entry| {
-                let numbers: Vec<f32> = entry[..entry.find(')').unwrap()]
+                entry[..entry.find(')').unwrap()]
                     .split(',')
                     .map(|n| n.trim().parse().unwrap())
-                    .collect();
-                [numbers[0], numbers[1], numbers[2]]
+                    .collect()
             })
             .collect()
+    }
+
+    /// The text of WGSL function `name`, up to its closing brace.
+    fn wgsl_function<'a>(source: &'a str, name: &str) -> &'a str {
+        let body = &source[source.find(&format!("fn {name}(")).expect("the function")..];
+        &body[..body.find("\n}").expect("its end")]
+    }
+
+    /// The value of WGSL constant `name` (the text between `=` and `;`).
+    fn wgsl_const<'a>(source: &'a str, name: &str) -> &'a str {
+        let decl = &source[source
+            .find(&format!("const {name}:"))
+            .expect("the constant")..];
+        decl[decl.find('=').unwrap() + 1..decl.find(';').unwrap()].trim()
     }
 
     /// The legends' colours are the shaders' colours, read from the WGSL itself.
@@ -225,5 +293,48 @@ mod tests {
         assert_eq!(bias_color(-1.0), linear(BIAS_PALETTE[0]));
         assert_eq!(bias_color(0.0), Color32::WHITE);
         assert_eq!(bias_color(7.0), linear(BIAS_PALETTE[2]));
+    }
+
+    /// The PT legends' colours are pt_view.wgsl's: its depth and failure palettes, the
+    /// pure replay's magenta, and a Jacobian ramp with GI's ends saturating at 1/16 and 16.
+    #[test]
+    fn the_pt_palettes_match_the_shader() {
+        let pt_view = include_str!("../../../../shaders/pt_view.wgsl");
+        let depths = wgsl_palette(pt_view, "pt_depth_color");
+        assert_eq!(depths.len(), PT_DEPTHS.count());
+        for (d, colour) in PT_DEPTHS.zip(depths) {
+            assert_eq!(pt_depth_color(d), linear(colour), "depth {d}");
+        }
+        let failures = wgsl_palette(pt_view, "pt_failure_color");
+        assert_eq!(failures.len(), PT_FAIL_REASON_COUNT);
+        for (f, colour) in failures.into_iter().enumerate() {
+            assert_eq!(pt_failure_color(f as u32), linear(colour), "failure {f}");
+        }
+        let replay = vec3_literals(wgsl_const(pt_view, "PT_PURE_REPLAY"));
+        assert_eq!(replay, vec![PT_PURE_REPLAY.to_vec()]);
+        let span: f32 = wgsl_const(pt_view, "PT_JACOBIAN_SPAN").parse().unwrap();
+        assert_eq!(span.exp2(), PT_JACOBIAN_SATURATION);
+        // Both Jacobian views: mix(white, low, -t) below 1, mix(white, high, t) above.
+        let [low, one, high] = jacobian_colors();
+        assert_eq!(one, Color32::WHITE);
+        for (shader, name) in [
+            (pt_view, "pt_jacobian_color"),
+            (
+                include_str!("../../../../shaders/gi_view.wgsl"),
+                "jacobian_color",
+            ),
+        ] {
+            let literals = vec3_literals(wgsl_function(shader, name));
+            let colours: Vec<Color32> = literals
+                .iter()
+                .filter(|n| n.len() == 3)
+                .map(|n| linear([n[0], n[1], n[2]]))
+                .collect();
+            assert_eq!(colours, vec![low, high], "{name}");
+            assert!(
+                literals.iter().all(|n| n.len() == 3 || n == &[1.0]),
+                "{name}: white is vec3(1.0)"
+            );
+        }
     }
 }

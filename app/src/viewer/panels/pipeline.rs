@@ -63,9 +63,6 @@ fn mode_selector(ui: &mut Ui, mode: &mut Mode) {
     };
 }
 
-/// A stage as a collapsible group. A stage with an on/off switch (`temporal`,
-/// `spatial`) shows it in the group's header, so it stays reachable while the group is
-/// closed, and greys out the rest of the stage while it is off.
 /// What the notes under the parameters need to know about the device and the last frame.
 struct Context {
     height: u32,
@@ -73,6 +70,10 @@ struct Context {
     ray_backend: Option<RayBackend>,
 }
 
+/// A stage as a collapsible group. A stage with an on/off switch (`temporal`,
+/// `spatial`) shows it in the group's header, so it stays reachable while the group is
+/// closed, and greys out the rest of the stage while it is off; a technique's switch
+/// (`gi`, `pt`) greys out that technique's parameters.
 fn stage_ui(ui: &mut Ui, settings: &mut Settings, stage: Stage, context: &Context) {
     let switch = PARAMS
         .iter()
@@ -90,26 +91,42 @@ fn stage_ui(ui: &mut Ui, settings: &mut Settings, stage: Stage, context: &Contex
         }
     })
     .body(|ui| {
-        let enabled =
-            switch.is_none_or(|def| settings.get(def.name) == Some(ParamValue::Bool(true)));
-        ui.add_enabled_ui(enabled, |ui| {
+        ui.add_enabled_ui(switch.is_none_or(|s| is_on(settings, s)), |ui| {
             for def in PARAMS
                 .iter()
                 .filter(|p| p.stage == stage && !is_stage_switch(p))
             {
-                param_widget(ui, settings, def);
-                effective_value(ui, settings, def, context);
+                let enabled = technique_switch(def).is_none_or(|s| is_on(settings, s));
+                ui.add_enabled_ui(enabled, |ui| {
+                    param_widget(ui, settings, def);
+                    effective_value(ui, settings, def, context);
+                });
             }
         });
     });
 }
 
-/// `temporal`, `spatial` and `gi` switch their whole stage off (no pass is dispatched).
+fn is_on(settings: &Settings, switch: &ParamDef) -> bool {
+    settings.get(switch.name) == Some(ParamValue::Bool(true))
+}
+
+/// `temporal` and `spatial` switch their whole stage off (no pass is dispatched).
 fn is_stage_switch(def: &ParamDef) -> bool {
     matches!(
         (def.stage, def.name),
-        (Stage::Temporal, "temporal") | (Stage::Spatial, "spatial") | (Stage::Indirect, "gi")
+        (Stage::Temporal, "temporal") | (Stage::Spatial, "spatial")
     )
+}
+
+/// The switch of the technique `def` belongs to: the on/off parameter of its stage that
+/// its name starts with (`gi` for `gi_m_cap`, `pt` for `pt_shift`). The Indirect stage
+/// holds two techniques, ReSTIR GI and PT, each with its own switch: one stage switch
+/// would grey out PT's while GI is off, though PT runs without GI (it replaces it).
+fn technique_switch(def: &ParamDef) -> Option<&'static ParamDef> {
+    let (prefix, _) = def.name.split_once('_')?;
+    PARAMS
+        .iter()
+        .find(|p| p.stage == def.stage && p.name == prefix && matches!(p.kind, ParamKind::Bool))
 }
 
 /// One parameter's widget, chosen by its kind; the label is strong when the value

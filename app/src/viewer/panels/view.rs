@@ -5,13 +5,15 @@
 use egui::Ui;
 use restir_render::shader_constants::{
     BIAS_BATCH, BIAS_NEGLIGIBLE, BIAS_SIGNIFICANCE, BOILING_THRESHOLD, BOILING_VIEW_MAX,
-    GI_REJECT_REASON_NAMES, REJECT_REASON_NAMES, REJECT_TEMPORAL_REASONS, TEMPORAL_WINDOW_FRAMES,
+    GI_REJECT_REASON_NAMES, MAX_BOUNCES, PT_FAIL_NAMES, REJECT_REASON_NAMES,
+    REJECT_TEMPORAL_REASONS, TEMPORAL_WINDOW_FRAMES,
 };
 use restir_render::{DebugView, Settings, Tonemapper, ViewSettings};
 
 use super::accuracy;
 use super::palette::{
-    bias_color, gi_reason_color, jacobian_colors, ramp, reason_color, source_legend,
+    PT_DEPTHS, PT_JACOBIAN_SATURATION, bias_color, gi_reason_color, jacobian_colors,
+    pt_depth_color, pt_failure_color, pt_pure_replay_color, ramp, reason_color, source_legend,
     spatial_count_ramp, swatch,
 };
 use crate::viewer::state::{Action, DisplayOptions, ViewerState};
@@ -97,7 +99,9 @@ fn describe(v: DebugView) -> &'static str {
         DebugView::Age => {
             "Frames since the surviving sample was first drawn, 0 to 2 × the M cap; null samples black"
         }
-        DebugView::Indirect => "ReSTIR GI: the indirect radiance alone, tonemapped like the image",
+        DebugView::Indirect => {
+            "ReSTIR GI or PT (whichever runs): the indirect radiance alone, tonemapped like the image"
+        }
         DebugView::GiSource => {
             "ReSTIR GI: which stage's sample survived: initial, temporal or spatial"
         }
@@ -107,6 +111,18 @@ fn describe(v: DebugView) -> &'static str {
         }
         DebugView::GiJacobian => {
             "ReSTIR GI: |J| of the surviving sample's last shift on a log scale: blue below 1, white at 1, red above, saturating at the Jacobian window"
+        }
+        DebugView::PtLength => {
+            "ReSTIR PT: the surviving path's length, its surface vertices x_1 … x_n (2 to max bounces); null paths black"
+        }
+        DebugView::PtReconnection => {
+            "ReSTIR PT: the depth of the surviving path's reconnection vertex x_(k+1); magenta where the path is replayed whole (no reconnection vertex)"
+        }
+        DebugView::PtFailure => {
+            "ReSTIR PT: the shifts into this pixel this frame (the previous pixel's path and the spatial neighbours'): the commonest failure's colour, brighter the larger the share that failed; dark green where every path moved"
+        }
+        DebugView::PtJacobian => {
+            "ReSTIR PT: |J| of the surviving path's last shift on a log scale: blue below 1, white at 1 (found here), red above, saturating at 1/16 and 16"
         }
         DebugView::Boiling => {
             "Where the image flickers: each pixel's σ/mean of luminance over the last 16 frames"
@@ -147,23 +163,100 @@ fn legend(ui: &mut Ui, state: &mut ViewerState) {
         DebugView::GiM => ramp(ui, "0", &format!("GI M cap ({})", state.settings.gi_m_cap)),
         DebugView::GiRejection => gi_rejection_legend(ui),
         DebugView::Boiling | DebugView::SurvivorChange => window_legend(ui, state),
-        DebugView::GiJacobian => {
-            let w = state.settings.gi_jacobian_max.max(1.0);
-            let [low, one, high] = jacobian_colors();
+        DebugView::GiJacobian => jacobian_legend(ui, state.settings.gi_jacobian_max.max(1.0)),
+        DebugView::PtLength => {
+            pt_depth_legend(ui, &state.settings, |n| format!("n = {n}"));
+            ui.weak("black: no path (null reservoir)");
+        }
+        DebugView::PtReconnection => {
+            pt_depth_legend(ui, &state.settings, |d| format!("x{d}"));
             ui.horizontal(|ui| {
-                swatch(ui, low);
-                ui.label(format!("|J| ≤ 1/{w}"));
-                swatch(ui, one);
-                ui.label("1");
-                swatch(ui, high);
-                ui.label(format!("≥ {w}"));
+                swatch(ui, pt_pure_replay_color());
+                ui.label("replayed whole (no reconnection vertex)");
             });
+            ui.weak("black: no path (null reservoir)");
+        }
+        DebugView::PtFailure => pt_failure_legend(ui),
+        DebugView::PtJacobian => {
+            jacobian_legend(ui, PT_JACOBIAN_SATURATION);
+            ui.weak("white: the pixel's own path (|J| = 1); black: no path");
         }
         _ => {}
     }
-    if state.view.view.is_indirect() && !state.settings.gi {
-        ui.weak("ReSTIR GI is off (Indirect section): this view shows the last frame's image.");
+    if let Some(off) = technique_off(state.view.view, &state.settings) {
+        ui.weak(off);
     }
+}
+
+/// Why an indirect view has nothing of this frame to show: the technique it draws is off.
+/// `indirect` is drawn by whichever of GI and PT runs (PT replaces GI while on).
+fn technique_off(view: DebugView, settings: &Settings) -> Option<&'static str> {
+    let (gi, pt) = (settings.gi && !settings.pt, settings.pt);
+    if view == DebugView::Indirect {
+        return (!gi && !pt).then_some(
+            "ReSTIR GI and PT are off (Indirect section): this view has nothing to show until one runs.",
+        );
+    }
+    if view.is_indirect() && !gi {
+        return Some(if pt {
+            "ReSTIR PT replaces GI while on (Indirect section): the gi- views have nothing to show; the pt- views show its paths."
+        } else {
+            "ReSTIR GI is off (Indirect section): this view has nothing to show until it runs."
+        });
+    }
+    (view.is_path_view() && !pt).then_some(
+        "ReSTIR PT is off (Indirect section): this view has nothing to show until it runs.",
+    )
+}
+
+/// A log |J| ramp's three anchors, saturating at 1/`w` and `w`.
+fn jacobian_legend(ui: &mut Ui, w: f32) {
+    let [low, one, high] = jacobian_colors();
+    ui.horizontal(|ui| {
+        swatch(ui, low);
+        ui.label(format!("|J| ≤ 1/{w}"));
+        swatch(ui, one);
+        ui.label("1");
+        swatch(ui, high);
+        ui.label(format!("≥ {w}"));
+    });
+}
+
+/// The PT depth palette from 2 to the deepest vertex a path can have now (max_bounces,
+/// at least 2, as pt_path.wgsl clamps it), each swatch named by `label(d)`. Four to a row
+/// so it fits the panel.
+fn pt_depth_legend(ui: &mut Ui, settings: &Settings, label: fn(u32) -> String) {
+    let deepest = settings.max_bounces.clamp(2, MAX_BOUNCES);
+    egui::Grid::new(ui.next_auto_id())
+        .num_columns(4)
+        .show(ui, |ui| {
+            for (i, d) in PT_DEPTHS.filter(|&d| d <= deepest).enumerate() {
+                ui.horizontal(|ui| {
+                    swatch(ui, pt_depth_color(d));
+                    ui.label(label(d));
+                });
+                if i % 4 == 3 {
+                    ui.end_row();
+                }
+            }
+        });
+}
+
+/// The shift outcomes and their colours; the view dims a failure where few shifts failed.
+fn pt_failure_legend(ui: &mut Ui) {
+    egui::Grid::new("pt failure legend")
+        .num_columns(2)
+        .show(ui, |ui| {
+            for (f, name) in PT_FAIL_NAMES.iter().enumerate() {
+                ui.label(if f == 0 { "every shift moved" } else { name });
+                swatch(ui, pt_failure_color(f as u32));
+                ui.end_row();
+            }
+        });
+    ui.weak(
+        "the commonest failure among the shifts into the pixel (the previous pixel's path and \
+         the spatial neighbours'), brighter the larger the share that failed; black: none tried",
+    );
 }
 
 /// The bias view: the diverging ramp, and what grey means.

@@ -1,5 +1,8 @@
 //! The pixel inspector on a synthetic pixel.
 
+use restir_render::gpu_types::{GpuPtPixelDebug, GpuPtReservoir};
+use restir_render::renderer::{PtInspection, PtStagePath, PtVertex};
+
 use super::*;
 
 fn reservoir(light: u32, m: f32, source: u32) -> GpuReservoir {
@@ -63,6 +66,7 @@ pub(super) fn synthetic_inspection() -> PixelInspection {
             },
         ],
         gi: None,
+        pt: None,
         radiance: [0.5, 0.25, 0.125],
     }
 }
@@ -203,6 +207,145 @@ fn the_inspector_shows_the_gi_stages() {
         "GI temporal rejections: 0b10000000 jacobian",
         "GI spatial rejections: 0b100000000 occluded",
         "|J| of the survivor's last shift: 1.5000",
+    ] {
+        assert!(shows(&h, text), "the inspector does not show '{text}'");
+    }
+}
+
+/// A path reservoir's `packed` word (pt_reservoir.wgsl): source | n << 4 | end << 8 |
+/// k << 9 | lobes << 13.
+fn pt_packed(source: u32, n: u32, end: u32, k: u32, lobes: u32) -> u32 {
+    source | n << 4 | end << 8 | k << 9 | lobes << 13
+}
+
+fn pt_vertex(position: [f32; 3], reconnection: bool, light: bool, direction: bool) -> PtVertex {
+    PtVertex {
+        position,
+        reconnection,
+        light,
+        direction,
+    }
+}
+
+/// Three PT stages: a 3-bounce path reconnected at x2 after a specular first bounce, the
+/// temporal stage's null path, and a spatial 2-bounce path replayed whole to the sky.
+fn synthetic_pt() -> PtInspection {
+    let reservoir = |packed: u32, weight: f32, m: f32| GpuPtReservoir {
+        value: [0.25, 0.5, 0.75],
+        p_hat: 0.5,
+        weight,
+        m,
+        packed,
+        light: 4,
+        rc_suffix: [1.5, 1.25, 1.0],
+        jacobian: 0.75,
+        ..Default::default()
+    };
+    PtInspection {
+        debug: GpuPtPixelDebug {
+            temporal_failure: PT_FAIL_REPLAY,
+            // Two neighbours moved, one's reconnection was occluded.
+            spatial_outcomes: 2 << (4 * PT_FAIL_NONE) | 1 << (4 * PT_FAIL_OCCLUDED),
+            spatial_tried: 3,
+            jacobian: 0.75,
+            m_initial: 1.0,
+            m_temporal: 10.0,
+            m_spatial: 13.0,
+            ..Default::default()
+        },
+        stages: vec![
+            PtStagePath {
+                stage: "pt initial",
+                // Lobe bit b is bounce ω_b: ω_1 specular, ω_2 diffuse (x_3 → z is NEE).
+                reservoir: reservoir(pt_packed(SOURCE_INITIAL, 3, PT_END_NEE, 1, 0b10), 2.5, 1.0),
+                vertices: vec![
+                    pt_vertex([0.1, 0.2, 0.3], false, false, false),
+                    pt_vertex([1.0, 2.0, 3.0], true, false, false),
+                    pt_vertex([-1.0, 0.5, 2.0], false, false, false),
+                    pt_vertex([0.0, 4.0, 0.0], false, true, false),
+                ],
+            },
+            PtStagePath {
+                stage: "pt temporal",
+                reservoir: reservoir(pt_packed(SOURCE_NULL, 0, 0, PT_RC_NONE, 0), 0.0, 0.0),
+                vertices: Vec::new(),
+            },
+            PtStagePath {
+                stage: "pt spatial",
+                reservoir: reservoir(
+                    pt_packed(SOURCE_SPATIAL, 2, PT_END_BSDF, PT_RC_NONE, 0),
+                    3.5,
+                    13.0,
+                ),
+                vertices: vec![
+                    pt_vertex([0.5, 0.5, 0.5], false, false, false),
+                    pt_vertex([0.5, 1.5, 0.5], false, false, false),
+                    pt_vertex([0.0, 1.0, 0.0], false, true, true),
+                ],
+            },
+        ],
+    }
+}
+
+fn inspector_showing(pt: PtInspection) -> Harness<'static, ViewerState> {
+    let mut inspection = synthetic_inspection();
+    inspection.pt = Some(pt);
+    let mut s = state();
+    s.inspector.pixel = Some((12, 34));
+    s.inspector.last = Some(inspection);
+    harness(
+        |ui, s: &mut ViewerState| inspector::ui(ui, &mut s.inspector),
+        s,
+    )
+}
+
+/// With PT on, the inspector adds how the shifts into the pixel went, each PT stage's
+/// path reservoir and the path's vertices with the reconnection vertex marked.
+#[test]
+fn the_inspector_shows_the_pt_paths() {
+    let h = inspector_showing(synthetic_pt());
+    for text in [
+        "Indirect (ReSTIR PT)",
+        "PT temporal rejections: 0b00000000 none",
+        "PT temporal shift: replay left the path",
+        "PT spatial shifts (3 neighbours tried): moved × 2, reconnection occluded × 1",
+        "PT M after initial / temporal / spatial: 1 / 10 / 13",
+        "|J| of the survivor's last shift: 0.7500",
+        "pt initial",
+        "length n",
+        "light sampling",
+        "BSDF hit",
+        "1 (at x2)",
+        "none (replayed whole)",
+        "specular, diffuse",
+        "value g",
+        "0.500",
+        "2.5000e0",
+        "rc suffix r",
+        "1.500",
+        "pt initial path",
+        "x1 (0.100, 0.200, 0.300)",
+        "x2 ◊ reconnection (1.000, 2.000, 3.000)",
+        "x3 (-1.000, 0.500, 2.000)",
+        "z light (0.000, 4.000, 0.000)",
+        "pt temporal path",
+        "no path",
+        "z direction (0.000, 1.000, 0.000)",
+    ] {
+        assert!(shows(&h, text), "the inspector does not show '{text}'");
+    }
+    assert!(!shows(&h, "rebuilt"), "every path is whole");
+    // A path the rebuild could not follow to its end says so; an untried temporal shift
+    // and the previous pixel's failed checks are named.
+    let mut partial = synthetic_pt();
+    partial.stages[0].vertices.truncate(2);
+    partial.debug.temporal_failure = PT_FAIL_NOT_TRIED;
+    partial.debug.temporal_mask = REJECT_NORMAL;
+    let h = inspector_showing(partial);
+    for text in [
+        "rebuilt 2 of 4 vertices",
+        "PT temporal rejections: 0b00001000 normal",
+        "PT temporal shift: not tried",
     ] {
         assert!(shows(&h, text), "the inspector does not show '{text}'");
     }

@@ -30,6 +30,53 @@ fn the_rejection_legend_toggles_and_isolates_reasons() {
     assert!(!h.state().view.spatial_count);
 }
 
+/// The View panel with `view` chosen under `settings`.
+fn view_panel(view: DebugView, settings: Settings) -> Harness<'static, ViewerState> {
+    let mut s = state();
+    s.view.view = view;
+    s.settings = settings;
+    harness(view::ui, s)
+}
+
+/// The PT views' legends name every colour of pt_view.wgsl's palettes (the depths up to
+/// max_bounces), and say when PT is off; `indirect` is drawn by whichever of GI and PT runs.
+#[test]
+fn the_pt_legends_name_their_colours_and_say_when_pt_is_off() {
+    let pt = |on: bool| Settings {
+        pt: on,
+        max_bounces: 3,
+        ..Settings::default()
+    };
+    let h = view_panel(DebugView::PtLength, pt(false));
+    assert!(shows(&h, "n = 2") && shows(&h, "n = 3") && !shows(&h, "n = 4"));
+    assert!(shows(&h, "ReSTIR PT is off (Indirect section)"));
+    let h = view_panel(DebugView::PtReconnection, pt(true));
+    assert!(shows(&h, "x2") && shows(&h, "x3") && shows(&h, "replayed whole"));
+    assert!(!shows(&h, "is off"));
+    let h = view_panel(DebugView::PtFailure, pt(true));
+    for name in &PT_FAIL_NAMES[1..] {
+        assert!(shows(&h, name), "the pt-failure legend lacks '{name}'");
+    }
+    assert!(shows(&h, "every shift moved"));
+    let h = view_panel(DebugView::PtJacobian, pt(true));
+    assert!(shows(&h, "|J| ≤ 1/16") && shows(&h, "≥ 16"));
+    // indirect: PT draws it while on; GI's views have nothing then.
+    assert!(!shows(&view_panel(DebugView::Indirect, pt(true)), "is off"));
+    let h = view_panel(DebugView::Indirect, pt(false));
+    assert!(shows(&h, "ReSTIR GI and PT are off"));
+    let h = view_panel(DebugView::GiSource, pt(true));
+    assert!(shows(&h, "ReSTIR PT replaces GI while on"));
+    let gi = Settings {
+        gi: true,
+        ..Settings::default()
+    };
+    assert!(!shows(&view_panel(DebugView::GiM, gi), "is off"));
+    assert!(shows(
+        &view_panel(DebugView::GiM, pt(false)),
+        "ReSTIR GI is off"
+    ));
+}
+
 #[test]
 fn view_buttons_queue_actions() {
     let mut h = harness(view::ui, state());

@@ -55,6 +55,33 @@ fn every_parameter_of_the_table_has_a_widget_with_its_doc() {
     );
 }
 
+/// The Indirect stage holds two techniques: PT switches on while GI is off, and each
+/// switch greys out its own technique's parameters only.
+#[test]
+fn pt_switches_on_without_gi_and_each_switch_greys_its_own_parameters() {
+    let mut h = harness(
+        |ui, s: &mut ViewerState| {
+            ui.ctx().memory_mut(|m| m.set_everything_is_visible(true));
+            pipeline::ui(ui, s);
+        },
+        state(),
+    );
+    let greyed = |h: &Harness<'_, ViewerState>, label: &str| {
+        h.get_by_label(label).accesskit_node().is_disabled()
+    };
+    assert!(greyed(&h, "PT temporal reuse") && greyed(&h, "GI temporal reuse"));
+    assert!(!greyed(&h, "Indirect (ReSTIR PT)") && !greyed(&h, "Indirect (ReSTIR GI)"));
+    // Accessibility clicks: with everything visible every popup and tooltip is open too,
+    // and they cover the checkboxes from the pointer.
+    h.get_by_label("Indirect (ReSTIR PT)").click_accesskit();
+    h.run();
+    assert!(h.state().settings.pt && !h.state().settings.gi);
+    assert!(!greyed(&h, "PT temporal reuse") && greyed(&h, "GI temporal reuse"));
+    h.get_by_label("PT temporal reuse").click_accesskit();
+    h.run();
+    assert!(!h.state().settings.pt_temporal);
+}
+
 #[test]
 fn loading_a_preset_restores_the_settings() {
     let path = temp_file("preset.toml");

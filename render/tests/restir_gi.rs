@@ -23,7 +23,6 @@ const WIDE: [&str; 3] = [
     "gi_spatial_neighbours=5",
 ];
 
-
 fn render(scene: &Scene, assignments: &[&str], planted: Option<&str>, frames: u32) -> Renderer {
     common::indirect::render_planted(scene, (W, H), assignments, planted, frames)
 }
@@ -242,21 +241,7 @@ fn gi_stays_finite_on_every_hard_scene() {
         let settings = common::settings(&["gi=true", "gi_jacobian_max=1000"]);
         let mut r = Renderer::new(common::gpu(), &scene, 32, 24, settings).unwrap();
         r.set_mode(Mode::Restir);
-        let start = r.camera();
-        // Orbit about the point the camera looks at, one scene-scale unit ahead.
-        let centre = start.position + start.forward() * r.scene_scale();
-        let mut counted = 0;
-        for frame in 0..6 {
-            let turn = glam::Quat::from_rotation_y(0.05 * frame as f32);
-            let position = centre + turn * (start.position - centre);
-            r.set_camera(Camera::look_at(position, centre, start.yfov));
-            r.render_frame().unwrap_or_else(|e| panic!("{name}: {e}"));
-            counted += r
-                .collect_reports(true)
-                .iter()
-                .map(|f| f.counters.non_finite_total())
-                .sum::<u64>();
-        }
+        let counted = common::indirect::orbit_counting_non_finite(&mut r, 6, name);
         assert_eq!(counted, 0, "{name}: non-finite values replaced");
         assert_eq!(
             r.read_radiance().non_finite_count(),
@@ -278,14 +263,9 @@ fn gi_stays_finite_on_every_hard_scene() {
 fn a_poisoned_gi_history_is_counted_and_dropped() {
     let scene = load_scene("builtin:cornell").unwrap();
     let mut r = render(&scene, &["gi=true"], None, 2);
-    r.collect_reports(true);
     r.poison_gi_history_for_tests();
-    r.render_frame().unwrap();
-    let counted: u64 = r
-        .collect_reports(true)
-        .iter()
-        .map(|f| f.counters.get(STAT_GI_NONFINITE + GI_PASS_TEMPORAL))
-        .sum();
+    let counted =
+        common::indirect::count_in_next_frame(&mut r, STAT_GI_NONFINITE + GI_PASS_TEMPORAL);
     assert!(
         counted as u32 >= W * H / 2,
         "only {counted} poisoned reservoirs counted"

@@ -32,7 +32,11 @@ fn distance2(a: [f32; 3], b: [f32; 3]) -> f32 {
 fn check_path(path: &PtStagePath, visible_point: [f32; 3]) -> bool {
     let v = &path.vertices;
     assert!(!v.is_empty(), "{}: a non-null path has x_1", path.stage);
-    assert!(distance2(v[0].position, visible_point) < 1e-8, "{}: x_1", path.stage);
+    assert!(
+        distance2(v[0].position, visible_point) < 1e-8,
+        "{}: x_1",
+        path.stage
+    );
     let n = path.length() as usize;
     let complete = v.last().is_some_and(|z| z.light);
     if complete {
@@ -41,7 +45,11 @@ fn check_path(path: &PtStagePath, visible_point: [f32; 3]) -> bool {
     let marked: Vec<usize> = (0..v.len()).filter(|&i| v[i].reconnection).collect();
     match path.reconnection_step() {
         None => {
-            assert!(marked.is_empty(), "{}: a replayed path has no reconnection", path.stage);
+            assert!(
+                marked.is_empty(),
+                "{}: a replayed path has no reconnection",
+                path.stage
+            );
             false
         }
         Some(k) if v.len() > k as usize => {
@@ -66,7 +74,11 @@ fn check_path(path: &PtStagePath, visible_point: [f32; 3]) -> bool {
 /// PT buffers.
 #[test]
 fn the_inspector_rebuilds_each_pt_stages_path() {
-    for shift in ["pt_shift=reconnection", "pt_shift=random-replay", "pt_shift=hybrid"] {
+    for shift in [
+        "pt_shift=reconnection",
+        "pt_shift=random-replay",
+        "pt_shift=hybrid",
+    ] {
         let mut r = renderer(shift, 3);
         let (mut checked, mut reconnections) = (0, 0);
         for i in 0..12u32 {
@@ -79,7 +91,9 @@ fn the_inspector_rebuilds_each_pt_stages_path() {
                 .rev()
                 .find_map(|f| f.inspection)
                 .expect("an inspected frame");
-            let pt = inspection.pt.expect("PT ran: its part of the inspection is there");
+            let pt = inspection
+                .pt
+                .expect("PT ran: its part of the inspection is there");
             let names: Vec<&str> = pt.stages.iter().map(|s| s.stage).collect();
             assert_eq!(names, ["pt initial", "pt temporal", "pt spatial"]);
             let index = (pixel.1 * W + pixel.0) as usize;
@@ -95,7 +109,10 @@ fn the_inspector_rebuilds_each_pt_stages_path() {
         eprintln!("{shift}: {checked} paths checked, {reconnections} reconnections");
         assert!(checked >= 12, "{shift}: too few paths to check ({checked})");
         if shift != "pt_shift=random-replay" {
-            assert!(reconnections >= 6, "{shift}: {reconnections} reconnections checked");
+            assert!(
+                reconnections >= 6,
+                "{shift}: {reconnections} reconnections checked"
+            );
         }
     }
 }
@@ -113,13 +130,22 @@ fn pt_debug_records_classify_every_shift_into_the_pixel() {
         "pt_shift=random-replay" => [PT_FAIL_REPLAY, PT_FAIL_ZERO].contains(&failure),
         _ => failure != PT_FAIL_NONE,
     };
-    for shift in ["pt_shift=reconnection", "pt_shift=random-replay", "pt_shift=hybrid"] {
+    for shift in [
+        "pt_shift=reconnection",
+        "pt_shift=random-replay",
+        "pt_shift=hybrid",
+    ] {
         let r = renderer(shift, 4);
         let debug = r.read_pt_debug();
         let mut counts = [0u64; PT_FAIL_REASON_COUNT];
         for d in &debug {
-            let outcomes: u32 = (0..PT_FAIL_REASON_COUNT as u32).map(|f| d.spatial_count(f)).sum();
-            assert_eq!(outcomes, d.spatial_tried, "{shift}: each tried shift counted once");
+            let outcomes: u32 = (0..PT_FAIL_REASON_COUNT as u32)
+                .map(|f| d.spatial_count(f))
+                .sum();
+            assert_eq!(
+                outcomes, d.spatial_tried,
+                "{shift}: each tried shift counted once"
+            );
             assert!(d.spatial_tried <= 3, "{shift}: 3 neighbours");
             for f in 0..PT_FAIL_REASON_COUNT as u32 {
                 counts[f as usize] += d.spatial_count(f) as u64;
@@ -130,11 +156,21 @@ fn pt_debug_records_classify_every_shift_into_the_pixel() {
             }
             assert!(d.m_temporal >= d.m_initial && d.m_spatial >= d.m_temporal - 1e-6);
         }
-        eprintln!("{shift}: outcomes {:?}", PT_FAIL_NAMES.iter().zip(counts).collect::<Vec<_>>());
-        assert!(counts[PT_FAIL_NONE as usize] > 0, "{shift}: some paths move");
+        eprintln!(
+            "{shift}: outcomes {:?}",
+            PT_FAIL_NAMES.iter().zip(counts).collect::<Vec<_>>()
+        );
+        assert!(
+            counts[PT_FAIL_NONE as usize] > 0,
+            "{shift}: some paths move"
+        );
         for f in 1..PT_FAIL_REASON_COUNT {
             if counts[f] > 0 {
-                assert!(can_fail(shift, f as u32), "{shift} cannot fail with {}", PT_FAIL_NAMES[f]);
+                assert!(
+                    can_fail(shift, f as u32),
+                    "{shift} cannot fail with {}",
+                    PT_FAIL_NAMES[f]
+                );
             }
         }
         let failed: u64 = counts[1..].iter().sum();
@@ -164,7 +200,11 @@ fn the_pt_views_draw_their_data() {
         let mut colours: Vec<[u8; 3]> = rgba.chunks(4).map(|p| [p[0], p[1], p[2]]).collect();
         colours.sort();
         colours.dedup();
-        assert!(colours.len() >= 3, "{view:?} draws {} colours", colours.len());
+        assert!(
+            colours.len() >= 3,
+            "{view:?} draws {} colours",
+            colours.len()
+        );
     }
     assert_eq!(r.read_radiance().pixels, radiance.pixels);
 }

@@ -101,13 +101,23 @@ const BUILTIN: &[(&str, Mode, &[&str], &str)] = &[
     (
         "restir+pt-spatial-only",
         Mode::Restir,
-        &["pt=true", "pt_shift=hybrid", "max_bounces=2", "pt_temporal=false"],
+        &[
+            "pt=true",
+            "pt_shift=hybrid",
+            "max_bounces=2",
+            "pt_temporal=false",
+        ],
         "restir (DI) + ReSTIR PT, hybrid shift, 2 bounces, spatial path reuse only (what temporal reuse adds)",
     ),
     (
         "restir+pt-clamped",
         Mode::Restir,
-        &["pt=true", "pt_shift=hybrid", "max_bounces=2", "pt_jacobian_clamp=2"],
+        &[
+            "pt=true",
+            "pt_shift=hybrid",
+            "max_bounces=2",
+            "pt_jacobian_clamp=2",
+        ],
         "restir (DI) + ReSTIR PT, hybrid shift, 2 bounces, |J| clamped into [1/2, 2] (biased)",
     ),
     (

@@ -52,8 +52,8 @@ pub struct ViewArgs {
     /// Window size in logical pixels, WxH [default: 1280x720].
     #[arg(long)]
     pub size: Option<String>,
-    /// final | source | m | rejection | w | normals | albedo | depth | motion | error
-    /// [default: final].
+    /// final | source | m | rejection | w | ... | gi-jacobian | pt-length | pt-reconnection |
+    /// pt-failure | pt-jacobian | boiling | survivor-change (README "Debug views") [default: final].
     #[arg(long)]
     pub debug_view: Option<String>,
     /// After N rendered frames, write a PNG of the whole window (image and panels) to FILE.

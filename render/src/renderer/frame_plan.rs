@@ -12,8 +12,8 @@ use std::ops::Range;
 use crate::passes::resources::{Chain, RESERVOIRS};
 use crate::passes::{
     PassDef, bias_view, display, gbuffer, gi_initial, gi_shade, gi_spatial, gi_temporal, gi_view,
-    initial, moments, presample, pt_initial, pt_shade, pt_spatial, pt_temporal, pt_view,
-    reference, shade, spatial, temporal, temporal_window, window_view,
+    initial, moments, presample, pt_initial, pt_shade, pt_spatial, pt_temporal, pt_view, reference,
+    shade, spatial, temporal, temporal_window, window_view,
 };
 
 /// One pass of the frame.

@@ -104,7 +104,8 @@ impl PtInspection {
         if (bytes.len() as u64) < PT_BYTES {
             return None;
         }
-        let debug: GpuPtPixelDebug = bytemuck::pod_read_unaligned(&bytes[..PT_DEBUG_BYTES as usize]);
+        let debug: GpuPtPixelDebug =
+            bytemuck::pod_read_unaligned(&bytes[..PT_DEBUG_BYTES as usize]);
         let stages = PT_STAGE_NAMES
             .iter()
             .enumerate()
@@ -116,7 +117,8 @@ impl PtInspection {
                 (probe.written == 1).then(|| PtStagePath {
                     stage,
                     reservoir: probe.reservoir,
-                    vertices: probe.vertices[..(probe.vertex_count as usize).min(probe.vertices.len())]
+                    vertices: probe.vertices
+                        [..(probe.vertex_count as usize).min(probe.vertices.len())]
                         .iter()
                         .map(|v| {
                             let flags = v[3].to_bits();
@@ -136,7 +138,9 @@ impl PtInspection {
 
     /// The previous path's shift to this pixel, by name (None: none was tried).
     pub fn temporal_outcome(&self) -> Option<&'static str> {
-        PT_FAIL_NAMES.get(self.debug.temporal_failure as usize).copied()
+        PT_FAIL_NAMES
+            .get(self.debug.temporal_failure as usize)
+            .copied()
     }
 
     /// The spatial neighbours' shifts to this pixel: (outcome, count) for each outcome seen.

@@ -375,6 +375,35 @@ impl Renderer {
         );
     }
 
+    /// The same for the ReSTIR PT history (after a frame with PT): NaN and infinite values,
+    /// weights and geometry, which the next PT temporal pass must count and drop.
+    #[doc(hidden)]
+    pub fn poison_pt_history_for_tests(&mut self) {
+        use crate::passes::pt_initial::PT_RESERVOIRS;
+        if !self.carried.has_history(&PT_RESERVOIRS) {
+            return;
+        }
+        let poisoned = crate::gpu_types::GpuPtReservoir {
+            value: [f32::INFINITY, 0.0, f32::NAN],
+            p_hat: 1.0,
+            w_sum: f32::NAN,
+            weight: f32::INFINITY,
+            m: f32::NAN,
+            packed: crate::shader_constants::SOURCE_TEMPORAL | (2 << 4) | (1 << 9),
+            rc_from_d2: f32::NAN,
+            replay_pdf: f32::INFINITY,
+            jacobian: 1.0,
+            ..Default::default()
+        };
+        let data = vec![poisoned; self.targets.pixel_count() as usize];
+        let history = self.carried.history(&PT_RESERVOIRS);
+        self.gpu.queue.write_buffer(
+            self.targets.chain(&PT_RESERVOIRS, history),
+            0,
+            bytemuck::cast_slice(&data),
+        );
+    }
+
     /// Restarts the running average (on any change that makes old frames stale).
     pub fn reset_accumulation(&mut self) {
         self.accumulated_frames = 0;

@@ -218,8 +218,8 @@ mod tests {
                         ("gi reservoirs", history),
                         ("pt reservoirs", history),
                     ]
-                        .into_iter()
-                        .collect(),
+                    .into_iter()
+                    .collect(),
                     surfaces: 1,
                     surface_buffers: 2,
                 };

@@ -42,3 +42,34 @@ pub fn render_planted(
     }
     r
 }
+
+/// Renders `frames` frames while orbiting about the point one scene-scale unit ahead of the
+/// camera (so temporal reuse shifts samples between visible points), and returns how many
+/// non-finite values the passes' guards counted and replaced; `name` labels a failure.
+pub fn orbit_counting_non_finite(r: &mut Renderer, frames: u32, name: &str) -> u64 {
+    let start = r.camera();
+    let centre = start.position + start.forward() * r.scene_scale();
+    let mut counted = 0;
+    for frame in 0..frames {
+        let turn = glam::Quat::from_rotation_y(0.05 * frame as f32);
+        let position = centre + turn * (start.position - centre);
+        r.set_camera(restir_render::Camera::look_at(position, centre, start.yfov));
+        r.render_frame().unwrap_or_else(|e| panic!("{name}: {e}"));
+        counted += r
+            .collect_reports(true)
+            .iter()
+            .map(|f| f.counters.non_finite_total())
+            .sum::<u64>();
+    }
+    counted
+}
+
+/// Renders one frame and returns what stats counter `index` counted in it.
+pub fn count_in_next_frame(r: &mut Renderer, index: u32) -> u64 {
+    r.collect_reports(true);
+    r.render_frame().unwrap();
+    r.collect_reports(true)
+        .iter()
+        .map(|f| f.counters.get(index))
+        .sum()
+}

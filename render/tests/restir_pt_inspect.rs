@@ -14,22 +14,37 @@ const H: u32 = 48;
 const SETTINGS: [&str; 3] = ["pt=true", "max_bounces=3", "pt_spatial_radius=300"];
 
 fn renderer(shift: &str, frames: u32) -> Renderer {
+    planted_renderer(&[shift], None, frames)
+}
+
+fn planted_renderer(assignments: &[&str], planted: Option<&str>, frames: u32) -> Renderer {
     let scene = load_scene("builtin:glossy").unwrap();
-    let all = [&SETTINGS[..], &[shift]].concat();
-    render_planted(&scene, (W, H), &all, None, frames)
+    let all = [&SETTINGS[..], assignments].concat();
+    render_planted(&scene, (W, H), &all, planted, frames)
 }
 
 fn distance2(a: [f32; 3], b: [f32; 3]) -> f32 {
     (0..3).map(|i| (a[i] - b[i]).powi(2)).sum()
 }
 
+/// How a probed path's reconnection compares with its record.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Reconnection {
+    /// Replayed whole, or the rebuild stopped before x_(k+1).
+    NotChecked,
+    /// |x_k − x_(k+1)|² is the record's rc_from_d2: after a replayed prefix when k ≥ 2.
+    Matches {
+        replayed: bool,
+    },
+    Mismatch,
+}
+
 /// The probe's vertices agree with the record: x_1 is the pixel's visible point, a
 /// complete path has n surface vertices and its light end, the reconnection vertex sits at
 /// x_{k+1}, and its distance from x_k is the record's rc_from_d2 (x_k replayed from this
 /// pixel with the path's numbers, x_{k+1} from the stored triangle: a replay that drew the
-/// wrong numbers, or a vertex from the wrong side, would not land at that distance).
-/// Returns whether a reconnection was checked.
-fn check_path(path: &PtStagePath, visible_point: [f32; 3]) -> bool {
+/// wrong numbers lands elsewhere, the planted twin below).
+fn check_path(path: &PtStagePath, visible_point: [f32; 3]) -> Reconnection {
     let v = &path.vertices;
     assert!(!v.is_empty(), "{}: a non-null path has x_1", path.stage);
     assert!(
@@ -50,71 +65,121 @@ fn check_path(path: &PtStagePath, visible_point: [f32; 3]) -> bool {
                 "{}: a replayed path has no reconnection",
                 path.stage
             );
-            false
+            Reconnection::NotChecked
         }
         Some(k) if v.len() > k as usize => {
             let k = k as usize;
             assert_eq!(marked, [k], "{}: x_(k+1) is vertices[k]", path.stage);
             let d2 = distance2(v[k - 1].position, v[k].position);
             let stored = path.reservoir.rc_from_d2;
-            assert!(
-                (d2 / stored - 1.0).abs() < 1e-3,
-                "{} (source {}): |x_k − x_(k+1)|² {d2} vs the record's {stored}",
-                path.stage,
-                path.source_name()
-            );
-            true
+            // 1e-3: f32 positions a few units from the origin, squared distances of
+            // 0.01–10 units², rebuilt by the same arithmetic as where the record was made.
+            if (d2 / stored - 1.0).abs() < 1e-3 {
+                Reconnection::Matches { replayed: k >= 2 }
+            } else {
+                eprintln!(
+                    "{} (source {}): |x_k − x_(k+1)|² {d2} vs the record's {stored}",
+                    path.stage,
+                    path.source_name()
+                );
+                Reconnection::Mismatch
+            }
         }
-        Some(_) => false,
+        Some(_) => Reconnection::NotChecked,
     }
 }
 
+/// Inspects 12 pixels, one a frame, and checks every non-null stage's path; returns the
+/// outcomes of the reconnection checks.
+fn probe_paths(r: &mut Renderer) -> Vec<Reconnection> {
+    let mut outcomes = Vec::new();
+    for i in 0..12u32 {
+        let pixel = (4 + (i * 13) % (W - 8), 6 + (i * 7) % (H - 12));
+        r.set_inspected_pixel(Some(pixel));
+        r.render_frame().unwrap();
+        let inspection = r
+            .collect_reports(true)
+            .into_iter()
+            .rev()
+            .find_map(|f| f.inspection)
+            .expect("an inspected frame");
+        let pt = inspection
+            .pt
+            .expect("PT ran: its part of the inspection is there");
+        let names: Vec<&str> = pt.stages.iter().map(|s| s.stage).collect();
+        assert_eq!(names, ["pt initial", "pt temporal", "pt spatial"]);
+        let index = (pixel.1 * W + pixel.0) as usize;
+        assert_eq!(pt.stages[2].reservoir, r.read_pt_reservoirs()[index]);
+        if inspection.surface.depth <= 0.0 {
+            continue;
+        }
+        for path in pt.stages.iter().filter(|p| !p.is_null()) {
+            outcomes.push(check_path(path, inspection.surface.position));
+        }
+    }
+    outcomes
+}
+
+/// Hybrid with `pt_rough_threshold=1`: only purely diffuse vertices are rough, so paths off
+/// the glossy floor replay their first bounce and reconnect at x_3 (the rebuild's replay is
+/// what is checked).
+const LATE_RECONNECTION: [&str; 2] = ["pt_shift=hybrid", "pt_rough_threshold=1"];
+
 /// The inspector rebuilds each PT stage's path (pt initial, pt temporal, pt spatial) for
 /// the pixel it inspects, with every shift; the last stage is what the frame left in the
-/// PT buffers.
+/// PT buffers. Planted twin: a rebuild with another path's random numbers puts the
+/// replayed x_k elsewhere, and the check says so.
 #[test]
 fn the_inspector_rebuilds_each_pt_stages_path() {
+    let count = |outcomes: &[Reconnection], wanted: fn(&Reconnection) -> bool| {
+        outcomes.iter().filter(|o| wanted(o)).count()
+    };
     for shift in [
-        "pt_shift=reconnection",
-        "pt_shift=random-replay",
-        "pt_shift=hybrid",
+        &["pt_shift=reconnection"][..],
+        &["pt_shift=random-replay"],
+        &["pt_shift=hybrid"],
+        &LATE_RECONNECTION,
     ] {
-        let mut r = renderer(shift, 3);
-        let (mut checked, mut reconnections) = (0, 0);
-        for i in 0..12u32 {
-            let pixel = (4 + (i * 13) % (W - 8), 6 + (i * 7) % (H - 12));
-            r.set_inspected_pixel(Some(pixel));
-            r.render_frame().unwrap();
-            let inspection = r
-                .collect_reports(true)
-                .into_iter()
-                .rev()
-                .find_map(|f| f.inspection)
-                .expect("an inspected frame");
-            let pt = inspection
-                .pt
-                .expect("PT ran: its part of the inspection is there");
-            let names: Vec<&str> = pt.stages.iter().map(|s| s.stage).collect();
-            assert_eq!(names, ["pt initial", "pt temporal", "pt spatial"]);
-            let index = (pixel.1 * W + pixel.0) as usize;
-            assert_eq!(pt.stages[2].reservoir, r.read_pt_reservoirs()[index]);
-            if inspection.surface.depth <= 0.0 {
-                continue;
-            }
-            for path in pt.stages.iter().filter(|p| !p.is_null()) {
-                checked += 1;
-                reconnections += check_path(path, inspection.surface.position) as u32;
-            }
+        let outcomes = probe_paths(&mut planted_renderer(shift, None, 3));
+        let matched = count(&outcomes, |o| matches!(o, Reconnection::Matches { .. }));
+        let replayed = count(&outcomes, |o| {
+            *o == Reconnection::Matches { replayed: true }
+        });
+        eprintln!(
+            "{shift:?}: {} paths, {matched} reconnections checked, {replayed} after a replayed prefix",
+            outcomes.len()
+        );
+        assert!(outcomes.len() >= 12, "{shift:?}: too few paths to check");
+        assert_eq!(
+            count(&outcomes, |o| *o == Reconnection::Mismatch),
+            0,
+            "{shift:?}"
+        );
+        if shift[0] != "pt_shift=random-replay" {
+            assert!(matched >= 6, "{shift:?}: {matched} reconnections checked");
         }
-        eprintln!("{shift}: {checked} paths checked, {reconnections} reconnections");
-        assert!(checked >= 12, "{shift}: too few paths to check ({checked})");
-        if shift != "pt_shift=random-replay" {
+        if shift == LATE_RECONNECTION {
             assert!(
-                reconnections >= 6,
-                "{shift}: {reconnections} reconnections checked"
+                replayed >= 4,
+                "{shift:?}: {replayed} replayed prefixes checked"
             );
         }
     }
+    let mut planted = planted_renderer(
+        &LATE_RECONNECTION,
+        Some("PLANTED_PT_PROBE_WRONG_NUMBERS"),
+        3,
+    );
+    let outcomes = probe_paths(&mut planted);
+    let wrong = count(&outcomes, |o| *o == Reconnection::Mismatch);
+    eprintln!(
+        "planted wrong numbers: {wrong} of {} paths mismatch",
+        outcomes.len()
+    );
+    assert!(
+        wrong >= 3,
+        "the check must see a rebuild with the wrong numbers ({wrong})"
+    );
 }
 
 /// The PT debug records count every neighbour's shift once, by outcome, and each shift

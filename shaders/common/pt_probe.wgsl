@@ -27,13 +27,20 @@ fn pt_probe_write(stage: u32, pixel: u32, first: ShadingPoint, r: PtReservoir) {
         var count = 0u;
         vertices[0] = pt_probe_vertex(first.position, 0u);
         count = 1u;
+#ifdef PLANTED_PT_PROBE_WRONG_NUMBERS
+        // Test-only planted error (render/tests/restir_pt_inspect.rs): rebuild the path
+        // with another path's random numbers.
+        let seed = r.seed ^ 0x5bd1e995u;
+#else
+        let seed = r.seed;
+#endif
         let n = min(pt_n(r), MAX_BOUNCES);
         let k = pt_k(r);
         let replayed = select(k - 1u, n - 1u, k == PT_RC_NONE);
         var sp = first;
         var complete = true;
         for (var b = 1u; b <= replayed; b++) {
-            let bn = pt_bounce(sp, r.seed, b);
+            let bn = pt_bounce(sp, seed, b);
             if !bn.ok || !bn.hit {
                 complete = false;
                 break;
@@ -54,13 +61,13 @@ fn pt_probe_write(stage: u32, pixel: u32, first: ShadingPoint, r: PtReservoir) {
                     // The step leaving the reconnection vertex, stored with the path.
                     bn.wi = oct_decode(r.rc_out);
                     bn.hit = false;
-                    var rng = pt_rng(r.seed, b, PT_RNG_BSDF);
+                    var rng = pt_rng(seed, b, PT_RNG_BSDF);
                     rand_f32(&rng);
                     rand_f32(&rng);
                     rand_f32(&rng);
                     pt_follow(sp, &bn, &rng);
                 } else {
-                    bn = pt_bounce(sp, r.seed, b);
+                    bn = pt_bounce(sp, seed, b);
                 }
                 if !bn.hit {
                     complete = false;

@@ -32,14 +32,9 @@ fn gi_reason_color(bit: u32) -> vec3<f32> {
     return palette[min(bit, GI_REJECT_REASON_COUNT - 1u)];
 }
 
-// log2 |J| over ±log2(window): blue (J small) through white (1) to red (J large).
+// log2 |J| over ±log2(window).
 fn jacobian_color(j: f32) -> vec3<f32> {
-    let span = max(log2(max(params.gi_jacobian_max, 2.0)), 1.0);
-    let t = clamp(log2(max(j, 1e-30)) / span, -1.0, 1.0);
-    if t < 0.0 {
-        return mix(vec3<f32>(1.0), vec3<f32>(0.1, 0.3, 1.0), -t);
-    }
-    return mix(vec3<f32>(1.0), vec3<f32>(1.0, 0.1, 0.05), t);
+    return log_jacobian_color(j, max(log2(max(params.gi_jacobian_max, 2.0)), 1.0));
 }
 
 fn gi_color(index: u32) -> vec3<f32> {

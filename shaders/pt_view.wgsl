@@ -51,14 +51,6 @@ fn pt_failure_color(failure: u32) -> vec3<f32> {
     return palette[min(failure, PT_FAIL_REASON_COUNT - 1u)];
 }
 
-fn pt_jacobian_color(j: f32) -> vec3<f32> {
-    let t = clamp(log2(max(j, 1e-30)) / PT_JACOBIAN_SPAN, -1.0, 1.0);
-    if t < 0.0 {
-        return mix(vec3<f32>(1.0), vec3<f32>(0.1, 0.3, 1.0), -t);
-    }
-    return mix(vec3<f32>(1.0), vec3<f32>(1.0, 0.1, 0.05), t);
-}
-
 // The shifts into the pixel: the commonest failure's colour, brighter with the failed share.
 fn pt_outcome_color(d: PtPixelDebug) -> vec3<f32> {
     var counts: array<u32, PT_FAIL_REASON_COUNT>;
@@ -114,7 +106,7 @@ fn pt_color(index: u32) -> vec3<f32> {
             return pt_depth_color(k + 1u);
         }
         case VIEW_PT_JACOBIAN: {
-            return pt_jacobian_color(pt_debug[index].jacobian);
+            return log_jacobian_color(pt_debug[index].jacobian, PT_JACOBIAN_SPAN);
         }
         default: { return vec3<f32>(0.0); }
     }

@@ -44,3 +44,13 @@ fn source_color(source: u32) -> vec3<f32> {
         default: { return vec3<f32>(0.0); }
     }
 }
+
+// log2 |J| over ±span: blue (J small) through white (1) to red (J large), the Jacobian
+// views' ramp (gi-jacobian, pt-jacobian; the legends: app/src/viewer/panels/palette.rs).
+fn log_jacobian_color(j: f32, span: f32) -> vec3<f32> {
+    let t = clamp(log2(max(j, 1e-30)) / span, -1.0, 1.0);
+    if t < 0.0 {
+        return mix(vec3<f32>(1.0), vec3<f32>(0.1, 0.3, 1.0), -t);
+    }
+    return mix(vec3<f32>(1.0), vec3<f32>(1.0, 0.1, 0.05), t);
+}

@@ -314,27 +314,21 @@ mod tests {
         assert_eq!(replay, vec![PT_PURE_REPLAY.to_vec()]);
         let span: f32 = wgsl_const(pt_view, "PT_JACOBIAN_SPAN").parse().unwrap();
         assert_eq!(span.exp2(), PT_JACOBIAN_SATURATION);
-        // Both Jacobian views: mix(white, low, -t) below 1, mix(white, high, t) above.
+        // Both Jacobian views draw one ramp: mix(white, low, -t) below 1, mix(white, high,
+        // t) above.
         let [low, one, high] = jacobian_colors();
         assert_eq!(one, Color32::WHITE);
-        for (shader, name) in [
-            (pt_view, "pt_jacobian_color"),
-            (
-                include_str!("../../../../shaders/gi_view.wgsl"),
-                "jacobian_color",
-            ),
-        ] {
-            let literals = vec3_literals(wgsl_function(shader, name));
-            let colours: Vec<Color32> = literals
-                .iter()
-                .filter(|n| n.len() == 3)
-                .map(|n| linear([n[0], n[1], n[2]]))
-                .collect();
-            assert_eq!(colours, vec![low, high], "{name}");
-            assert!(
-                literals.iter().all(|n| n.len() == 3 || n == &[1.0]),
-                "{name}: white is vec3(1.0)"
-            );
-        }
+        let shader = include_str!("../../../../shaders/common/display_colors.wgsl");
+        let literals = vec3_literals(wgsl_function(shader, "log_jacobian_color"));
+        let colours: Vec<Color32> = literals
+            .iter()
+            .filter(|n| n.len() == 3)
+            .map(|n| linear([n[0], n[1], n[2]]))
+            .collect();
+        assert_eq!(colours, vec![low, high]);
+        assert!(
+            literals.iter().all(|n| n.len() == 3 || n == &[1.0]),
+            "white is vec3(1.0)"
+        );
     }
 }

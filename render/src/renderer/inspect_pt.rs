@@ -3,11 +3,11 @@
 //! decoded into names a person reads: path length, end technique, the reconnection
 //! vertex, lobes, |J|.
 
-use crate::gpu_types::{GpuPtPixelDebug, GpuPtProbeStage, GpuPtReservoir, NO_LIGHT};
+use crate::gpu_types::{GpuPtPixelDebug, GpuPtProbeStage, GpuPtReservoir};
 use crate::shader_constants::*;
 
 pub const PT_DEBUG_BYTES: u64 = std::mem::size_of::<GpuPtPixelDebug>() as u64;
-pub const PT_PROBE_STAGE_BYTES: u64 = std::mem::size_of::<GpuPtProbeStage>() as u64;
+const PT_PROBE_STAGE_BYTES: u64 = std::mem::size_of::<GpuPtProbeStage>() as u64;
 pub const PT_BYTES: u64 = PT_DEBUG_BYTES + PT_PROBE_STAGES as u64 * PT_PROBE_STAGE_BYTES;
 /// The probe's stages, in its slot order.
 pub const PT_STAGE_NAMES: [&str; PT_PROBE_STAGES as usize] =
@@ -83,10 +83,6 @@ impl PtStagePath {
                 }
             })
             .collect()
-    }
-
-    pub fn has_light(&self) -> bool {
-        self.reservoir.light != NO_LIGHT
     }
 }
 

@@ -13,12 +13,22 @@ use serde_json::{Value, json};
 
 #[path = "scene_loading/animation.rs"]
 mod animation;
+#[path = "scene_loading/compressed.rs"]
+mod compressed;
+#[path = "scene_loading/compressed_files.rs"]
+mod compressed_files;
+#[path = "scene_loading/compressed_render.rs"]
+mod compressed_render;
+#[path = "scene_loading/corrupt.rs"]
+mod corrupt;
 #[path = "scene_loading/extensions.rs"]
 mod extensions;
 #[path = "scene_loading/files.rs"]
 mod files;
 #[path = "scene_loading/fuzz.rs"]
 mod fuzz;
+#[path = "scene_loading/twins.rs"]
+mod twins;
 
 use files::{TempDir, add_texture, base64, f32_bytes, glb, quad_document, write_gltf};
 
@@ -238,8 +248,18 @@ fn bad_inputs_are_clean_errors_naming_the_file() {
         ),
         (
             "required-ext",
-            |d, _| d["extensionsRequired"] = json!(["KHR_draco_mesh_compression"]),
-            "KHR_draco_mesh_compression",
+            |d, _| d["extensionsRequired"] = json!(["EXT_unknown_compression"]),
+            "uses EXT_unknown_compression",
+        ),
+        (
+            "draco-stream",
+            |d, _| {
+                d["extensionsRequired"] = json!(["KHR_draco_mesh_compression"]);
+                d["meshes"][0]["primitives"][0]["extensions"] = json!({
+                    "KHR_draco_mesh_compression": { "bufferView": 3, "attributes": { "POSITION": 0 } }
+                });
+            },
+            "KHR_draco_mesh_compression (bufferView 3): the stream does not decode",
         ),
         (
             "no-triangles",

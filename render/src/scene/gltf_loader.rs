@@ -3,9 +3,14 @@
 //! caught as a second line of defence (a malformed file must never crash the viewer).
 
 mod animations;
+mod compressed;
 mod data;
+mod draco;
 pub mod extensions;
+mod ktx2;
 mod materials;
+mod meshopt;
+mod parse;
 mod pointer_channels;
 mod primitives;
 mod quantized;
@@ -20,8 +25,8 @@ use super::animation::{CameraBinding, MeshBinding};
 use super::load::{SceneError, one_line, validate};
 use super::{Camera, Material, PunctualKind, PunctualLight, Scene};
 use crate::load_phases::{LoadPhases, Watcher, unwatched};
-use extensions::{ExtensionStatus, ExtensionUse};
-use primitives::{PrimitiveId, append_primitive};
+use parse::{Parsed, open_document};
+use primitives::{PrimitiveId, Sources, append_primitive};
 
 /// Load a .gltf or .glb file. The returned scene has passed `load::validate`.
 pub fn load_gltf(path: &Path) -> Result<Scene, SceneError> {
@@ -72,28 +77,39 @@ fn load_unvalidated(
             detail: "expected a .gltf or .glb file".to_string(),
         });
     }
-    let (document, blob, pointers, extensions) =
-        phases.try_time(watch, "read and parse", || {
-            let bytes = std::fs::read(path).map_err(|source| SceneError::Io {
-                file: file.to_string(),
-                what: "the file".to_string(),
-                error: source,
-            })?;
-            let (gltf::Gltf { document, blob }, pointers, extensions) =
-                open_document(file, &bytes)?;
-            let detail = format!("{} bytes", bytes.len());
-            Ok(((document, blob, pointers, extensions), detail))
+    let parsed = phases.try_time(watch, "read and parse", || {
+        let bytes = std::fs::read(path).map_err(|source| SceneError::Io {
+            file: file.to_string(),
+            what: "the file".to_string(),
+            error: source,
         })?;
+        let parsed = open_document(file, &bytes)?;
+        Ok((parsed, format!("{} bytes", bytes.len())))
+    })?;
+    let Parsed {
+        gltf: gltf::Gltf { document, blob },
+        pointers,
+        extensions,
+        compression,
+    } = parsed;
     let base = path.parent().unwrap_or(Path::new("."));
     let buffers = phases.try_time(watch, "buffers", || {
-        let buffers = data::load_buffers(file, &document, base, blob)?;
+        let fallback = &compression.fallback;
+        let mut buffers = data::load_buffers(file, &document, base, blob, fallback)?;
+        // meshopt views decode into their buffers here; from now on they read as plain data.
+        let decoded = meshopt::decode_views(file, &compression.meshopt, fallback, &mut buffers)?;
         let bytes: usize = buffers.iter().map(Vec::len).sum();
-        let detail = format!("{} buffers, {bytes} bytes", buffers.len());
+        let mut detail = format!("{} buffers, {bytes} bytes", buffers.len());
+        if !compression.meshopt.is_empty() {
+            let views = compression.meshopt.len();
+            detail += &format!(" ({decoded} decoded from {views} meshopt views)");
+        }
         Ok((buffers, detail))
     })?;
     let materials = materials::load_materials(file, &document);
     let textures = phases.try_time(watch, "images", || {
-        materials::load_textures(file, &document, base, &buffers, &materials, watch)
+        let images = &compression.images;
+        materials::load_textures(file, &document, base, &buffers, &materials, images, watch)
     })?;
 
     let mut scene = Scene {
@@ -108,7 +124,12 @@ fn load_unvalidated(
     phases.try_time(watch, "geometry", || {
         let mut walker = Walker {
             file,
-            buffers: &buffers,
+            sources: Sources {
+                doc: &document,
+                buffers: &buffers,
+                compression: &compression,
+                draco: Default::default(),
+            },
             scene: &mut scene,
             default_material: None,
             moving: animations::moving_nodes(&document),
@@ -144,137 +165,10 @@ fn warn_rest_pose_only(file: &str, doc: &gltf::Document) {
     }
 }
 
-/// Parse JSON/GLB, report the extensions and refuse unsupported required ones
-/// (`extensions`), then run the crate's schema validation. The crate's own
-/// required-extension check is skipped because it does not know all the extensions this
-/// loader reads (KHR_materials_specular, KHR_mesh_quantization).
-fn open_document(
-    file: &str,
-    bytes: &[u8],
-) -> Result<
-    (
-        gltf::Gltf,
-        Vec<pointer_channels::PointerChannel>,
-        Vec<ExtensionUse>,
-    ),
-    SceneError,
-> {
-    let parse_error = |e: gltf::Error| SceneError::Parse {
-        file: file.to_string(),
-        detail: one_line(e.to_string()),
-    };
-    let (gltf, pointers) = parse_without_pointer_channels(file, bytes)?;
-    let gltf = match gltf {
-        Some(gltf) => gltf,
-        None => gltf::Gltf::from_slice_without_validation(bytes).map_err(parse_error)?,
-    };
-    let mut json = gltf.document.into_json();
-    let report = extensions::report(&json.extensions_used, &json.extensions_required);
-    if let Some(detail) = extensions::refusal(&report) {
-        return Err(SceneError::Unsupported {
-            file: file.to_string(),
-            detail,
-        });
-    }
-    for e in report.iter().filter(|e| e.status != ExtensionStatus::Used) {
-        log::info!("{file}: {e}");
-    }
-    json.extensions_required.clear();
-    check_crate_assumptions(file, &json)?;
-    let document = gltf::Document::from_json(json).map_err(parse_error)?;
-    Ok((
-        gltf::Gltf {
-            document,
-            blob: gltf.blob,
-        },
-        pointers,
-        report,
-    ))
-}
-
-/// Files with KHR_animation_pointer channels: those channels out of the JSON (the crate
-/// cannot deserialise them), the rest parsed as usual. `None` when the file has none, so
-/// every other file takes exactly the crate's own path.
-fn parse_without_pointer_channels(
-    file: &str,
-    bytes: &[u8],
-) -> Result<(Option<gltf::Gltf>, Vec<pointer_channels::PointerChannel>), SceneError> {
-    let parse_error = |detail: String| SceneError::Parse {
-        file: file.to_string(),
-        detail: one_line(detail),
-    };
-    let is_glb = bytes.starts_with(b"glTF");
-    let (json_bytes, blob) = if is_glb {
-        let glb = gltf::binary::Glb::from_slice(bytes).map_err(|e| parse_error(e.to_string()))?;
-        (glb.json.into_owned(), glb.bin.map(|b| b.into_owned()))
-    } else {
-        (bytes.to_vec(), None)
-    };
-    // Cheap test first: most files never mention the extension.
-    if !json_bytes
-        .windows(b"KHR_animation_pointer".len())
-        .any(|w| w == b"KHR_animation_pointer")
-    {
-        return Ok((None, Vec::new()));
-    }
-    let mut value: serde_json::Value =
-        serde_json::from_slice(&json_bytes).map_err(|e| parse_error(e.to_string()))?;
-    let pointers = pointer_channels::take_pointer_channels(file, &mut value)?;
-    let root: gltf::json::Root =
-        serde_json::from_value(value).map_err(|e| parse_error(e.to_string()))?;
-    Ok((
-        Some(gltf::Gltf {
-            document: gltf::Document::from_json_without_validation(root),
-            blob,
-        }),
-        pointers,
-    ))
-}
-
-/// References the gltf crate (1.4.1) reads with `unwrap` or unchecked indexing before or
-/// without validating them (each found by the mutation fuzz test): checked here first.
-fn check_crate_assumptions(file: &str, json: &gltf::json::Root) -> Result<(), SceneError> {
-    use gltf::json::validation::Checked;
-    let fail = |detail: String| {
-        Err(SceneError::Parse {
-            file: file.to_string(),
-            detail,
-        })
-    };
-    // Validation indexes accessors[POSITION] before checking the index.
-    let position = Checked::Valid(gltf::Semantic::Positions);
-    for (m, mesh) in json.meshes.iter().enumerate() {
-        for (p, primitive) in mesh.primitives.iter().enumerate() {
-            let index = primitive.attributes.get(&position).map(|i| i.value());
-            if let Some(index) = index.filter(|&i| i >= json.accessors.len()) {
-                return fail(format!(
-                    "meshes[{m}].primitives[{p}] POSITION refers to accessor {index} of {}",
-                    json.accessors.len()
-                ));
-            }
-        }
-    }
-    // `Image::source` unwraps the URI, or the MIME type of an image in a buffer view.
-    for (i, image) in json.images.iter().enumerate() {
-        match (&image.uri, &image.buffer_view, &image.mime_type) {
-            (Some(_), None, _) | (None, Some(_), Some(_)) => {}
-            (None, Some(_), None) => {
-                return fail(format!("images[{i}] has a bufferView but no mimeType"));
-            }
-            _ => {
-                return fail(format!(
-                    "images[{i}] needs exactly one of uri and bufferView"
-                ));
-            }
-        }
-    }
-    Ok(())
-}
-
 /// Depth-first traversal of the scene's node trees, carrying world transforms.
 struct Walker<'a> {
     file: &'a str,
-    buffers: &'a [Vec<u8>],
+    sources: Sources<'a>,
     scene: &'a mut Scene,
     /// Index of `Material::default()` in the scene, added the first time a primitive has none.
     default_material: Option<u32>,
@@ -335,7 +229,7 @@ impl Walker<'_> {
                     self.file,
                     &id,
                     &primitive,
-                    self.buffers,
+                    &mut self.sources,
                     world,
                     material,
                     self.scene,

@@ -1,6 +1,7 @@
-//! Mutation fuzz of a real exporter's file: ~300 deterministic corruptions of the Blender
-//! 2.80 Cornell box (.gltf text and .bin bytes). The loader may refuse any of them, but must
-//! never panic: not even a panic it catches itself, since each one is a check we are missing.
+//! Mutation fuzz of real exporters' files: ~300 deterministic corruptions each of the Blender
+//! 2.80 Cornell box and of the 2.79 box's Draco and meshopt twins (.gltf text and .bin
+//! bytes). The loader may refuse any of them, but must never panic: not even a panic it
+//! catches itself, since each one is a check we are missing.
 
 use std::path::Path;
 
@@ -110,26 +111,75 @@ fn mutated_files_never_panic() {
     let json = std::fs::read(source.join("cornellBox-2.80-Eevee-gltf.gltf")).unwrap();
     let bin = std::fs::read(source.join("cornellBox-2.80-Eevee-gltf.bin")).unwrap();
     let dir = TempDir::new("fuzz");
+    fuzz(
+        &dir,
+        &source,
+        "cornellBox-2.80-Eevee-gltf",
+        &json,
+        &bin,
+        0x00F0_22ED,
+    );
+}
+
+/// The same mutations of the Draco and meshopt twins (assets/compressed): their JSON is read
+/// by the loader's own code first (`compressed::take`), their streams by the decoders.
+#[test]
+fn mutated_compressed_files_never_panic() {
+    let assets = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets");
+    let dir = TempDir::new("fuzz-compressed");
+    for (name, seed) in [("cornell-draco", 0xD2AC0), ("cornell-meshopt", 0x3E540)] {
+        let mut doc: Value = serde_json::from_slice(
+            &std::fs::read(assets.join(format!("compressed/{name}.gltf"))).unwrap(),
+        )
+        .unwrap();
+        for image in doc["images"].as_array_mut().unwrap() {
+            let uri = image["uri"]
+                .as_str()
+                .unwrap()
+                .rsplit('/')
+                .next()
+                .unwrap()
+                .to_string();
+            image["uri"] = Value::String(uri);
+        }
+        let json = serde_json::to_vec(&doc).unwrap();
+        let bin = std::fs::read(assets.join(format!("compressed/{name}.bin"))).unwrap();
+        fuzz(
+            &dir,
+            &assets.join("blender-2.79-cornell"),
+            name,
+            &json,
+            &bin,
+            seed,
+        );
+    }
+}
+
+/// `MUTATIONS` corruptions of `name`.gltf + `name`.bin (its buffer) loaded from `dir`, with
+/// the images of `images` (a folder of the Cornell box) as the small checker.
+fn fuzz(dir: &Path, images: &Path, name: &str, json: &[u8], bin: &[u8], seed: u64) {
     // Both image names get the small checker: decoding speed is not what is fuzzed here.
-    let small = std::fs::read(source.join("checker-meter.png")).unwrap();
+    let small = std::fs::read(images.join("checker-meter.png")).unwrap();
     for image in ["checker-meter.png", "checkerBJS.png"] {
         std::fs::write(dir.join(image), &small).unwrap();
     }
-    let (mut rng, mut refused) = (Rng(0x00F0_22ED), 0);
+    let (mut rng, mut refused) = (Rng(seed), 0);
     for i in 0..MUTATIONS {
-        let (json, bin) = mutate(&mut rng, &json, &bin);
-        std::fs::write(dir.join("cornellBox-2.80-Eevee-gltf.bin"), &bin).unwrap();
-        let path = dir.join("cornellBox-2.80-Eevee-gltf.gltf");
+        let (json, bin) = mutate(&mut rng, json, bin);
+        std::fs::write(dir.join(format!("{name}.bin")), &bin).unwrap();
+        let path = dir.join(format!("{name}.gltf"));
         std::fs::write(&path, &json).unwrap();
         match load_gltf(&path) {
-            Ok(_) => {}
+            Ok(scene) => assert!(scene.vertices.iter().all(|v| v.position.is_finite())),
             Err(SceneError::Panicked { detail, .. }) => {
-                panic!("mutation {i}: caught panic: {detail}")
+                panic!("{name}: mutation {i}: caught panic: {detail}")
             }
             Err(e) => {
+                let message = e.to_string();
+                assert!(message.contains(&format!("{name}.gltf")), "{message}");
                 assert!(
-                    e.to_string().contains("cornellBox-2.80-Eevee-gltf.gltf"),
-                    "{e}"
+                    !message.contains("crashed"),
+                    "{name}: mutation {i}: {message}"
                 );
                 refused += 1;
             }
@@ -138,6 +188,6 @@ fn mutated_files_never_panic() {
     // Sanity: the mutations do bite.
     assert!(
         refused > 30,
-        "only {refused} of {MUTATIONS} mutations were refused"
+        "{name}: only {refused} of {MUTATIONS} mutations were refused"
     );
 }

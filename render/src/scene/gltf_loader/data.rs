@@ -3,15 +3,20 @@
 //! panic on a zero count) for out-of-range data; these checks turn that into an error that
 //! says which buffer and accessor are at fault.
 
+use std::collections::BTreeMap;
 use std::path::Path;
 
 use gltf::accessor::{Accessor, DataType, Dimensions};
 use gltf::buffer::{self, View};
 
 use super::super::load::{SceneError, one_line};
+use super::compressed;
 
 /// A label for a buffer in messages: its URI, or where its bytes live.
 pub(super) fn buffer_label(buffer: &gltf::Buffer) -> String {
+    if buffer.name() == Some(compressed::FALLBACK_NAME) {
+        return compressed::FALLBACK_NAME.to_string();
+    }
     match buffer.source() {
         buffer::Source::Bin => "GLB BIN chunk".to_string(),
         buffer::Source::Uri(uri) if uri.starts_with("data:") => "data URI".to_string(),
@@ -39,15 +44,52 @@ pub(super) fn read_uri(
         })
 }
 
-/// The bytes of every buffer, in document order.
+/// The bytes of an image URI, exactly: the crate's reader pads what it reads to a multiple
+/// of 4 bytes (buffers want that), which would hand a cut-short KTX2 or WebP file its
+/// missing bytes as zeros and hide it from the decoders' length checks.
+pub(super) fn read_image_uri(
+    file: &str,
+    base: &Path,
+    uri: &str,
+    what: &str,
+) -> Result<Vec<u8>, SceneError> {
+    let mut bytes = read_uri(file, base, uri, what)?;
+    if let Some(length) = unpadded_length(base, uri) {
+        bytes.truncate(length);
+    }
+    Ok(bytes)
+}
+
+/// The length of what `uri` names before padding: a base64 data URI's decoded length, or a
+/// file's size. `None` when it cannot be told (the padded bytes are then used).
+fn unpadded_length(base: &Path, uri: &str) -> Option<usize> {
+    if let Some(data) = uri.strip_prefix("data:") {
+        let base64 = data.split_once(";base64,").map_or(data, |(_, b)| b);
+        return Some(base64.trim_end_matches('=').len() * 6 / 8);
+    }
+    let path = match uri.strip_prefix("file://").or(uri.strip_prefix("file:")) {
+        Some(path) => Path::new(path).to_path_buf(),
+        None if uri.contains(':') => return None,
+        None => base.join(uri),
+    };
+    std::fs::metadata(path).ok().map(|m| m.len() as usize)
+}
+
+/// The bytes of every buffer, in document order. A meshopt fallback buffer (in `fallback`)
+/// is not read: it stays empty until its views are decoded (`meshopt::decode_views`).
 pub(super) fn load_buffers(
     file: &str,
     doc: &gltf::Document,
     base: &Path,
     mut blob: Option<Vec<u8>>,
+    fallback: &BTreeMap<usize, usize>,
 ) -> Result<Vec<Vec<u8>>, SceneError> {
     let mut buffers = Vec::new();
     for buffer in doc.buffers() {
+        if fallback.contains_key(&buffer.index()) {
+            buffers.push(Vec::new());
+            continue;
+        }
         let label = format!("buffer {} ('{}')", buffer.index(), buffer_label(&buffer));
         let data = match buffer.source() {
             buffer::Source::Bin => blob.take().ok_or_else(|| {

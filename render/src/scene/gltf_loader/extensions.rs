@@ -44,10 +44,6 @@ enum Support {
     Full,
     /// Implemented except the named parts.
     Partial(&'static str),
-    /// Its data is not decoded: a file that requires it is refused with this advice; a file
-    /// that only uses it carries uncompressed fallback data (both compression extensions
-    /// demand that), which is read instead.
-    FallbackOnly(&'static str),
 }
 
 /// The extensions this loader knows. Everything else is ignored when optional and refused
@@ -82,30 +78,27 @@ const TABLE: &[(&str, Support)] = &[
         "KHR_materials_volume",
         Support::Partial("thickness and attenuation ignored (thin-walled)"),
     ),
+    // Compressed files decode in pure Rust (compressed, draco, meshopt, ktx2 modules). When a
+    // file also carries uncompressed data, the compressed data is read, as the extensions ask
+    // of a loader that supports them.
+    // Draco: draco-core; the attributes this renderer reads (POSITION, NORMAL, TEXCOORD_n).
+    ("KHR_draco_mesh_compression", Support::Full),
+    // meshopt: meshoptimizer-rs; ATTRIBUTES, TRIANGLES and INDICES, filters OCTAHEDRAL,
+    // QUATERNION and EXPONENTIAL (all that EXT_meshopt_compression has).
+    ("EXT_meshopt_compression", Support::Full),
     (
-        "KHR_draco_mesh_compression",
-        Support::FallbackOnly(
-            "Draco-compressed meshes are not decoded; decompress it first: \
-             `npx @gltf-transform/cli copy in.glb out.glb`",
+        "KHR_texture_basisu",
+        Support::Partial(
+            "ETC1S and UASTC LDR transcoded to 8-bit RGBA (basisu); only the base mip level is read",
         ),
     ),
-    (
-        "EXT_meshopt_compression",
-        Support::FallbackOnly(
-            "meshopt-compressed buffers are not decoded; decompress it first: \
-             `gltfpack -i in.glb -o out.glb` (a gltfpack from 2024 or later reads meshopt input; \
-             leave out -c)",
-        ),
-    ),
+    // WebP: the image crate's pure-Rust decoder, lossy and lossless, alpha.
+    ("EXT_texture_webp", Support::Full),
 ];
 
-/// Extensions a file may require and still load.
+/// Extensions a file may require and still load: all the table's.
 pub(super) fn supported_when_required() -> Vec<&'static str> {
-    TABLE
-        .iter()
-        .filter(|(_, s)| !matches!(s, Support::FallbackOnly(_)))
-        .map(|(name, _)| *name)
-        .collect()
+    TABLE.iter().map(|(name, _)| *name).collect()
 }
 
 /// The status of every extension the file lists (used ones in file order, then required
@@ -121,12 +114,6 @@ pub(super) fn report(used: &[String], required: &[String]) -> Vec<ExtensionUse> 
             let status = match (support, required) {
                 (Some(Support::Full), _) => ExtensionStatus::Used,
                 (Some(Support::Partial(what)), _) => ExtensionStatus::PartlyUsed(what.to_string()),
-                (Some(Support::FallbackOnly(how)), true) => {
-                    ExtensionStatus::Refused(how.to_string())
-                }
-                (Some(Support::FallbackOnly(_)), false) => ExtensionStatus::PartlyUsed(
-                    "compressed data ignored, the file's uncompressed fallback is read".to_string(),
-                ),
                 (None, false) => ExtensionStatus::Ignored,
                 (None, true) => ExtensionStatus::Refused(format!(
                     "not implemented (supported when required: {})",
@@ -159,28 +146,38 @@ mod tests {
     }
 
     #[test]
-    fn optional_compression_reads_the_fallback_and_required_is_refused() {
-        let used = names(&["EXT_meshopt_compression", "KHR_draco_mesh_compression"]);
-        let optional = report(&used, &[]);
-        assert!(
-            optional
-                .iter()
-                .all(|e| matches!(e.status, ExtensionStatus::PartlyUsed(_)))
+    fn compression_is_decoded_whether_used_or_required() {
+        let all = [
+            "KHR_draco_mesh_compression",
+            "EXT_meshopt_compression",
+            "KHR_texture_basisu",
+            "EXT_texture_webp",
+        ];
+        let required = report(&names(&all), &names(&all));
+        assert_eq!(refusal(&required), None);
+        let shown: Vec<String> = required.iter().map(|e| e.to_string()).collect();
+        assert_eq!(
+            shown,
+            [
+                "KHR_draco_mesh_compression (required): used",
+                "EXT_meshopt_compression (required): used",
+                "KHR_texture_basisu (required): partly used — ETC1S and UASTC LDR transcoded \
+                 to 8-bit RGBA (basisu); only the base mip level is read",
+                "EXT_texture_webp (required): used",
+            ]
         );
-        assert_eq!(refusal(&optional), None);
-        let required = report(&used, &names(&["KHR_draco_mesh_compression"]));
-        assert!(matches!(required[0].status, ExtensionStatus::PartlyUsed(_)));
-        let line = refusal(&required).unwrap();
+        assert!(all.iter().all(|e| supported_when_required().contains(e)));
+        // A compression this build does not know is still one line naming it.
+        let unknown = report(
+            &names(&["EXT_unknown_compression"]),
+            &names(&["EXT_unknown_compression"]),
+        );
+        let line = refusal(&unknown).unwrap();
         assert!(
-            line.starts_with("uses KHR_draco_mesh_compression (Draco-compressed"),
+            line.starts_with("uses EXT_unknown_compression (not implemented"),
             "{line}"
         );
-        assert!(
-            line.contains("npx @gltf-transform/cli copy in.glb out.glb"),
-            "{line}"
-        );
-        assert!(!line.contains('\n'));
-        assert!(!supported_when_required().contains(&"EXT_meshopt_compression"));
+        assert!(line.contains("KHR_draco_mesh_compression") && !line.contains('\n'));
     }
 
     #[test]

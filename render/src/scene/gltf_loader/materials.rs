@@ -1,6 +1,7 @@
 //! glTF materials and textures → `Material` / `Texture`. Scene material `i` and texture `i`
 //! are glTF material `i` and texture `i`, so indices in the file and in the scene agree.
 
+use std::collections::BTreeMap;
 use std::path::Path;
 
 use glam::{Vec3, Vec4};
@@ -8,7 +9,8 @@ use gltf::texture::WrappingMode;
 
 use super::super::load::{SceneError, one_line};
 use super::super::{AlphaMode, Material, Texture, TextureRef, UvTransform, Wrap};
-use super::data;
+use super::compressed::{BASISU, WEBP};
+use super::{data, ktx2};
 use crate::load_phases::{LoadEvent, Watcher};
 
 /// Every material of the document, in order. Normal and occlusion textures are ignored: this
@@ -117,6 +119,7 @@ pub(super) fn load_textures(
     base: &Path,
     buffers: &[Vec<u8>],
     materials: &[Material],
+    extension_images: &BTreeMap<usize, &'static str>,
     watch: Watcher,
 ) -> Result<(Vec<Texture>, String), SceneError> {
     let mut read = vec![false; doc.textures().len()];
@@ -139,7 +142,8 @@ pub(super) fn load_textures(
         .min(wanted.len())
         .max(1);
     let decoded = decode_in_parallel(&wanted, threads, watch, |image| {
-        decode_image(file, image, base, buffers)
+        let extension = extension_images.get(&image.index()).copied();
+        decode_image(file, image, base, buffers, extension)
     })?;
     let by_index = |i: usize| {
         wanted
@@ -235,11 +239,14 @@ fn wrap(mode: WrappingMode) -> Wrap {
     }
 }
 
+/// Decode one image to RGBA8. `extension` is the one a texture reads it through
+/// (KHR_texture_basisu, EXT_texture_webp), named in its errors.
 fn decode_image(
     file: &str,
     image: &gltf::Image,
     base: &Path,
     buffers: &[Vec<u8>],
+    extension: Option<&str>,
 ) -> Result<::image::RgbaImage, SceneError> {
     let (label, bytes) = match image.source() {
         gltf::image::Source::View { view, .. } => (
@@ -252,16 +259,39 @@ fn decode_image(
             } else {
                 format!("{} ('{uri}')", image.index())
             };
-            let bytes = data::read_uri(file, base, uri, &format!("image {label}"))?;
+            let bytes = data::read_image_uri(file, base, uri, &format!("image {label}"))?;
             (label, bytes)
         }
     };
-    // The format is guessed from the bytes: exporters get mimeType and file extensions wrong.
+    let is_ktx2 = ktx2::is_ktx2(&bytes);
+    let is_webp = bytes.len() >= 12 && &bytes[..4] == b"RIFF" && &bytes[8..12] == b"WEBP";
+    // Errors name the extension the image is read through, or its format says.
+    let named = extension
+        .or(is_ktx2.then_some(BASISU))
+        .or(is_webp.then_some(WEBP))
+        .map_or_else(String::new, |e| format!("{e}: "));
+    let error = |detail: String| SceneError::Image {
+        file: file.to_string(),
+        image: label.clone(),
+        detail: one_line(format!("{named}{detail}")),
+    };
+    // The format is told by the bytes: exporters get mimeType and file extensions wrong.
+    // KTX2 (KHR_texture_basisu) is transcoded here; WebP (EXT_texture_webp) is the image
+    // crate's, like PNG and JPEG.
+    if is_ktx2 {
+        return ktx2::decode(&bytes).map_err(error);
+    }
+    if is_webp {
+        // The decoder reads zeros past a cut-short stream: the RIFF size says where it ends.
+        let riff = u32::from_le_bytes([bytes[4], bytes[5], bytes[6], bytes[7]]) as u64 + 8;
+        if (bytes.len() as u64) < riff {
+            return Err(error(format!(
+                "the file is cut short: {} of the {riff} bytes its RIFF header gives",
+                bytes.len()
+            )));
+        }
+    }
     ::image::load_from_memory(&bytes)
         .map(|img| img.to_rgba8())
-        .map_err(|e| SceneError::Image {
-            file: file.to_string(),
-            image: label,
-            detail: one_line(e.to_string()),
-        })
+        .map_err(|e| error(e.to_string()))
 }

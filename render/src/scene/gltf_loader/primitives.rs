@@ -8,7 +8,9 @@ use gltf::mesh::Mode;
 
 use super::super::load::SceneError;
 use super::super::{Scene, Triangle, Vertex};
+use super::compressed::{Compression, DRACO};
 use super::data::check_accessor;
+use super::draco::{self, DracoCache};
 use super::quantized::read_floats;
 
 /// Where a primitive sits in the file, for error messages.
@@ -31,19 +33,28 @@ impl std::fmt::Display for PrimitiveId<'_> {
     }
 }
 
+/// What primitives are read from: the buffers (meshopt views already decoded into them) and
+/// the Draco streams, decoded on first use.
+pub(super) struct Sources<'a> {
+    pub doc: &'a gltf::Document,
+    pub buffers: &'a [Vec<u8>],
+    pub compression: &'a Compression,
+    pub draco: DracoCache,
+}
+
 /// Append `primitive`, transformed by `world`, with every triangle using `material`.
 /// Returns the vertices in the primitive's local space (kept for nodes that move).
 pub(super) fn append_primitive(
     file: &str,
     id: &PrimitiveId,
     primitive: &gltf::Primitive,
-    buffers: &[Vec<u8>],
+    sources: &mut Sources,
     world: Mat4,
     material: u32,
     scene: &mut Scene,
 ) -> Result<Vec<Vertex>, SceneError> {
     let fail = |detail: String| SceneError::invalid(file, format!("{id}: {detail}"));
-    let mode = primitive.mode();
+    let mut mode = primitive.mode();
     if !matches!(
         mode,
         Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan
@@ -59,34 +70,32 @@ pub(super) fn append_primitive(
         .materials
         .get(material as usize)
         .map_or(0, |m| m.uv_set());
-    let local = read_vertices(file, id, primitive, buffers, uv_set)?;
-    let indices = match primitive.indices() {
-        Some(accessor) => {
-            let what = format!("{id} indices");
-            check_accessor(
-                file,
-                &accessor,
-                buffers,
-                &what,
-                &[DataType::U8, DataType::U16, DataType::U32],
-                Dimensions::Scalar,
-            )?;
-            let reader = primitive.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
-            let indices: Vec<u32> = reader
-                .read_indices()
-                .ok_or_else(|| fail("indices unreadable".into()))?
-                .into_u32()
-                .collect();
-            if let Some(&bad) = indices.iter().find(|&&i| i as usize >= local.len()) {
-                return Err(fail(format!(
-                    "index {bad} is out of range ({} vertices)",
-                    local.len()
-                )));
-            }
-            indices
+    let compression = sources.compression;
+    let draco = compression.draco.get(&(id.mesh.index(), id.index));
+    let (local, indices) = match draco {
+        Some(draco) => {
+            // Draco faces are triangles whatever the mode says.
+            mode = Mode::Triangles;
+            draco::read(file, id, primitive, draco, uv_set, sources)?
         }
-        None => (0..local.len() as u32).collect(),
+        None => {
+            let local = read_vertices(file, id, primitive, sources.buffers, uv_set)?;
+            let indices = read_indices(file, id, primitive, sources.buffers, local.len())?;
+            (local, indices)
+        }
     };
+    // Where the data came from, for the messages below (meshopt-decoded views are named).
+    let origin = |accessor: Option<gltf::Accessor>| match draco {
+        Some(d) => format!(" (decoded from {DRACO} bufferView {})", d.view),
+        None => compression.origin(accessor.and_then(|a| a.view()).map(|v| v.index())),
+    };
+    if let Some(&bad) = indices.iter().find(|&&i| i as usize >= local.len()) {
+        return Err(fail(format!(
+            "index {bad} is out of range ({} vertices){}",
+            local.len(),
+            origin(primitive.indices())
+        )));
+    }
     let base = u32::try_from(scene.vertices.len())
         .ok()
         .filter(|b| b.checked_add(local.len() as u32).is_some())
@@ -100,7 +109,8 @@ pub(super) fn append_primitive(
         let position = world.transform_point3(v.position);
         if !position.is_finite() {
             return Err(fail(format!(
-                "vertex {i} has a non-finite position {position}"
+                "vertex {i} has a non-finite position {position}{}",
+                origin(primitive.get(&gltf::Semantic::Positions))
             )));
         }
         scene.vertices.push(Vertex {
@@ -127,6 +137,33 @@ pub(super) fn append_primitive(
             material,
         }));
     Ok(local)
+}
+
+/// The primitive's indices as u32 (0, 1, 2, ... without an index accessor).
+fn read_indices(
+    file: &str,
+    id: &PrimitiveId,
+    primitive: &gltf::Primitive,
+    buffers: &[Vec<u8>],
+    vertex_count: usize,
+) -> Result<Vec<u32>, SceneError> {
+    let Some(accessor) = primitive.indices() else {
+        return Ok((0..vertex_count as u32).collect());
+    };
+    check_accessor(
+        file,
+        &accessor,
+        buffers,
+        &format!("{id} indices"),
+        &[DataType::U8, DataType::U16, DataType::U32],
+        Dimensions::Scalar,
+    )?;
+    let reader = primitive.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
+    Ok(reader
+        .read_indices()
+        .ok_or_else(|| SceneError::invalid(file, format!("{id}: indices unreadable")))?
+        .into_u32()
+        .collect())
 }
 
 /// POSITION (required), NORMAL (optional, zero when absent) and TEXCOORD_`uv_set`

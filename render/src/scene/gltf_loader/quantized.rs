@@ -77,6 +77,18 @@ where
     }
 }
 
+/// A normalized integer component `c` of type `data_type` as glTF reads it (for integers
+/// that arrive as floats, from a Draco stream); floats and u32 are returned as they are.
+pub(super) fn dequantize(c: f32, data_type: DataType) -> f32 {
+    match data_type {
+        DataType::I8 => (c as i8).to_f32(true),
+        DataType::U8 => (c as u8).to_f32(true),
+        DataType::I16 => (c as i16).to_f32(true),
+        DataType::U16 => (c as u16).to_f32(true),
+        DataType::F32 | DataType::U32 => c,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::Component;

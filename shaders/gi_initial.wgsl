@@ -64,7 +64,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             let ray = Ray(offset_ray_origin(sp.position, sp.geo_normal), bs.wi, FLT_MAX);
             // Back faces of single-sided surfaces are hit too (they occlude and reflect).
             // Through transparent layers, the secondary vertex is where the walk stops.
-            let walk = walk_layers(sp.position, bs.wi, trace_closest(ray, false), WALK_PATH, MAX_TRANSPARENT_LAYERS, &rng);
+            let walk = trace_and_walk_layers(ray.origin, sp.position, bs.wi, MAX_TRANSPARENT_LAYERS, &rng);
             let hit = walk.hit;
             if hit.t >= 0.0 {
                 let hs = hit_surface(hit.triangle, hit.u, hit.v, walk.origin);

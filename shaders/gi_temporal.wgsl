@@ -89,15 +89,21 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let sp = shading_point_from_surface(s, frame.camera_position);
     var rng = rng_seed(id.xy, STREAM_GI_TEMPORAL);
     let reprojected = vec2<i32>(floor(s.motion));
+    // As in DI: permuted reads fail at object edges; retry the plain reprojection (one call
+    // site of the validation for both tries: docs/src/compile-time.md).
+    var permuted = (params.flags & PARAM_FLAG_PERMUTATION) != 0u;
+    var pixel = reprojected;
+    if permuted {
+        pixel = permute_pixel(reprojected);
+    }
     var cand: GiTemporalCandidate;
-    if (params.flags & PARAM_FLAG_PERMUTATION) != 0u {
-        cand = gi_validate_previous(permute_pixel(reprojected), s, sp);
-        if cand.mask != 0u {
-            // As in DI: permuted reads fail at object edges; retry the plain reprojection.
-            cand = gi_validate_previous(reprojected, s, sp);
+    loop {
+        cand = gi_validate_previous(pixel, s, sp);
+        if !permuted || cand.mask == 0u {
+            break;
         }
-    } else {
-        cand = gi_validate_previous(reprojected, s, sp);
+        permuted = false;
+        pixel = reprojected;
     }
     count_rejections(cand.mask | cand.unusable, STAT_GI_TEMPORAL_REJECT);
     d.temporal_mask = cand.mask | cand.unusable;

@@ -15,11 +15,6 @@
 @group(2) @binding(3) var<storage, read_write> pt_debug: array<PtPixelDebug>;
 @group(2) @binding(4) var<storage, read_write> pt_probe: array<PtProbeStage>;
 
-struct PtNeighbour {
-    index: u32,
-    shifted: PtShifted,   // its path moved here (jacobian 0: failed or null)
-}
-
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if !pixel_in_frame(id) {
@@ -35,7 +30,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let sp = shading_point_from_surface(s, frame.camera_position);
     var rng = rng_seed(id.xy, STREAM_GI_SPATIAL);
-    var accepted: array<PtNeighbour, MAX_SPATIAL_NEIGHBOURS>;
+    var accepted: array<u32, MAX_SPATIAL_NEIGHBOURS>;
     var n_accepted = 0u;
     var c_total = canonical.m;
     let size = vec2<i32>(frame.size);
@@ -44,12 +39,12 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         let offset = disk_neighbour_offset(rand_vec2(&rng), params.pt_spatial_radius);
         let q = vec2<i32>(id.xy) + offset;
         var mask = 0u;
-        var n: PtNeighbour;
+        var q_index = 0u;
         if any(q < vec2<i32>(0)) || any(q >= size) {
             mask |= REJECT_OFFSCREEN;
         } else {
-            n.index = pixel_index(vec2<u32>(q));
-            let ns = surfaces[n.index];
+            q_index = pixel_index(vec2<u32>(q));
+            let ns = surfaces[q_index];
             if !surface_is_valid(ns) {
                 mask |= REJECT_SURFACE;
             } else {
@@ -57,21 +52,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             }
         }
         if mask == 0u {
-            let nr = pt_checked(pt_in[n.index], GI_PASS_SPATIAL);
-            if pt_reservoir_is_null(nr) {
-                n.shifted = pt_shift_failed(nr, PT_FAIL_NONE);
-            } else {
-                n.shifted = pt_shift(nr, sp);
-                d.spatial_tried += 1u;
-                // Saturating 4-bit counters, one per outcome (MAX_SPATIAL_NEIGHBOURS ≤ 15).
-                let shift = 4u * min(n.shifted.failure, 7u);
-                if ((d.spatial_outcomes >> shift) & 0xfu) < 0xfu {
-                    d.spatial_outcomes += 1u << shift;
-                }
-            }
-            accepted[n_accepted] = n;
+            accepted[n_accepted] = q_index;
             n_accepted++;
-            c_total += nr.m;
+            c_total += pt_checked(pt_in[q_index], GI_PASS_SPATIAL).m;
         }
         count_rejections(mask, STAT_GI_SPATIAL_REJECT);
     }
@@ -79,26 +62,34 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     var r = pt_reservoir_empty();
     var m_canonical = confidence_share(canonical.m, c_total);
     for (var i = 0u; i < n_accepted; i++) {
-        let n = accepted[i];
-        let nr = pt_checked(pt_in[n.index], GI_PASS_SPATIAL);
+        let q_index = accepted[i];
+        let nr = pt_checked(pt_in[q_index], GI_PASS_SPATIAL);
+        // The neighbour's path moved here, and this pixel's path moved to the neighbour:
+        // could the neighbour have found it?
+        let neighbour_sp = shading_point_from_surface(surfaces[q_index], frame.camera_position);
+        let shifts = pt_shift_pair(nr, sp, canonical, neighbour_sp);
+        var moved = shifts.moved;
         if !pt_reservoir_is_null(nr) {
-            let m_i = gi_pairwise_noncanonical(c_total, canonical.m, nr.m, nr.p_hat, n.shifted.path.p_hat, n.shifted.jacobian);
-            var moved = n.shifted;
+            d.spatial_tried += 1u;
+            // Saturating 4-bit counters, one per outcome (MAX_SPATIAL_NEIGHBOURS ≤ 15).
+            let shift = 4u * min(moved.failure, 7u);
+            if ((d.spatial_outcomes >> shift) & 0xfu) < 0xfu {
+                d.spatial_outcomes += 1u << shift;
+            }
+        }
+        var counted = !pt_reservoir_is_null(canonical);
+#ifdef PLANTED_PT_FAILED_SHIFT_DROPPED
+        // Test-only planted error: a neighbour this path cannot be shifted to still counts
+        // in M but leaves the canonical weight (RTXDI PT's 2026 bug class).
+        counted = counted && shifts.back.jacobian != 0.0;
+#endif
+        if counted {
+            m_canonical += gi_pairwise_canonical_term(c_total, canonical.m, nr.m, canonical.p_hat, shifts.back.path.p_hat, shifts.back.jacobian);
+        }
+        if !pt_reservoir_is_null(nr) {
+            let m_i = gi_pairwise_noncanonical(c_total, canonical.m, nr.m, nr.p_hat, moved.path.p_hat, moved.jacobian);
             moved.path.packed = pt_with_source(moved.path.packed, SOURCE_SPATIAL);
             pt_merge_mis(&r, nr, moved, m_i, rand_f32(&rng));
-        }
-        if !pt_reservoir_is_null(canonical) {
-            // Could the neighbour have found this pixel's path? Shift it there and ask.
-            let neighbour_sp = shading_point_from_surface(surfaces[n.index], frame.camera_position);
-            let back = pt_shift(canonical, neighbour_sp);
-#ifdef PLANTED_PT_FAILED_SHIFT_DROPPED
-            // Test-only planted error: a neighbour this path cannot be shifted to still counts
-            // in M but leaves the canonical weight (RTXDI PT's 2026 bug class).
-            if back.jacobian == 0.0 {
-                continue;
-            }
-#endif
-            m_canonical += gi_pairwise_canonical_term(c_total, canonical.m, nr.m, canonical.p_hat, back.path.p_hat, back.jacobian);
         }
     }
     var own = PtShifted(canonical, 1.0, PT_FAIL_NONE);

@@ -62,15 +62,21 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let sp = shading_point_from_surface(s, frame.camera_position);
     var rng = rng_seed(id.xy, STREAM_GI_TEMPORAL);
     let reprojected = vec2<i32>(floor(s.motion));
+    // As in DI: permuted reads fail at object edges; retry the plain reprojection (one call
+    // site of the validation for both tries).
+    var permuted = (params.flags & PARAM_FLAG_PERMUTATION) != 0u;
+    var pixel = reprojected;
+    if permuted {
+        pixel = permute_pixel(reprojected);
+    }
     var prev_pixel: PtPrevious;
-    if (params.flags & PARAM_FLAG_PERMUTATION) != 0u {
-        prev_pixel = pt_validate_previous(permute_pixel(reprojected), s);
-        if prev_pixel.mask != 0u {
-            // As in DI: permuted reads fail at object edges; retry the plain reprojection.
-            prev_pixel = pt_validate_previous(reprojected, s);
+    loop {
+        prev_pixel = pt_validate_previous(pixel, s);
+        if !permuted || prev_pixel.mask == 0u {
+            break;
         }
-    } else {
-        prev_pixel = pt_validate_previous(reprojected, s);
+        permuted = false;
+        pixel = reprojected;
     }
     count_rejections(prev_pixel.mask, STAT_GI_TEMPORAL_REJECT);
     d.temporal_mask = prev_pixel.mask;
@@ -81,17 +87,17 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         let prev = pt_checked(pt_prev[prev_pixel.index], GI_PASS_TEMPORAL);
         let m_prev = min(prev.m, params.pt_m_cap);
         let c_total = current.m + m_prev;
-        // The previous path moved here (a null one is a zero that still stands for M_prev).
-        var moved = pt_shift_failed(prev, PT_FAIL_NONE);
+        // The previous path moved here (a null one is a zero that still stands for M_prev),
+        // and this pixel's path moved to the previous pixel: could it have found it?
+        let prev_sp = shading_point_from_surface(prev_pixel.surface, frame.prev_camera_position);
+        let shifts = pt_shift_pair(prev, sp, current, prev_sp);
+        var moved = shifts.moved;
         if !pt_reservoir_is_null(prev) {
-            moved = pt_shift(prev, sp);
             d.temporal_failure = moved.failure;
         }
         var m_current = confidence_share(current.m, c_total);
         if !pt_reservoir_is_null(current) {
-            // Could the previous pixel have found this path? Shift it there and ask.
-            let prev_sp = shading_point_from_surface(prev_pixel.surface, frame.prev_camera_position);
-            let back = pt_shift(current, prev_sp);
+            let back = shifts.back;
             var counted = true;
 #ifdef PLANTED_PT_FAILED_SHIFT_DROPPED
             // Test-only planted error (render/tests/restir_pt.rs): the history counts in M

@@ -39,80 +39,101 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     camera_ray = camera_ray || surfaces[index].transparent_first != 0u;
 #endif
     for (var i = first; i < last; i++) {
-        var sp: ShadingPoint;
-        var sample_value: vec3<f32>;
+        var sample_value = vec3<f32>(0.0);
         // What the shading at sp is worth: < 1 behind glass (transparency.wgsl).
         var throughput = vec3<f32>(1.0);
+        // The camera ray (jitter, or glass at the pixel centre): the pixel-area integral,
+        // a jittered ray through the BVH, on through transparent layers (each sample draws
+        // its own choices). It stops at each glass reflection it owes.
+        var dir = vec3<f32>(0.0);
+        var walk: WalkProgress;
         if camera_ray {
-            // The pixel-area integral: a jittered camera ray through the BVH, on through
-            // transparent layers (each sample draws its own choices).
             var at = vec2<f32>(0.5);
             if jitter {
                 at = rand_vec2(&rng);
             }
-            let dir = camera_ray_direction(vec2<f32>(id.xy) + at);
-            var hit = trace_closest(Ray(frame.camera_position, dir, FLT_MAX), true);
-#ifdef TRANSPARENCY
-            let walk = walk_layers(frame.camera_position, dir, hit, WALK_REFERENCE_CAMERA, MAX_TRANSPARENT_LAYERS, &rng);
-            hit = walk.hit;
-            throughput = walk.weight;
-            sum += walk.in_front;
-#endif
-            if hit.t < 0.0 {
-#ifdef ENVIRONMENT
-                sum += throughput * env_background(dir);
-#endif
-                continue;
-            }
-            let hs = hit_surface(hit.triangle, hit.u, hit.v, frame.camera_position);
-            sp = hit_shading_point(hs, -dir, hit_brdf(hs), length(hs.position - frame.camera_position));
-            sample_value = emission_toward_viewer(hs);
-        } else {
-            // Jitter off: the surface the rasterised G-buffer sees at the pixel centre, so
-            // a comparison with the real-time modes measures lighting error alone (a ray
-            // and the rasteriser may disagree on a pixel centre exactly on an edge).
-            // Behind glass the G-buffer's own choice of layer is taken as well, so this
-            // averages over that choice only as far as the frames do (see README).
-            let s = surfaces[index];
-            if !surface_is_valid(s) {
-#ifdef TRANSPARENCY
-                sum += s.emission;
-#endif
-#ifdef ENVIRONMENT
-                sum += s.throughput * env_background(camera_ray_direction(vec2<f32>(id.xy) + 0.5));
-#endif
-                continue;
-            }
-            sp = shading_point_from_surface(s, frame.camera_position);
-#ifdef TRANSPARENCY
-            // s.emission already holds the layers in front, weighted: shading is added
-            // with the throughput below.
-            throughput = s.throughput;
-            sum += s.emission;
-            sample_value = vec3<f32>(0.0);
-#else
-            sample_value = s.emission;
-#endif
+            dir = camera_ray_direction(vec2<f32>(id.xy) + at);
+            walk = walk_begin(frame.camera_position, frame.camera_position, MAX_TRANSPARENT_LAYERS);
         }
-        if params.max_bounces > 1u {
-            // Indirect light too: a BSDF-sampled path (common/path_trace.wgsl).
-            sample_value += path_estimate(sp, min(params.max_bounces, MAX_BOUNCES), &rng);
-            sample_value *= throughput;
+        // Direct light is estimated at one call site, first for each glass reflection the
+        // camera ray meets, then for the surface (each call site is compiled as a copy of
+        // the estimator: docs/src/compile-time.md).
+        loop {
+            var job: LightJob;
+            let at_glass = camera_ray && walk_advance(&walk, dir, WALK_REFERENCE_CAMERA, &rng);
+            if at_glass {
+                job = walk.glass;
+            } else {
+                var sp: ShadingPoint;
+                if camera_ray {
+                    let hit = walk.walk.hit;
+                    throughput = walk.walk.weight;
+                    sum += walk.walk.in_front;
+                    if hit.t < 0.0 {
+#ifdef ENVIRONMENT
+                        sum += throughput * env_background(dir);
+#endif
+                        break;
+                    }
+                    let hs = hit_surface(hit.triangle, hit.u, hit.v, frame.camera_position);
+                    sp = hit_shading_point(hs, -dir, hit_brdf(hs), length(hs.position - frame.camera_position));
+                    sample_value = emission_toward_viewer(hs);
+                } else {
+                    // Jitter off: the surface the rasterised G-buffer sees at the pixel
+                    // centre, so a comparison with the real-time modes measures lighting
+                    // error alone (a ray and the rasteriser may disagree on a pixel centre
+                    // exactly on an edge). Behind glass the G-buffer's own choice of layer
+                    // is taken as well, so this averages over that choice only as far as
+                    // the frames do (see README).
+                    let s = surfaces[index];
+                    if !surface_is_valid(s) {
+#ifdef TRANSPARENCY
+                        sum += s.emission;
+#endif
+#ifdef ENVIRONMENT
+                        sum += s.throughput * env_background(camera_ray_direction(vec2<f32>(id.xy) + 0.5));
+#endif
+                        break;
+                    }
+                    sp = shading_point_from_surface(s, frame.camera_position);
+#ifdef TRANSPARENCY
+                    // s.emission already holds the layers in front, weighted: shading is
+                    // added with the throughput below.
+                    throughput = s.throughput;
+                    sum += s.emission;
+                    sample_value = vec3<f32>(0.0);
+#else
+                    sample_value = s.emission;
+#endif
+                }
+                if params.max_bounces > 1u {
+                    // Indirect light too: a BSDF-sampled path (common/path_trace.wgsl).
+                    sample_value += path_estimate(sp, min(params.max_bounces, MAX_BOUNCES), &rng);
+                    sample_value *= throughput;
+                    if is_finite_vec3(sample_value) {
+                        sum += sample_value;
+                    } else {
+                        count_stat(STAT_NONFINITE + PASS_REFERENCE);
+                    }
+                    break;
+                }
+                // One bounce: the code as it was before paths, so max_bounces=1 renders the
+                // same image bit for bit (render/tests/one_bounce_unchanged.rs).
+                job = LightJob(sp, throughput);
+            }
+            var light = select(vec3<f32>(0.0), sample_value, !at_glass);
+            add_direct_light(job.sp, &rng, &light);
+            if at_glass {
+                walk.walk.in_front += job.weight * light;
+                continue;
+            }
+            sample_value = light * throughput;
             if is_finite_vec3(sample_value) {
                 sum += sample_value;
             } else {
                 count_stat(STAT_NONFINITE + PASS_REFERENCE);
             }
-            continue;
-        }
-        // One bounce: the code as it was before paths, so max_bounces=1 renders the
-        // same image bit for bit (render/tests/one_bounce_unchanged.rs).
-        add_direct_light(sp, &rng, &sample_value);
-        sample_value *= throughput;
-        if is_finite_vec3(sample_value) {
-            sum += sample_value;
-        } else {
-            count_stat(STAT_NONFINITE + PASS_REFERENCE);
+            break;
         }
     }
     // This chunk's share of the pixel's average; the first chunk starts the frame.

@@ -23,13 +23,13 @@ fn load_neighbour(index: u32) -> Reservoir {
     return checked_reservoir(reservoirs_in[index], PASS_SPATIAL);
 }
 
-// A sample's target T = p̂·V at `sp` for a pairwise term (V with mis_visibility). A sample
-// both pixels hold (`same_sample`) needs no ray: each pixel's survivor is visible from it
-// (V = 1 in an opaque scene), and through glass, where V is a tint, its T there is the
-// stored p̂ (`stored`).
-fn reuse_target(sp: ShadingPoint, light: u32, uv: vec2<f32>, same_sample: bool, stored: f32, rays: ptr<function, u32>) -> f32 {
+// A sample's target T = p̂·V at `sp` for a pairwise term (V with mis_visibility, when
+// `visibility`). A sample both pixels hold (`same_sample`) needs no ray: each pixel's
+// survivor is visible from it (V = 1 in an opaque scene), and through glass, where V is a
+// tint, its T there is the stored p̂ (`stored`).
+fn reuse_target(sp: ShadingPoint, light: u32, uv: vec2<f32>, visibility: bool, same_sample: bool, stored: f32, rays: ptr<function, u32>) -> f32 {
     var t = target_at(sp, light, uv);
-    if t > 0.0 && mis_visibility() {
+    if t > 0.0 && visibility && mis_visibility() {
         if !same_sample {
             t *= sample_visibility(sp, light, uv, false, GEOMETRY_CURRENT, rays);
         }
@@ -116,34 +116,57 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         }
     }
 
-    // 3. Merge.
+    // 3. Merge: 1/M in order (this pixel first), or pairwise MIS around this pixel's
+    //    reservoir (neighbours first, the canonical sample last with its accumulated share).
     var r = reservoir_empty();
     var rays = 0u;
-    if pairwise_mis() {
-        var m_canonical = confidence_share(canonical.m, c_total);
-        for (var i = 0u; i < n_accepted; i++) {
-            let q_index = accepted[i];
-            let nr = load_neighbour(q_index);
-            // Reuse spreads survivors, so a neighbour often holds this pixel's very sample:
-            // both visibilities are then known (each pixel's survivor is visible from it).
-            let same_sample = !reservoir_is_null(canonical) && nr.light == canonical.light && all(nr.uv == canonical.uv);
-            let target_here = reuse_target(sp, nr.light, nr.uv, same_sample, canonical.p_hat, &rays);
-            let m_i = pairwise_mis_noncanonical(c_total, canonical.m, nr.m, nr.p_hat, target_here);
-            reservoir_merge_mis(&r, nr, target_here, m_i, source_with_age(SOURCE_SPATIAL, reservoir_age(nr)), rand_f32(&rng));
-            let neighbour_sp = shading_point_from_surface(surfaces[q_index], frame.camera_position);
-            let neighbour_at_canonical = reuse_target(neighbour_sp, canonical.light, canonical.uv, same_sample, nr.p_hat, &rays);
-            m_canonical += pairwise_mis_canonical_term(c_total, canonical.m, nr.m, canonical.p_hat, neighbour_at_canonical);
+    let pairwise = pairwise_mis();
+    if !pairwise {
+        reservoir_merge(&r, canonical, canonical.p_hat, canonical.m, canonical.source, rand_f32(&rng));
+    }
+    var m_canonical = confidence_share(canonical.m, c_total);
+    // Under pairwise MIS each neighbour has two terms: its sample here, T_here(y_i), and this
+    // pixel's sample there, T_i(y_c). Both go through one reuse_target call site, the most
+    // expensive code of the pass (docs/src/compile-time.md).
+    let terms = select(1u, 2u, pairwise);
+    for (var i = 0u; i < n_accepted; i++) {
+        let q_index = accepted[i];
+        let nr = load_neighbour(q_index);
+        // Reuse spreads survivors, so a neighbour often holds this pixel's very sample:
+        // both visibilities are then known (each pixel's survivor is visible from it).
+        let same_sample = !reservoir_is_null(canonical) && nr.light == canonical.light && all(nr.uv == canonical.uv);
+        var target_here = 0.0;
+        var neighbour_at_canonical = 0.0;
+        for (var term = 0u; term < terms; term++) {
+            var at = sp;
+            var sample = nr;
+            var stored = canonical.p_hat;
+            if term == 1u {
+                at = shading_point_from_surface(surfaces[q_index], frame.camera_position);
+                sample = canonical;
+                stored = nr.p_hat;
+            }
+            let t = reuse_target(at, sample.light, sample.uv, pairwise, same_sample, stored, &rays);
+            if term == 0u {
+                target_here = t;
+            } else {
+                neighbour_at_canonical = t;
+            }
         }
+        let source = source_with_age(SOURCE_SPATIAL, reservoir_age(nr));
+        if pairwise {
+            let m_i = pairwise_mis_noncanonical(c_total, canonical.m, nr.m, nr.p_hat, target_here);
+            reservoir_merge_mis(&r, nr, target_here, m_i, source, rand_f32(&rng));
+            m_canonical += pairwise_mis_canonical_term(c_total, canonical.m, nr.m, canonical.p_hat, neighbour_at_canonical);
+        } else {
+            reservoir_merge(&r, nr, target_here, nr.m, source, rand_f32(&rng));
+        }
+    }
+    if pairwise {
         reservoir_merge_mis(&r, canonical, canonical.p_hat, m_canonical, canonical.source, rand_f32(&rng));
         reservoir_finalize(&r, 1.0);
         r.m = c_total;
     } else {
-        reservoir_merge(&r, canonical, canonical.p_hat, canonical.m, canonical.source, rand_f32(&rng));
-        for (var i = 0u; i < n_accepted; i++) {
-            let nr = load_neighbour(accepted[i]);
-            let target_here = target_at(sp, nr.light, nr.uv);
-            reservoir_merge(&r, nr, target_here, nr.m, source_with_age(SOURCE_SPATIAL, reservoir_age(nr)), rand_f32(&rng));
-        }
         reservoir_finalize(&r, r.m);
     }
     if r.m > params.m_cap {

@@ -140,10 +140,6 @@ fn merge_pairwise(sp: ShadingPoint, current: Reservoir, cand: TemporalCandidate,
     if !target_ratio_in_window(target_here, cand.target_there) {
         target_here = 0.0;
     }
-    if target_here > 0.0 && mis_visibility() {
-        target_here *= sample_visibility(sp, prev.light, prev.uv, false, GEOMETRY_CURRENT, rays);
-    }
-    let m_temporal = pairwise_mis_noncanonical(c_total, current.m, m_prev, prev.p_hat, target_here);
 
     // The canonical sample y_c at the previous pixel: the previous surface and, under
     // animation, last frame's lights (a light switched on since then has p̂ 0 there, so
@@ -157,9 +153,34 @@ fn merge_pairwise(sp: ShadingPoint, current: Reservoir, cand: TemporalCandidate,
     if !target_ratio_in_window(window_target_here(sp, current), prev_at_current) {
         prev_at_current = 0.0;
     }
-    if prev_at_current > 0.0 && mis_visibility() {
-        prev_at_current *= sample_visibility(prev_sp, current.light, current.uv, previous, previous_geometry(), rays);
+
+    // The two visibilities these terms need, traced at one call site (bit 0: y_p here,
+    // bit 1: y_c at the previous pixel); a target of 0 needs no ray.
+    var rays_needed = 0u;
+    if mis_visibility() {
+        rays_needed = select(0u, 1u, target_here > 0.0) | select(0u, 2u, prev_at_current > 0.0);
     }
+    while rays_needed != 0u {
+        let at_previous = (rays_needed & 1u) == 0u;
+        rays_needed &= rays_needed - 1u;
+        var viewer = sp;
+        var sample = prev;
+        var in_previous_frame = false;
+        var geometry = GEOMETRY_CURRENT;
+        if at_previous {
+            viewer = prev_sp;
+            sample = current;
+            in_previous_frame = previous;
+            geometry = previous_geometry();
+        }
+        let v = sample_visibility(viewer, sample.light, sample.uv, in_previous_frame, geometry, rays);
+        if at_previous {
+            prev_at_current *= v;
+        } else {
+            target_here *= v;
+        }
+    }
+    let m_temporal = pairwise_mis_noncanonical(c_total, current.m, m_prev, prev.p_hat, target_here);
     let m_current = confidence_share(current.m, c_total)
         + pairwise_mis_canonical_term(c_total, current.m, m_prev, current.p_hat, prev_at_current);
 
@@ -188,22 +209,29 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     var rng = rng_seed(id.xy, STREAM_TEMPORAL);
 
     let reprojected = vec2<i32>(floor(s.motion));
+    // Permuted reads fail at object edges; retry the plain reprojection (Solari #21722).
+    // Under pairwise MIS only the G-buffer decides which pixel is read. One call site of
+    // validate_previous for both tries: the driver compiles a copy of it per call
+    // (docs/src/compile-time.md).
+    var permuted = (params.flags & PARAM_FLAG_PERMUTATION) != 0u;
+    var pixel = reprojected;
+    if permuted {
+        pixel = permute_pixel(reprojected);
+    }
     var cand: TemporalCandidate;
-    if (params.flags & PARAM_FLAG_PERMUTATION) != 0u {
-        cand = validate_previous(permute_pixel(reprojected), s, sp);
-        if rejecting_checks(cand.mask) != 0u {
-            // Permuted reads fail at object edges; retry the plain reprojection (Solari #21722).
-            // Under pairwise MIS only the G-buffer decides which pixel is read.
-            count_stat(STAT_FALLBACK_TRIED);
-            d.flags |= DEBUG_FLAG_FALLBACK_TRIED;
-            cand = validate_previous(reprojected, s, sp);
-            if rejecting_checks(cand.mask) == 0u {
-                count_stat(STAT_FALLBACK_USED);
-                d.flags |= DEBUG_FLAG_FALLBACK_USED;
-            }
+    loop {
+        cand = validate_previous(pixel, s, sp);
+        if !permuted || rejecting_checks(cand.mask) == 0u {
+            break;
         }
-    } else {
-        cand = validate_previous(reprojected, s, sp);
+        count_stat(STAT_FALLBACK_TRIED);
+        d.flags |= DEBUG_FLAG_FALLBACK_TRIED;
+        permuted = false;
+        pixel = reprojected;
+    }
+    if (d.flags & DEBUG_FLAG_FALLBACK_TRIED) != 0u && rejecting_checks(cand.mask) == 0u {
+        count_stat(STAT_FALLBACK_USED);
+        d.flags |= DEBUG_FLAG_FALLBACK_USED;
     }
     count_rejections(cand.mask, STAT_TEMPORAL_REJECT);
     d.temporal_mask = cand.mask;

@@ -695,12 +695,14 @@ fn ray_backends_are_named_refused_clearly_and_measured() {
     }
 }
 
-/// Issue 28: `bench-load` prints and writes each phase from file to first frame, and
-/// `render --stats` has the same phases in its `load` block.
+/// `bench-load` prints and writes each phase from file to first frame and the compile table
+/// (by pass and effect set; docs/src/compile-time.md), and `render --stats` has the same
+/// phases in its `load` block, each pipeline with its first dispatch.
 #[test]
 fn load_phases_are_printed_written_and_in_the_stats() {
     let dir = temp_dir("load");
     let csv = dir.join("load.csv");
+    let compile_csv = dir.join("compile.csv");
     let res = viewer(&[
         "bench-load",
         "builtin:cornell",
@@ -708,6 +710,8 @@ fn load_phases_are_printed_written_and_in_the_stats() {
         "16x12",
         "--csv",
         csv.to_str().unwrap(),
+        "--compile-csv",
+        compile_csv.to_str().unwrap(),
     ]);
     assert!(
         res.status.success(),
@@ -728,7 +732,26 @@ fn load_phases_are_printed_written_and_in_the_stats() {
             "load.csv lacks {phase}:\n{text}"
         );
     }
-    assert!(String::from_utf8_lossy(&res.stdout).contains("| pipelines |"));
+    let stdout = String::from_utf8_lossy(&res.stdout);
+    assert!(stdout.contains("| pipelines |"));
+    // The compile table: one row per pipeline the frames compiled, named by pass, with the
+    // effect set (not timed here: only present and named).
+    assert!(stdout.contains("Compile time by pass"), "{stdout}");
+    let table = std::fs::read_to_string(&compile_csv).unwrap();
+    let mut lines = table.lines();
+    assert_eq!(
+        lines.next(),
+        Some("scene,pass,variant,compile_ms,creation_ms,first_dispatch_ms,steady_ms")
+    );
+    let passes: Vec<&str> = lines.map(|l| l.split(',').nth(1).unwrap()).collect();
+    for pass in ["gbuffer resolve", "initial", "temporal", "spatial", "shade"] {
+        assert!(passes.contains(&pass), "compile.csv lacks {pass}:\n{table}");
+        assert!(stdout.contains(&format!("| {pass} |")), "{stdout}");
+    }
+    assert!(
+        table.contains("AREA_LIGHTS"),
+        "the effect set is named:\n{table}"
+    );
     let png = dir.join("x.png");
     let stats = dir.join("x.json");
     let res = render(
@@ -756,7 +779,12 @@ fn load_phases_are_printed_written_and_in_the_stats() {
     assert_eq!(names.first(), Some(&"build"));
     assert_eq!(names.last(), Some(&"first frame"));
     assert!(json["load"]["total_ms"].as_f64().unwrap() > 0.0);
-    assert!(!json["load"]["pipelines"].as_array().unwrap().is_empty());
+    let pipelines = json["load"]["pipelines"].as_array().unwrap();
+    assert!(!pipelines.is_empty());
+    // Two still frames dispatch every pipeline they compiled.
+    for p in pipelines {
+        assert!(p["first_dispatch_ms"].as_f64().is_some(), "{p}");
+    }
 }
 
 /// Issue 27: `bench-shifts` prints one row per place and shift (against the place's

@@ -28,6 +28,8 @@ pub struct SceneFeatures {
     pub metallic_materials: usize,
     pub base_color_textured_materials: usize,
     pub metallic_roughness_textured_materials: usize,
+    /// Materials with a KHR_texture_transform other than the identity on some slot.
+    pub texture_transformed_materials: usize,
     pub alpha_masked_materials: usize,
     /// Materials light passes through (alpha BLEND or transmission).
     pub transparent_materials: usize,
@@ -71,6 +73,11 @@ impl SceneFeatures {
             base_color_textured_materials: count(&|m| m.base_color_texture.is_some()),
             metallic_roughness_textured_materials: count(&|m| {
                 m.metallic_roughness_texture.is_some() && specular(m)
+            }),
+            texture_transformed_materials: count(&|m| {
+                m.texture_slots()
+                    .iter()
+                    .any(|(_, r)| r.is_some_and(|r| !r.transform.is_identity()))
             }),
             alpha_masked_materials: count(&|m| matches!(m.alpha_mode, AlphaMode::Mask(_))),
             transparent_materials: count(&|m| m.is_transparent()),
@@ -138,6 +145,7 @@ pub enum Effect {
     Metallic,
     BaseColorTextures,
     MetallicRoughnessTextures,
+    TextureTransform,
     AlphaMask,
     Transparency,
     Unlit,
@@ -150,7 +158,7 @@ pub enum Effect {
 }
 
 impl Effect {
-    pub const ALL: [Effect; 16] = [
+    pub const ALL: [Effect; 17] = [
         Effect::AreaLights,
         Effect::EmissiveTextures,
         Effect::PunctualLights,
@@ -158,6 +166,7 @@ impl Effect {
         Effect::Metallic,
         Effect::BaseColorTextures,
         Effect::MetallicRoughnessTextures,
+        Effect::TextureTransform,
         Effect::AlphaMask,
         Effect::Transparency,
         Effect::Unlit,
@@ -179,6 +188,7 @@ impl Effect {
             Effect::Metallic => "METALLIC",
             Effect::BaseColorTextures => "BASE_COLOR_TEXTURES",
             Effect::MetallicRoughnessTextures => "METALLIC_ROUGHNESS_TEXTURES",
+            Effect::TextureTransform => "TEXTURE_TRANSFORM",
             Effect::AlphaMask => "ALPHA_MASK",
             Effect::Transparency => "TRANSPARENCY",
             Effect::Unlit => "UNLIT",
@@ -201,6 +211,7 @@ impl Effect {
             Effect::Metallic => "metallic",
             Effect::BaseColorTextures => "base-color-textures",
             Effect::MetallicRoughnessTextures => "metallic-roughness-textures",
+            Effect::TextureTransform => "texture-transform",
             Effect::AlphaMask => "alpha-mask",
             Effect::Transparency => "transparency",
             Effect::Unlit => "unlit",
@@ -342,6 +353,15 @@ impl EffectSet {
                 f.metallic_roughness_textured_materials
             ),
             "no metallic-roughness texture on a specular material".into(),
+        );
+        decide(
+            Effect::TextureTransform,
+            f.texture_transformed_materials > 0,
+            format!(
+                "{} materials move a texture's uvs (KHR_texture_transform)",
+                f.texture_transformed_materials
+            ),
+            "no texture transform".into(),
         );
         decide(
             Effect::AlphaMask,

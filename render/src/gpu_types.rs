@@ -67,16 +67,21 @@ pub struct GpuMaterial {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
 pub struct GpuTexture {
-    pub offset: u32,
-    pub width: u32,
-    pub height: u32,
-    /// `wrap_u | wrap_v << 4`, each 0 repeat, 1 clamp, 2 mirrored repeat.
-    pub wrap: u32,
+    /// `first texel | wrap_u << TEXEL_OFFSET_BITS | wrap_v << TEXEL_OFFSET_BITS + 2` (each
+    /// 0 repeat, 1 clamp, 2 mirrored repeat) and `width | height << 16`: two words, so a
+    /// lookup loads little (docs/src/compile-time.md).
+    pub placement: [u32; 2],
     /// `KHR_texture_transform` of the slot reading this record: uv' = M · (u, v, 1), M's
     /// three columns (WGSL `mat3x2<f32>`). Each distinct (texture, transform) pair of the
     /// scene's materials is its own record over the same texels.
     pub uv_transform: [[f32; 2]; 3],
 }
+
+/// Bits of `GpuTexture::placement[0]` that hold the first texel: the texel buffer holds at
+/// most 2^28 texels (1 GiB), the two wrap modes take the top four bits.
+pub const TEXEL_OFFSET_BITS: u32 = 28;
+/// The largest texture side `GpuTexture::placement[1]` holds.
+pub const MAX_TEXTURE_SIDE: u32 = 0xffff;
 
 pub const LIGHT_KIND_TRIANGLE: u32 = 0;
 pub const LIGHT_KIND_PUNCTUAL: u32 = 1;

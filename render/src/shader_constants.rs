@@ -339,6 +339,7 @@ pub fn wgsl_prelude() -> String {
     let u32s: &[(&str, u32)] = &[
         ("NO_LIGHT", gpu_types::NO_LIGHT),
         ("NO_TEXTURE", gpu_types::NO_TEXTURE),
+        ("TEXEL_OFFSET_BITS", gpu_types::TEXEL_OFFSET_BITS),
         ("MATERIAL_DOUBLE_SIDED", gpu_types::MATERIAL_DOUBLE_SIDED),
         ("MATERIAL_ALPHA_MASK", gpu_types::MATERIAL_ALPHA_MASK),
         ("MATERIAL_ALPHA_BLEND", gpu_types::MATERIAL_ALPHA_BLEND),

@@ -18,50 +18,61 @@ fn triangle_uv(tri_index: u32, u: f32, v: f32) -> vec2<f32> {
 }
 
 #ifdef ANY_TEXTURES
-fn wrap_texel(i: i32, size: i32, mode: u32) -> i32 {
+// Texel coordinates of a footprint's two columns (or rows), wrapped by the sampler's mode.
+fn wrap_texel_pair(i: vec2<i32>, size: i32, mode: u32) -> vec2<i32> {
     if mode == 1u {
-        return clamp(i, 0, size - 1);
+        return clamp(i, vec2<i32>(0), vec2<i32>(size - 1));
     }
     if mode == 2u {
         let period = 2 * size;
         let m = ((i % period) + period) % period;
-        return select(m, period - 1 - m, m >= size);
+        return select(m, period - 1 - m, m >= vec2<i32>(size));
     }
     return ((i % size) + size) % size;
 }
 
-fn texel(t: Texture, x: i32, y: i32) -> vec4<f32> {
-    let xi = wrap_texel(x, i32(t.width), t.wrap & 15u);
-    let yi = wrap_texel(y, i32(t.height), t.wrap >> 4u);
-    return unpack4x8unorm(texels[t.offset + u32(yi) * t.width + u32(xi)]);
-}
-
 // Bilinear filtering of the base level (no mips: every pass reads the same value, which
 // keeps the raster and ray-traced paths consistent).
-// The record's KHR_texture_transform moves the uv first (identity for most records).
+// The record's KHR_texture_transform moves the uv first (only in scenes that have one).
 fn sample_texture(index: u32, uv: vec2<f32>, srgb: bool) -> vec4<f32> {
     let t = textures[index];
+    let first = t.placement.x & ((1u << TEXEL_OFFSET_BITS) - 1u);
+    let wrap = t.placement.x >> TEXEL_OFFSET_BITS;
+    let size = vec2<u32>(t.placement.y & 0xffffu, t.placement.y >> 16u);
+#ifdef TEXTURE_TRANSFORM
 #ifdef PLANTED_NO_UV_TRANSFORM
     let st = uv;
 #else
     let st = t.uv_transform * vec3<f32>(uv, 1.0);
 #endif
-    let p = st * vec2<f32>(f32(t.width), f32(t.height)) - 0.5;
+#else
+    let st = uv;
+#endif
+    let p = st * vec2<f32>(size) - 0.5;
     let base = floor(p);
     let f = p - base;
-    let x = i32(base.x);
-    let y = i32(base.y);
-    var c00 = texel(t, x, y);
-    var c10 = texel(t, x + 1, y);
-    var c01 = texel(t, x, y + 1);
-    var c11 = texel(t, x + 1, y + 1);
-    if srgb {
-        c00 = vec4<f32>(srgb_to_linear(c00.rgb), c00.a);
-        c10 = vec4<f32>(srgb_to_linear(c10.rgb), c10.a);
-        c01 = vec4<f32>(srgb_to_linear(c01.rgb), c01.a);
-        c11 = vec4<f32>(srgb_to_linear(c11.rgb), c11.a);
+    let xs = wrap_texel_pair(vec2<i32>(i32(base.x)) + vec2<i32>(0, 1), i32(size.x), wrap & 3u);
+    let ys = wrap_texel_pair(vec2<i32>(i32(base.y)) + vec2<i32>(0, 1), i32(size.y), wrap >> 2u);
+    // The corners that carry weight (bit k: corner k, x-major), fetched by one loop so the
+    // fetch and the sRGB decode are compiled once per call site, not four times (shader
+    // size is compile time on a CPU driver: docs/src/compile-time.md). A lookup on a texel
+    // centre reads one texel.
+    var corners = 1u | select(0u, 2u, f.x > 0.0) | select(0u, 4u, f.y > 0.0) | select(0u, 8u, f.x > 0.0 && f.y > 0.0);
+    var sum = vec4<f32>(0.0);
+    while corners != 0u {
+        let corner = firstTrailingBit(corners);
+        corners &= corners - 1u;
+        let right = (corner & 1u) != 0u;
+        let below = corner >= 2u;
+        let x = select(xs.x, xs.y, right);
+        let y = select(ys.x, ys.y, below);
+        var c = unpack4x8unorm(texels[first + u32(y) * size.x + u32(x)]);
+        if srgb {
+            c = vec4<f32>(srgb_to_linear(c.rgb), c.a);
+        }
+        sum += c * (select(1.0 - f.x, f.x, right) * select(1.0 - f.y, f.y, below));
     }
-    return mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
+    return sum;
 }
 #endif
 

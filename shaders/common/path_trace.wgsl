@@ -45,15 +45,14 @@ fn path_estimate(first: ShadingPoint, bounces: u32, rng: ptr<function, u32>) -> 
         if !is_finite_vec3(weight) {
             break;
         }
-        let origin = offset_ray_origin(sp.position, sp.geo_normal);
-        let first = trace_closest(Ray(origin, bs.wi, FLT_MAX), false);
         // The emitter this direction finds through clear layers (the BSDF strategy's
-        // sample of direct light), then where the path goes on (transparency.wgsl).
-        let found = find_light_from(origin, bs.wi, first);
+        // sample of direct light), and where the path goes on (layer_walk.wgsl).
+        let followed = follow_ray(offset_ray_origin(sp.position, sp.geo_normal), sp.position, bs.wi, true, rng);
+        let found = followed.found;
         if frame.light_count > 0u {
             sum += throughput * found.transmittance * bsdf_found_emission(sp, bs, found.id);
         }
-        let walk = walk_layers(sp.position, bs.wi, first, WALK_PATH, MAX_TRANSPARENT_LAYERS, rng);
+        let walk = followed.walk;
         let hit = walk.hit;
         throughput *= weight * walk.weight;
         if hit.t <= 0.0 || bounce == bounces || !any(throughput > vec3<f32>(0.0)) {

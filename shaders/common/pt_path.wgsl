@@ -97,13 +97,23 @@ struct PtBounce {
 }
 
 fn pt_bounce(sp: ShadingPoint, seed: u32, bounce: u32) -> PtBounce {
+    var rng = pt_rng(seed, bounce, PT_RNG_BSDF);
+    var out = pt_bounce_direction(sp, &rng);
+    if out.ok {
+        pt_follow(sp, &out, &rng);
+    }
+    return out;
+}
+
+// The first half of pt_bounce: the lobe and direction drawn from `rng` (the bounce's
+// numbers), their density and factor g; `ok` when the ray is to be traced.
+fn pt_bounce_direction(sp: ShadingPoint, rng: ptr<function, u32>) -> PtBounce {
     var out: PtBounce;
     out.ok = false;
     out.hit = false;
     out.found.id.light = NO_LIGHT;
     out.found.transmittance = vec3<f32>(0.0);
-    var rng = pt_rng(seed, bounce, PT_RNG_BSDF);
-    let u = vec3<f32>(rand_f32(&rng), rand_f32(&rng), rand_f32(&rng));
+    let u = vec3<f32>(rand_f32(rng), rand_f32(rng), rand_f32(rng));
     let bs = sample_brdf(sp.brdf, sp.normal, sp.wo, u);
     out.lobe = select(PT_LOBE_SPECULAR, PT_LOBE_DIFFUSE, u.z < diffuse_lobe_probability(sp.brdf));
     out.wi = bs.wi;
@@ -116,7 +126,6 @@ fn pt_bounce(sp: ShadingPoint, seed: u32, bounce: u32) -> PtBounce {
         return out;
     }
     out.ok = true;
-    pt_follow(sp, &out, &rng);
     return out;
 }
 
@@ -124,12 +133,9 @@ fn pt_bounce(sp: ShadingPoint, seed: u32, bounce: u32) -> PtBounce {
 // its direction): the emitter it meets first, and the surface where the walk stops.
 fn pt_follow(sp: ShadingPoint, bn: ptr<function, PtBounce>, rng: ptr<function, u32>) {
     let wi = (*bn).wi;
-    let origin = offset_ray_origin(sp.position, sp.geo_normal);
-    let first = trace_closest(Ray(origin, wi, FLT_MAX), false);
-    if frame.light_count > 0u {
-        (*bn).found = find_light_from(origin, wi, first);
-    }
-    let walk = walk_layers(sp.position, wi, first, WALK_PATH, MAX_TRANSPARENT_LAYERS, rng);
+    let followed = follow_ray(offset_ray_origin(sp.position, sp.geo_normal), sp.position, wi, frame.light_count > 0u, rng);
+    (*bn).found = followed.found;
+    let walk = followed.walk;
     (*bn).walk_weight = walk.weight;
     if walk.hit.t > 0.0 && any(walk.weight > vec3<f32>(0.0)) {
         (*bn).hit = true;
@@ -339,6 +345,39 @@ fn pt_shift_failed(r: PtReservoir, failure: u32) -> PtShifted {
     return PtShifted(out, 0.0, failure);
 }
 
+// The two shifts of a pairwise MIS pair (temporal and spatial reuse): `other`'s path moved
+// here (to `here`), and this pixel's path `own` moved to the other pixel (to `there`: could
+// it have found it?). A null path is not shifted (a failed shift, Jacobian 0). Both go
+// through one pt_shift call site, the largest code of a reuse pass: each call site is a
+// copy of it (docs/src/compile-time.md).
+struct PtShiftPair {
+    moved: PtShifted,  // other → here
+    back: PtShifted,   // own → there
+}
+
+fn pt_shift_pair(other: PtReservoir, here: ShadingPoint, own: PtReservoir, there: ShadingPoint) -> PtShiftPair {
+    var out = PtShiftPair(pt_shift_failed(other, PT_FAIL_NONE), pt_shift_failed(own, PT_FAIL_NONE));
+    // Bit 0: other → here; bit 1: own → there.
+    var shifts = select(0u, 1u, !pt_reservoir_is_null(other)) | select(0u, 2u, !pt_reservoir_is_null(own));
+    while shifts != 0u {
+        let back = (shifts & 1u) == 0u;
+        shifts &= shifts - 1u;
+        var path = other;
+        var to = here;
+        if back {
+            path = own;
+            to = there;
+        }
+        let shifted = pt_shift(path, to);
+        if back {
+            out.back = shifted;
+        } else {
+            out.moved = shifted;
+        }
+    }
+    return out;
+}
+
 // `r`, a path found where its record says, moved to the pixel whose visible point is `to`.
 fn pt_shift(r: PtReservoir, to: ShadingPoint) -> PtShifted {
     let n = pt_n(r);
@@ -350,12 +389,21 @@ fn pt_shift(r: PtReservoir, to: ShadingPoint) -> PtShifted {
         return pt_shift_failed(r, PT_FAIL_UNDEFINED);
     }
     let replayed = select(k - 1u, n - 1u, k == PT_RC_NONE);
+    // A pure replay with a BSDF end draws one bounce more, the one that finds the light:
+    // one pt_bounce call site for all of them (each is compiled as a copy of the tracing:
+    // docs/src/compile-time.md).
+    let bounces = select(replayed, n, k == PT_RC_NONE && end != PT_END_NEE);
     var sp = to;
     var value = vec3<f32>(1.0);
     var density = 1.0;
     var lobes = 0u;
-    for (var b = 1u; b <= replayed; b++) {
+    var end_bounce: PtBounce;
+    for (var b = 1u; b <= bounces; b++) {
         let bn = pt_bounce(sp, r.seed, b);
+        if b > replayed {
+            end_bounce = bn;
+            break;
+        }
         if !bn.ok || !bn.hit {
             return pt_shift_failed(r, PT_FAIL_REPLAY);
         }
@@ -376,7 +424,7 @@ fn pt_shift(r: PtReservoir, to: ShadingPoint) -> PtShifted {
         if end == PT_END_NEE {
             e = pt_nee_end(sp, z);
         } else {
-            let bn = pt_bounce(sp, r.seed, n);
+            let bn = end_bounce;
             if !bn.ok || bn.found.id.light == NO_LIGHT {
                 return pt_shift_failed(r, PT_FAIL_REPLAY);
             }

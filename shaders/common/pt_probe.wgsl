@@ -36,47 +36,45 @@ fn pt_probe_write(stage: u32, pixel: u32, first: ShadingPoint, r: PtReservoir) {
 #endif
         let n = min(pt_n(r), MAX_BOUNCES);
         let k = pt_k(r);
-        let replayed = select(k - 1u, n - 1u, k == PT_RC_NONE);
+        let reconnects = k != PT_RC_NONE && k < n;
+        // x_1 … x_{n−1}: replayed up to the reconnection vertex x_k (stored with the path),
+        // then the steps after it (the one leaving x_k along its stored direction). One
+        // trace call site for all of them (docs/src/compile-time.md).
+        let last = select(select(k - 1u, n - 1u, k == PT_RC_NONE), n - 1u, reconnects);
         var sp = first;
         var complete = true;
-        for (var b = 1u; b <= replayed; b++) {
-            let bn = pt_bounce(sp, seed, b);
-            if !bn.ok || !bn.hit {
+        for (var b = 1u; b <= last; b++) {
+            if reconnects && b == k {
+                let hs = hit_surface(r.rc_triangle, r.rc_u, r.rc_v, sp.position);
+                let wi = safe_normalize(hs.position - sp.position, sp.normal);
+                sp = hit_shading_point(hs, -wi, hit_brdf(hs), 0.0);
+                vertices[count] = pt_probe_vertex(sp.position, PT_VERTEX_RECONNECTION);
+                count++;
+                continue;
+            }
+            var rng = pt_rng(seed, b, PT_RNG_BSDF);
+            var bn: PtBounce;
+            if reconnects && b == k + 1u {
+                // The step leaving the reconnection vertex, stored with the path.
+                bn.wi = oct_decode(r.rc_out);
+                bn.ok = true;
+                bn.hit = false;
+                rand_f32(&rng);
+                rand_f32(&rng);
+                rand_f32(&rng);
+            } else {
+                bn = pt_bounce_direction(sp, &rng);
+            }
+            if bn.ok {
+                pt_follow(sp, &bn, &rng);
+            }
+            if !bn.hit {
                 complete = false;
                 break;
             }
             sp = bn.next;
             vertices[count] = pt_probe_vertex(sp.position, 0u);
             count++;
-        }
-        if complete && k != PT_RC_NONE && k < n {
-            let hs = hit_surface(r.rc_triangle, r.rc_u, r.rc_v, sp.position);
-            let wi = safe_normalize(hs.position - sp.position, sp.normal);
-            sp = hit_shading_point(hs, -wi, hit_brdf(hs), 0.0);
-            vertices[count] = pt_probe_vertex(sp.position, PT_VERTEX_RECONNECTION);
-            count++;
-            for (var b = k + 1u; b < n && complete; b++) {
-                var bn: PtBounce;
-                if b == k + 1u {
-                    // The step leaving the reconnection vertex, stored with the path.
-                    bn.wi = oct_decode(r.rc_out);
-                    bn.hit = false;
-                    var rng = pt_rng(seed, b, PT_RNG_BSDF);
-                    rand_f32(&rng);
-                    rand_f32(&rng);
-                    rand_f32(&rng);
-                    pt_follow(sp, &bn, &rng);
-                } else {
-                    bn = pt_bounce(sp, seed, b);
-                }
-                if !bn.hit {
-                    complete = false;
-                    break;
-                }
-                sp = bn.next;
-                vertices[count] = pt_probe_vertex(sp.position, 0u);
-                count++;
-            }
         }
         if complete && r.light != NO_LIGHT {
             let lp = light_point(r.light, vec2<f32>(r.light_u, r.light_v));

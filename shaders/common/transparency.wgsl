@@ -29,20 +29,13 @@ struct FoundLight {
 }
 
 // The light a BSDF ray from `origin` along `dir` finds: the first emitter through clear
-// layers, or the environment when it leaves the scene; NO_LIGHT for anything else.
+// layers, or the environment when it leaves the scene; NO_LIGHT for anything else. (A path
+// that also goes on along the ray finds it with layer_walk.wgsl's follow_ray.)
 fn find_light_through(origin: vec3<f32>, dir: vec3<f32>) -> FoundLight {
-    return find_light_from(origin, dir, trace_closest(Ray(origin, dir, FLT_MAX), false));
-}
-
-// The same from a ray's closest hit `first` (a path that also continues from it).
-fn find_light_from(origin: vec3<f32>, dir: vec3<f32>, first: Hit) -> FoundLight {
     var ray_origin = origin;
     var transmittance = vec3<f32>(1.0);
-    var hit = first;
     for (var layer = 0u; layer <= MAX_TRANSPARENT_LAYERS; layer++) {
-        if layer > 0u {
-            hit = trace_closest(Ray(ray_origin, dir, FLT_MAX), false);
-        }
+        let hit = trace_closest(Ray(ray_origin, dir, FLT_MAX), false);
         if hit.t < 0.0 {
 #ifdef ENVIRONMENT
             return FoundLight(LightSampleId(env.light, env_direction_to_uv(dir)), transmittance);

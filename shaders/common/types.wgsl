@@ -34,11 +34,13 @@ struct Material {
     _pad2: u32,
 }
 
+// Packed so that a lookup reads two words of its record (every word a shader loads is
+// compiled per lane on a CPU driver: docs/src/compile-time.md); the transform is read only
+// where some material has one (TEXTURE_TRANSFORM).
 struct Texture {
-    offset: u32,  // first texel in `texels`
-    width: u32,
-    height: u32,
-    wrap: u32,    // wrap_u | wrap_v << 4: 0 repeat, 1 clamp, 2 mirrored repeat
+    // first texel in `texels` | wrap_u << TEXEL_OFFSET_BITS | wrap_v << TEXEL_OFFSET_BITS + 2
+    // (0 repeat, 1 clamp, 2 mirrored repeat), width | height << 16
+    placement: vec2<u32>,
     uv_transform: mat3x2<f32>,  // KHR_texture_transform: uv' = uv_transform * vec3(uv, 1)
 }
 

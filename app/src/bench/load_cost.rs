@@ -8,8 +8,11 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use clap::Args;
+use restir_render::gpu::timing::TimingMode;
 use restir_render::load_phases::{LoadEvent, LoadPhases, phase_line};
 use restir_render::{Gpu, Renderer, load_scene_watched};
+
+use super::compile_table;
 
 use crate::cli::setup::{parse_size, settings_from};
 
@@ -30,6 +33,13 @@ pub struct LoadCostArgs {
     /// Also write the phases as CSV here.
     #[arg(long, value_name = "FILE.csv")]
     pub csv: Option<PathBuf>,
+    /// Also write the compile table (by pass and effect set) as CSV here.
+    #[arg(long, value_name = "FILE.csv")]
+    pub compile_csv: Option<PathBuf>,
+    /// Frames rendered after the first (at least 3): each pass's steady time, their median,
+    /// which the compile table subtracts from its first dispatch.
+    #[arg(long, default_value_t = 3)]
+    pub frames: u32,
 }
 
 pub fn run(args: LoadCostArgs) -> anyhow::Result<()> {
@@ -73,6 +83,23 @@ pub fn run(args: LoadCostArgs) -> anyhow::Result<()> {
     );
     if let Some(path) = &args.csv {
         std::fs::write(path, csv(&args.scene, &phases))?;
+        eprintln!("wrote {}", path.display());
+    }
+
+    // Steady pass times, timed as the first frame was (one pass per submission), on still
+    // frames. A pass first dispatched on a later frame (one that needs history) is in its
+    // median once among `frames`, so the median stays a compiled dispatch.
+    renderer.set_timing_mode(TimingMode::WallClock);
+    let mut frames = Vec::new();
+    for _ in 0..args.frames.max(3) {
+        renderer.render_frame()?;
+        frames.extend(renderer.collect_reports(true));
+    }
+    let steady: Vec<_> = frames.into_iter().map(|f| f.pass_ms).collect();
+    let rows = compile_table::rows(renderer.pipeline_compiles(), &steady);
+    print!("{}", compile_table::markdown(&rows));
+    if let Some(path) = &args.compile_csv {
+        std::fs::write(path, compile_table::csv(&args.scene, &rows))?;
         eprintln!("wrote {}", path.display());
     }
     Ok(())

@@ -9,6 +9,7 @@
 //! `sweep` is the light-count benchmark.
 
 pub mod bvh_cost;
+mod compile_table;
 mod configs;
 mod csv;
 pub mod env_cost;

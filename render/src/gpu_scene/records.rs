@@ -89,11 +89,12 @@ pub(super) fn texture_records(scene: &Scene) -> (Vec<GpuTexture>, Vec<u32>) {
     let mut texels: Vec<u32> = Vec::new();
     let mut records = Vec::with_capacity(scene.textures.len());
     for t in &scene.textures {
+        let wrap = wrap_code(t.wrap_u) | (wrap_code(t.wrap_v) << 2);
         records.push(GpuTexture {
-            offset: texels.len() as u32,
-            width: t.width,
-            height: t.height,
-            wrap: wrap_code(t.wrap_u) | (wrap_code(t.wrap_v) << 4),
+            placement: [
+                texels.len() as u32 | (wrap << TEXEL_OFFSET_BITS),
+                t.width | (t.height << 16),
+            ],
             uv_transform: UvTransform::IDENTITY.columns,
         });
         texels.extend(t.texels.iter().map(|c| u32::from_le_bytes(*c)));

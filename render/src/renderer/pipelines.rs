@@ -15,13 +15,20 @@ use crate::passes::gbuffer::RasterPass;
 use crate::passes::pass::Dispatch;
 use crate::passes::{ComputePass, PassDef, PassLayouts};
 
-/// One compiled pipeline and how long its compile took.
+/// One compiled pipeline, how long its creation took and how long its first dispatch took.
+/// A CPU driver (lavapipe) compiles a compute shader when it is first dispatched, not when
+/// the pipeline is created, so on such a driver `first_dispatch_ms` less the pass's usual
+/// time is the compile (docs/src/compile-time.md); other drivers compile in `ms`.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct PipelineCompile {
     pub pass: &'static str,
     /// The variant: its defines, comma-separated (the effect set and the ray backend).
     pub variant: String,
+    /// Pipeline creation.
     pub ms: f64,
+    /// The pass's first dispatch with this pipeline, submitted alone and waited for
+    /// (`None` until it has run). The G-buffer raster's draw counts as its dispatch.
+    pub first_dispatch_ms: Option<f64>,
 }
 
 /// A worker's result: the pass, its pipeline (or why not) and the compile's milliseconds.
@@ -108,6 +115,7 @@ pub(super) fn compile_all(
             pass: pass.name,
             variant: variant_key.clone(),
             ms,
+            first_dispatch_ms: None,
         });
     }
     Ok(times)
@@ -131,5 +139,37 @@ pub(super) fn phase(batch: &[PipelineCompile], wall_ms: f64) -> Phase {
             batch.len(),
             sum
         ),
+    }
+}
+
+/// Whether some pipeline of `variant` that `plan` dispatches has not been dispatched yet:
+/// that frame is timed pass by pass (`TimingMode::WallClock`) so its first dispatches can
+/// be told apart.
+pub(super) fn awaits_first_dispatch<'a>(
+    compiles: &[PipelineCompile],
+    variant: &str,
+    mut plan: impl Iterator<Item = &'a str>,
+) -> bool {
+    plan.any(|pass| {
+        compiles
+            .iter()
+            .any(|c| c.pass == pass && c.variant == variant && c.first_dispatch_ms.is_none())
+    })
+}
+
+/// Records each pass's first dispatch from a frame timed pass by pass (`times`, in
+/// recording order; a pass repeated in the frame counts its first run).
+pub(super) fn record_first_dispatches(
+    compiles: &mut [PipelineCompile],
+    variant: &str,
+    times: &[(&'static str, f64)],
+) {
+    for (pass, ms) in times {
+        if let Some(c) = compiles
+            .iter_mut()
+            .find(|c| c.pass == *pass && c.variant == variant && c.first_dispatch_ms.is_none())
+        {
+            c.first_dispatch_ms = Some(*ms);
+        }
     }
 }

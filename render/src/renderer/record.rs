@@ -306,7 +306,19 @@ impl Renderer {
         let mut capture = self
             .inspected_pixel
             .map(|p| InspectCapture::new(p, size, self.inspect_staging.clone()));
-        let mut rec = FrameRecorder::new(&self.gpu, &mut self.timer, self.timing_mode);
+        // A frame with first dispatches is timed pass by pass, whatever the timing mode:
+        // that is where a CPU driver compiles (pipelines.rs, first_dispatch_ms).
+        let first_dispatches = super::pipelines::awaits_first_dispatch(
+            &self.pipeline_compiles,
+            key,
+            plan.iter().map(|s| s.pass.name),
+        );
+        let timing = if first_dispatches {
+            crate::gpu::timing::TimingMode::WallClock
+        } else {
+            self.timing_mode
+        };
+        let mut rec = FrameRecorder::new(&self.gpu, &mut self.timer, timing);
         rec.encoder().clear_buffer(&self.stats_buffer, 0, None);
         if capture.is_some() && switches.pt {
             rec.encoder()
@@ -373,6 +385,13 @@ impl Renderer {
         });
         self.stats_ring.after_submit();
         self.inspect_ring.after_submit();
+        if first_dispatches {
+            super::pipelines::record_first_dispatches(
+                &mut self.pipeline_compiles,
+                &active.key,
+                &wall_times,
+            );
+        }
         if !wall_times.is_empty() {
             self.pending_times.insert(frame, wall_times);
         }

@@ -7,6 +7,7 @@ use std::path::Path;
 use glam::{Vec2, Vec3};
 
 use super::{Scene, builtin, gltf_loader};
+use crate::gpu_types::{MAX_TEXTURE_SIDE, TEXEL_OFFSET_BITS};
 use crate::load_phases::{LoadPhases, Watcher, unwatched};
 
 /// Why a scene could not be loaded. `Display` is one line that starts with the file (as given)
@@ -166,6 +167,7 @@ fn check_references(scene: &Scene, file: &str) -> Result<(), SceneError> {
             ));
         }
     }
+    let mut texels = 0usize;
     for (i, t) in scene.textures.iter().enumerate() {
         if t.width == 0 || t.height == 0 || t.texels.len() != t.width as usize * t.height as usize {
             return Err(SceneError::invalid(
@@ -173,6 +175,27 @@ fn check_references(scene: &Scene, file: &str) -> Result<(), SceneError> {
                 format!("texture {i} ('{}') has inconsistent size", t.name),
             ));
         }
+        // The GPU's texture record packs each side in 16 bits and the first texel in
+        // TEXEL_OFFSET_BITS (gpu_types.rs).
+        if t.width.max(t.height) > MAX_TEXTURE_SIDE {
+            return Err(SceneError::invalid(
+                file,
+                format!(
+                    "texture {i} ('{}') is {}×{}: sides up to {MAX_TEXTURE_SIDE} texels are supported",
+                    t.name, t.width, t.height
+                ),
+            ));
+        }
+        texels += t.texels.len();
+    }
+    if texels > 1 << TEXEL_OFFSET_BITS {
+        return Err(SceneError::invalid(
+            file,
+            format!(
+                "the textures hold {texels} texels: up to {} (1 GiB) are supported",
+                1u64 << TEXEL_OFFSET_BITS
+            ),
+        ));
     }
     for (i, l) in scene.punctual_lights.iter().enumerate() {
         if !(l.position.is_finite() && l.direction.is_finite() && l.intensity.is_finite()) {
@@ -264,6 +287,26 @@ mod tests {
         validate(&mut s, "test.gltf").unwrap();
         assert_eq!(s.vertices[0].normal, Vec3::ZERO);
         assert_eq!(s.vertices[2].uv, Vec2::ZERO);
+    }
+
+    /// The GPU texture record packs a side in 16 bits: a wider texture is refused in one
+    /// line, not wrapped into another texture's texels.
+    #[test]
+    fn a_texture_wider_than_the_record_holds_is_an_error() {
+        let texture = |width: u32| crate::scene::Texture {
+            name: "wide".into(),
+            width,
+            height: 1,
+            texels: vec![[0; 4]; width as usize],
+            wrap_u: crate::scene::Wrap::Repeat,
+            wrap_v: crate::scene::Wrap::Repeat,
+        };
+        let mut s = one_triangle();
+        s.textures.push(texture(MAX_TEXTURE_SIDE));
+        validate(&mut s, "test.gltf").unwrap();
+        s.textures[0] = texture(MAX_TEXTURE_SIDE + 1);
+        let e = validate(&mut s, "test.gltf").unwrap_err().to_string();
+        assert!(e.contains("texture 0 ('wide') is 65536×1"), "{e}");
     }
 
     #[test]

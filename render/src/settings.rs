@@ -15,6 +15,9 @@ pub enum Stage {
     Initial,
     Temporal,
     Spatial,
+    /// The checks that decide whether a previous or neighbouring pixel takes part, shared
+    /// by temporal and spatial reuse (DI, GI and PT alike).
+    Validation,
     Resampling,
     Shading,
     Tracing,
@@ -27,6 +30,7 @@ impl Stage {
             Stage::Initial => "Initial candidates",
             Stage::Temporal => "Temporal reuse",
             Stage::Spatial => "Spatial reuse",
+            Stage::Validation => "Reuse validation",
             Stage::Resampling => "Bias correction",
             Stage::Shading => "Shading and reference",
             Stage::Tracing => "Ray tracing",
@@ -62,6 +66,15 @@ pub enum ParamKind {
     Choice(&'static [&'static str]),
 }
 
+/// What a row does beyond setting its value.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Role {
+    Plain,
+    /// Switches a reuse stage on (temporal or spatial reuse of a technique): the nee and
+    /// ris modes turn every such row off (`Settings::without_reuse`).
+    ReuseSwitch,
+}
+
 /// One row of the parameter table.
 #[derive(Clone, Copy, Debug)]
 pub struct ParamDef {
@@ -70,6 +83,7 @@ pub struct ParamDef {
     pub label: &'static str,
     pub doc: &'static str,
     pub kind: ParamKind,
+    pub role: Role,
 }
 
 impl ParamDef {
@@ -222,8 +236,18 @@ choice_param!(
     [Auto, Software, RayQuery]
 );
 
+/// A row's role: `Plain` unless the row names one after its documentation.
+macro_rules! row_role {
+    () => {
+        Role::Plain
+    };
+    ($role:ident) => {
+        Role::$role
+    };
+}
+
 macro_rules! parameter_table {
-    ($( $stage:ident { $( $field:ident : $ty:ty = $default:expr, $kind:expr, $label:literal, $doc:literal; )* } )*) => {
+    ($( $stage:ident { $( $field:ident : $ty:ty = $default:expr, $kind:expr, $label:literal, $doc:literal $(, $role:ident)?; )* } )*) => {
         /// Every pipeline parameter (see the module docs).
         #[derive(Clone, Debug, PartialEq)]
         pub struct Settings { $( $( #[doc = $doc] pub $field: $ty, )* )* }
@@ -236,7 +260,7 @@ macro_rules! parameter_table {
 
         /// The parameter table, in display order.
         pub static PARAMS: &[ParamDef] = &[
-            $( $( ParamDef { name: stringify!($field), stage: Stage::$stage, label: $label, doc: $doc, kind: $kind }, )* )*
+            $( $( ParamDef { name: stringify!($field), stage: Stage::$stage, label: $label, doc: $doc, kind: $kind, role: row_role!($($role)?) }, )* )*
         ];
 
         impl Settings {
@@ -277,17 +301,33 @@ parameter_table! {
     }
     Temporal {
         temporal: bool = true, ParamKind::Bool, "Temporal reuse",
-            "Merge the reprojected previous-frame reservoir (notes §2). Off: the temporal pass is not dispatched.";
-        m_cap: f32 = 20.0, ParamKind::Float { min: 0.0, max: 1e6 }, "M cap",
-            "Upper bound of a reservoir's confidence M. History is merged with min(M_prev, M cap), and M is capped after every reuse pass. M counts frames' worth of samples.";
-        normal_threshold: f32 = 0.906, ParamKind::Float { min: 0.0, max: 1.0 }, "Normal threshold",
-            "Reject a previous or neighbouring surface when the cosine between its normal and this one is below this (0.906 = 25°).";
-        depth_threshold: f32 = 0.1, ParamKind::Float { min: 0.0, max: 1.0 }, "Depth threshold",
-            "Reject when the world-position distance (temporal) or depth difference (spatial) exceeds this fraction of the view depth.";
+            "Merge the reprojected previous-frame reservoir (notes §2). Off: the temporal pass is not dispatched.", ReuseSwitch;
         target_ratio_clamp: f32 = 10.0, ParamKind::Float { min: 1.0, max: 1e6 }, "Target-ratio clamp",
             "1/M: reject the temporal sample when p̂(x, y_prev) / p̂(x_prev, y_prev) is outside [1/clamp, clamp]; 1 rejects any change of target. Pairwise MIS: a window on that ratio for both samples alike — outside it the history's sample gets weight 0, and where this pixel's own sample is outside it the pixel keeps the history's share — so the weights still sum to one and the clamp stays unbiased (a rejection of the history alone would not).";
         permutation: bool = true, ParamKind::Bool, "Permutation sampling",
             "Read the previous reservoir through a per-frame 4×4 pixel permutation to decorrelate neighbours; fall back to the plain reprojected pixel when that read fails validation.";
+        check_target_ratio: bool = true, ParamKind::Bool, "Check: target ratio",
+            "Apply the target-ratio clamp (off disables the test whatever the clamp; under pairwise MIS the clamp is an unbiased window, see the clamp).";
+        camera_cut: f32 = 0.25, ParamKind::Float { min: 0.0, max: 100.0 }, "Camera cut distance",
+            "A camera jump longer than this fraction of the scene size in one frame is a cut: history is dropped. 0 treats every move as a cut.";
+    }
+    Spatial {
+        spatial: bool = true, ParamKind::Bool, "Spatial reuse",
+            "Merge reservoirs of nearby pixels (notes §3). Off: no spatial pass is dispatched.", ReuseSwitch;
+        spatial_neighbours: u32 = 5, ParamKind::Int { min: 0, max: MAX_SPATIAL_NEIGHBOURS as i64 }, "Neighbours",
+            "Neighbours tried per pixel and pass, uniformly in a disk.";
+        spatial_radius: f32 = 30.0, ParamKind::Float { min: 1.0, max: 1024.0 }, "Radius (px at 1080p)",
+            "Radius of the neighbour disk in pixels of a 1080-pixel-high image; other sizes use radius × height / 1080, at least 2 px (or the radius itself if smaller), so reuse spans the same part of the scene at any resolution or render scale.";
+        spatial_passes: u32 = 1, ParamKind::Int { min: 1, max: MAX_SPATIAL_PASSES as i64 }, "Passes",
+            "Spatial passes per frame, each reading the previous pass's output.";
+        boiling_filter: f32 = 0.0, ParamKind::Float { min: 0.0, max: 1000.0 }, "Boiling filter",
+            "Drop a pixel's sample when its W·p̂ exceeds this many times the neighbourhood mean (notes §6). 0 = off. Biased: the decision looks at the sample's value, so it darkens (2: −3.5 % on a frozen blinking-lights at M cap 100, −5 % on the concourse) while it lowers flicker (docs/bench.md, \"Boiling\").";
+    }
+    Validation {
+        normal_threshold: f32 = 0.906, ParamKind::Float { min: 0.0, max: 1.0 }, "Normal threshold",
+            "Reject a previous or neighbouring surface when the cosine between its normal and this one is below this (0.906 = 25°).";
+        depth_threshold: f32 = 0.1, ParamKind::Float { min: 0.0, max: 1.0 }, "Depth threshold",
+            "Reject when the world-position distance (temporal) or depth difference (spatial) exceeds this fraction of the view depth.";
         check_offscreen: bool = true, ParamKind::Bool, "Check: off-screen",
             "Reject a reprojection (or neighbour) outside the image. Off: the coordinate is clamped to the border.";
         check_surface: bool = true, ParamKind::Bool, "Check: surface valid",
@@ -302,24 +342,10 @@ parameter_table! {
             "1/M: reject a previous or neighbouring reservoir that holds no sample. Pairwise MIS: counted, not rejected (a null sample is a sample of its domain: it contributes nothing, its M counts).";
         check_target: bool = true, ParamKind::Bool, "Check: target > 0",
             "1/M: reject a temporal or spatial sample whose target re-evaluated here is zero. Pairwise MIS: counted, not rejected (it contributes nothing, its domain's M counts; rejecting it made the image brighter).";
-        check_target_ratio: bool = true, ParamKind::Bool, "Check: target ratio",
-            "Apply the target-ratio clamp (off disables the test whatever the clamp; under pairwise MIS the clamp is an unbiased window, see the clamp).";
-        camera_cut: f32 = 0.25, ParamKind::Float { min: 0.0, max: 100.0 }, "Camera cut distance",
-            "A camera jump longer than this fraction of the scene size in one frame is a cut: history is dropped. 0 treats every move as a cut.";
-    }
-    Spatial {
-        spatial: bool = true, ParamKind::Bool, "Spatial reuse",
-            "Merge reservoirs of nearby pixels (notes §3). Off: no spatial pass is dispatched.";
-        spatial_neighbours: u32 = 5, ParamKind::Int { min: 0, max: MAX_SPATIAL_NEIGHBOURS as i64 }, "Neighbours",
-            "Neighbours tried per pixel and pass, uniformly in a disk.";
-        spatial_radius: f32 = 30.0, ParamKind::Float { min: 1.0, max: 1024.0 }, "Radius (px at 1080p)",
-            "Radius of the neighbour disk in pixels of a 1080-pixel-high image; other sizes use radius × height / 1080, at least 2 px (or the radius itself if smaller), so reuse spans the same part of the scene at any resolution or render scale.";
-        spatial_passes: u32 = 1, ParamKind::Int { min: 1, max: MAX_SPATIAL_PASSES as i64 }, "Passes",
-            "Spatial passes per frame, each reading the previous pass's output.";
-        boiling_filter: f32 = 0.0, ParamKind::Float { min: 0.0, max: 1000.0 }, "Boiling filter",
-            "Drop a pixel's sample when its W·p̂ exceeds this many times the neighbourhood mean (notes §6). 0 = off. Biased: the decision looks at the sample's value, so it darkens (2: −3.5 % on a frozen blinking-lights at M cap 100, −5 % on the concourse) while it lowers flicker (docs/bench.md, \"Boiling\").";
     }
     Resampling {
+        m_cap: f32 = 20.0, ParamKind::Float { min: 0.0, max: 1e6 }, "M cap",
+            "Upper bound of a reservoir's confidence M (direct light). History is merged with min(M_prev, M cap), and M is capped after every reuse pass, temporal and spatial. M counts frames' worth of samples.";
         bias_correction: BiasCorrection = BiasCorrection::Pairwise, ParamKind::Choice(BIAS_CORRECTION_NAMES), "Bias correction",
             "pairwise (default): defensive pairwise MIS with the pixel's own reservoir as canonical (unbiased, one extra target evaluation per neighbour, ~3 % of the frame). one-over-m: 1/M weights with rejection (biased: darker where reused samples are occluded or outside a narrow lobe; fast).";
         mis_visibility: bool = true, ParamKind::Bool, "MIS visibility",
@@ -345,9 +371,9 @@ parameter_table! {
         gi: bool = false, ParamKind::Bool, "Indirect (ReSTIR GI)",
             "One-bounce indirect light with reservoir reuse (Ouyang et al. 2021): one BSDF ray per pixel, its hit's outgoing direct radiance as the sample, reused over time and space through the reconnection Jacobian. The image is direct (ReSTIR DI) + indirect. Off: no GI code is compiled or run.";
         gi_temporal: bool = true, ParamKind::Bool, "GI temporal reuse",
-            "Merge the reprojected previous-frame GI reservoir, its sample reconnected to this frame's visible point.";
+            "Merge the reprojected previous-frame GI reservoir, its sample reconnected to this frame's visible point.", ReuseSwitch;
         gi_spatial: bool = true, ParamKind::Bool, "GI spatial reuse",
-            "Merge GI reservoirs of nearby pixels, each sample reconnected to this pixel's visible point.";
+            "Merge GI reservoirs of nearby pixels, each sample reconnected to this pixel's visible point.", ReuseSwitch;
         gi_m_cap: f32 = 10.0, ParamKind::Float { min: 0.0, max: 1e6 }, "GI M cap",
             "Upper bound of a GI reservoir's confidence M (as M cap for direct light, separately). 10, half the direct light's: a GI sample's cached radiance is never re-evaluated, so it outlives a lighting change for about M cap frames (recovery took ~M cap frames for direct light, docs/bench.md \"Lag and ghosting\").";
         gi_spatial_neighbours: u32 = 3, ParamKind::Int { min: 0, max: MAX_SPATIAL_NEIGHBOURS as i64 }, "GI neighbours",
@@ -367,11 +393,11 @@ parameter_table! {
         pt_shift: PtShift = PtShift::Hybrid, ParamKind::Choice(PT_SHIFT_NAMES), "PT shift mapping",
             "How a neighbour's path is moved to this pixel. reconnection: keep its vertices from the second on and connect to it (fails where the first bounce is glossy: the new angle misses the lobe). random-replay: trace again with its random numbers (fails when the replayed path leaves it; exact in glossy chains). hybrid (default): replay up to the first bounce whose two ends are rough (pt_rough_threshold) and far enough apart (pt_min_distance), reconnect there. All three unbiased under pairwise MIS: a path that cannot be moved is a zero in its domain, never dropped.";
         pt_temporal: bool = true, ParamKind::Bool, "PT temporal reuse",
-            "Merge the reprojected previous-frame path reservoir, its path shifted from last frame's visible point to this one (and this pixel's path shifted back there for the pairwise weights). The previous side is evaluated in this frame's scene: exact for static scenes; under animation a moving occluder is seen where it is now, not where it was (named biased, as DI's previous_geometry=false).";
+            "Merge the reprojected previous-frame path reservoir, its path shifted from last frame's visible point to this one (and this pixel's path shifted back there for the pairwise weights). The previous side is evaluated in this frame's scene: exact for static scenes; under animation a moving occluder is seen where it is now, not where it was (named biased, as DI's previous_geometry=false).", ReuseSwitch;
         pt_m_cap: f32 = 10.0, ParamKind::Float { min: 0.0, max: 1e6 }, "PT M cap",
             "Upper bound of a path reservoir's confidence M. 10, as GI's: a reconnected path's radiance beyond its reconnection vertex is cached, not re-evaluated, so it outlives a lighting change for about M cap frames.";
         pt_spatial: bool = true, ParamKind::Bool, "PT spatial reuse",
-            "Merge the path reservoirs of nearby pixels, each path shifted to this pixel (and this pixel's path shifted to each of them for the pairwise weights).";
+            "Merge the path reservoirs of nearby pixels, each path shifted to this pixel (and this pixel's path shifted to each of them for the pairwise weights).", ReuseSwitch;
         pt_spatial_neighbours: u32 = 3, ParamKind::Int { min: 0, max: MAX_SPATIAL_NEIGHBOURS as i64 }, "PT neighbours",
             "Neighbours tried per pixel in PT spatial reuse; each costs two shifts (a replayed prefix is up to max_bounces − 1 rays, a reconnection one visibility ray).";
         pt_spatial_radius: f32 = 30.0, ParamKind::Float { min: 1.0, max: 1024.0 }, "PT radius (px at 1080p)",
@@ -397,6 +423,17 @@ pub enum SettingsError {
 impl Settings {
     pub fn def(name: &str) -> Option<&'static ParamDef> {
         PARAMS.iter().find(|p| p.name == name)
+    }
+
+    /// These settings with every reuse stage off, as the nee and ris modes run them: each
+    /// row marked `ReuseSwitch` (DI, GI and PT temporal and spatial reuse) set to false.
+    pub fn without_reuse(&self) -> Settings {
+        let mut s = self.clone();
+        for def in PARAMS.iter().filter(|p| p.role == Role::ReuseSwitch) {
+            let stored = s.store(def.name, &ParamValue::Bool(false));
+            debug_assert!(stored, "{} is a reuse switch but not a bool", def.name);
+        }
+        s
     }
 
     /// Sets a parameter. Out-of-range numbers are clamped and a warning is returned;

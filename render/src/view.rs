@@ -31,6 +31,21 @@ impl Mode {
     pub fn from_name(s: &str) -> Option<Mode> {
         Mode::ALL.into_iter().find(|m| m.name() == s)
     }
+
+    /// The settings this mode renders with: nee and ris turn every reuse stage off
+    /// (`Settings::without_reuse`), nee also draws one light candidate and no BSDF one.
+    pub fn settings(self, settings: &crate::settings::Settings) -> crate::settings::Settings {
+        match self {
+            Mode::Nee => {
+                let mut s = settings.without_reuse();
+                s.light_candidates = 1;
+                s.bsdf_candidates = 0;
+                s
+            }
+            Mode::Ris => settings.without_reuse(),
+            Mode::Restir | Mode::Reference => settings.clone(),
+        }
+    }
 }
 
 /// The debug views (names as on the command line: `--debug-view NAME`).

@@ -162,25 +162,7 @@ impl Renderer {
     /// The settings as the current mode applies them (`nee` is RIS with one light
     /// candidate and no BSDF candidate; `ris` has no reuse).
     pub fn effective_settings(&self) -> Settings {
-        let mut s = self.settings.clone();
-        match self.mode {
-            Mode::Nee => {
-                s.light_candidates = 1;
-                s.bsdf_candidates = 0;
-                s.temporal = false;
-                s.spatial = false;
-                s.gi_temporal = false;
-                s.gi_spatial = false;
-            }
-            Mode::Ris => {
-                s.temporal = false;
-                s.spatial = false;
-                s.gi_temporal = false;
-                s.gi_spatial = false;
-            }
-            Mode::Restir | Mode::Reference => {}
-        }
-        s
+        self.mode.settings(&self.settings)
     }
 
     /// Which passes this frame runs. The reference traces its own camera rays, except with

@@ -159,3 +159,61 @@ fn the_reference_follows_gi_with_two_bounces() {
     s.max_bounces = 5;
     assert_eq!(s.reference_bounces(), 5);
 }
+
+/// Every row that switches a reuse stage on is marked, so nee and ris turn it off: a row
+/// whose label says "reuse" and is a bool must be a `ReuseSwitch` (the next technique's
+/// switch cannot be forgotten), and `without_reuse` turns each of them off. PT's were
+/// forgotten before the marking existed (ris rendered PT with reuse).
+#[test]
+fn nee_and_ris_turn_every_reuse_stage_off() {
+    for def in PARAMS {
+        let says_reuse = def.label.to_lowercase().contains("reuse") && def.kind == ParamKind::Bool;
+        assert_eq!(
+            says_reuse,
+            def.role == Role::ReuseSwitch,
+            "{}: a bool row named as a reuse stage is a ReuseSwitch, and only those",
+            def.name
+        );
+    }
+    let switches: Vec<&str> = PARAMS
+        .iter()
+        .filter(|p| p.role == Role::ReuseSwitch)
+        .map(|p| p.name)
+        .collect();
+    assert_eq!(
+        switches,
+        ["temporal", "spatial", "gi_temporal", "gi_spatial", "pt_temporal", "pt_spatial"]
+    );
+    let on = Settings::default();
+    for mode in [crate::Mode::Nee, crate::Mode::Ris] {
+        let s = mode.settings(&on);
+        for name in &switches {
+            assert_eq!(s.get(name), Some(ParamValue::Bool(false)), "{mode:?} leaves {name} on");
+        }
+    }
+    // restir keeps them; nee draws one light candidate and no BSDF candidate.
+    assert_eq!(crate::Mode::Restir.settings(&on), on);
+    let nee = crate::Mode::Nee.settings(&on);
+    assert_eq!((nee.light_candidates, nee.bsdf_candidates), (1, 0));
+    assert_eq!(crate::Mode::Ris.settings(&on).light_candidates, on.light_candidates);
+}
+
+/// The checks that temporal and spatial reuse share are one stage, so turning temporal
+/// reuse off in the viewer does not grey them out.
+#[test]
+fn the_shared_validation_checks_are_their_own_stage() {
+    for name in [
+        "normal_threshold",
+        "depth_threshold",
+        "check_offscreen",
+        "check_surface",
+        "check_material",
+        "check_normal",
+        "check_depth",
+        "check_reservoir",
+        "check_target",
+    ] {
+        assert_eq!(Settings::def(name).unwrap().stage, Stage::Validation, "{name}");
+    }
+    assert_eq!(Settings::def("check_target_ratio").unwrap().stage, Stage::Temporal);
+}

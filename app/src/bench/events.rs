@@ -13,7 +13,7 @@ use super::lag::{
     median, signed_bias,
 };
 use super::references::Shot;
-use super::run_loop::FrameRecord;
+use super::scoring::FrameRecord;
 
 /// Offsets after the first event whose frames go into `event_strip.png`.
 pub const STRIP_OFFSETS: [usize; 3] = [0, 4, 12];

@@ -19,7 +19,7 @@ use super::configs::Config;
 use super::equal_time::{Budget, BudgetClock};
 use super::events::{EventLag, LagProbe, SeedEvent};
 use super::references::Shot;
-use super::scoring::{FrameScores, ScoreSummary, Scoring};
+use super::scoring::{FrameRecord, FrameScores, ScoreSummary, Scoring};
 
 /// How every configuration is run.
 #[derive(Clone)]
@@ -33,17 +33,6 @@ pub struct RunPlan {
     pub seed: u32,
     /// `--effects` when forced.
     pub effects: Option<EffectSet>,
-}
-
-/// One measured frame.
-#[derive(Clone, Debug, PartialEq)]
-pub struct FrameRecord {
-    /// 0 = first measured frame.
-    pub index: usize,
-    /// Sum of the frame's pass times.
-    pub ms: f64,
-    pub cumulative_ms: f64,
-    pub scores: FrameScores,
 }
 
 /// What one configuration measured.

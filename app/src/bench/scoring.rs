@@ -18,6 +18,18 @@ pub struct FrameScores {
     pub accumulated_rgb_rmse: Option<f64>,
 }
 
+/// One measured frame: its time and its scores (the run loop records it, the event
+/// probe and the plots read it).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FrameRecord {
+    /// 0 = first measured frame.
+    pub index: usize,
+    /// Sum of the frame's pass times.
+    pub ms: f64,
+    pub cumulative_ms: f64,
+    pub scores: FrameScores,
+}
+
 /// A run's numbers (notes §7).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ScoreSummary {

@@ -11,8 +11,9 @@ use winit::event_loop::{ActiveEventLoop, ControlFlow};
 use winit::window::{Window, WindowId};
 
 use super::Launch;
-use super::frame::{After, Viewer};
+use super::frame::After;
 use super::resize_script::ResizeScript;
+use super::window::Viewer;
 
 pub struct App {
     launch: Option<(Launch, restir_render::Scene)>,

@@ -7,8 +7,8 @@ use restir_render::Scene;
 use restir_render::scene::animation::ClipChoice;
 use restir_render::timeline::AnimatedScene;
 
-use super::frame::Viewer;
 use super::state::TimeState;
+use super::window::Viewer;
 
 /// A clock for an animated scene, and the Time section's view of it.
 pub(super) fn clock_for(scene: &Scene, time: &mut TimeState) -> Option<AnimatedScene> {

@@ -1,16 +1,13 @@
-//! One window's viewer and its frame, in order: UI (panels edit the state) → actions →
-//! state into the renderer → render (unless frozen) → accuracy (reference, score) →
-//! reports back → draw image + UI → present, with a screenshot when one is due.
+//! One window's viewer, opened, and its frame, in order: UI (panels edit the state) →
+//! actions → state into the renderer → render (unless frozen) → accuracy (reference,
+//! score) → reports back → draw image + UI → present, with a screenshot when one is due.
+//! What the viewer holds is `window.rs`; the actions and finished loads are `actions.rs`.
 
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use restir_render::effects::EffectSet;
 use restir_render::reference_cache::ReferenceCache;
-use restir_render::timeline::AnimatedScene;
-use restir_render::view::auto_exposure_ev;
-use restir_render::{Gpu, PipelineCompile, Renderer, Scene};
-use winit::dpi::PhysicalSize;
+use restir_render::{Renderer, Scene};
 use winit::window::Window;
 
 use super::Launch;
@@ -23,10 +20,13 @@ use super::compare_side::CompareSide;
 use super::egui_layer::EguiLayer;
 use super::gpu_surface::GpuSurface;
 use super::panels;
-use super::scene_loader::{Loaded, SceneLoader, is_environment_spec, with_environment};
+use super::scene_loader::SceneLoader;
 use super::scene_view;
 use super::screenshot::{self, Shot, WindowCapture};
 use super::state::{Action, DeviceInfo, DisplayOptions, ViewerState};
+use super::tour::driver::push_history;
+use super::tour::state::TourState;
+use super::window::{AUTO_EXPOSURE_FRAMES, Startup, Viewer, title};
 
 /// What the event loop should do after an event.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -35,67 +35,8 @@ pub enum After {
     Exit,
 }
 
-pub struct Viewer {
-    window: Arc<Window>,
-    gpu: Gpu,
-    surface: GpuSurface,
-    pub(super) renderer: Renderer,
-    egui: EguiLayer,
-    pub state: ViewerState,
-    /// The scene shown, kept for the accuracy panel's reference jobs.
-    pub(super) scene: Arc<Scene>,
-    /// An animated scene's clock (its own posed copy of the scene); `None` when static.
-    pub(super) clock: Option<AnimatedScene>,
-    pub(super) accuracy: AccuracyTracker,
-    /// Configuration B of the split screen, while the Compare section has it on.
-    pub(super) compare: Option<CompareSide>,
-    /// When the two sides were last scored (each score reads both images back).
-    compare_scored: Option<Instant>,
-    loader: SceneLoader,
-    startup: Startup,
-    /// A change's pipelines warming beside the window (CPU adapters): the effect set and
-    /// the job (`Viewer::pipelines_ready`).
-    warming: Option<(EffectSet, WarmJob)>,
-    /// A prepared scene was just swapped in: its load warmed the next frame's pipelines.
-    just_prepared: bool,
-    screenshots: screenshot::Schedule,
-    exit_after_screenshot: bool,
-    frames_rendered: u64,
-    /// Set the exposure automatically once this many frames have rendered (after a
-    /// scene load, when the first frames have something to measure).
-    auto_exposure_at: Option<u64>,
-    last_redraw: Option<Instant>,
-    /// When the last frame was rendered (frozen: redraw a little longer, until its report
-    /// and inspection have come back).
-    last_render: Option<Instant>,
-    /// When egui asked to run again.
-    ui_wakeup: Option<Instant>,
-    /// Hidden behind other windows or on another workspace (where the platform says so).
-    occluded: bool,
-    /// The pixel history's frame facts and a recording (viewer/tour/driver.rs).
-    pub(super) teaching: super::tour::driver::Teaching,
-}
-
-/// A change's pipelines compiling on a sibling device (`ScenePreparer::warm_effects`).
-type WarmJob = std::thread::JoinHandle<Result<Vec<PipelineCompile>, String>>;
-
-/// Where the viewer's start is: its first frame waits for the warm-up (`Viewer::started`).
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Startup {
-    NotStarted,
-    Warming,
-    Done,
-}
-
-/// How long a frozen viewer keeps redrawing after rendering a frame, so the frame's
-/// report and pixel inspection (read back asynchronously) reach the panels.
-const REPORT_GRACE: Duration = Duration::from_millis(500);
-
 /// How often the split screen's per-side errors are measured.
 const COMPARE_SCORE_INTERVAL: Duration = Duration::from_millis(250);
-
-/// Frames rendered before the automatic exposure of a new scene is measured.
-const AUTO_EXPOSURE_FRAMES: u64 = 3;
 
 impl Viewer {
     pub fn new(window: Arc<Window>, launch: Launch, scene: Arc<Scene>) -> anyhow::Result<Viewer> {
@@ -135,7 +76,7 @@ impl Viewer {
         apply::scene_loaded(&renderer, &mut state, launch.scene_spec);
         let clock = clock_for(&scene, &mut state.time);
         if let Some((tour, step)) = launch.tour {
-            state.tour = Some(super::tour::TourState::new(tour, launch.env_spec));
+            state.tour = Some(TourState::new(tour, launch.env_spec));
             super::tour::go(&mut state, step);
         }
         window.set_title(&title(&state));
@@ -178,65 +119,6 @@ impl Viewer {
             occluded: false,
             teaching: Default::default(),
         })
-    }
-
-    pub fn window(&self) -> &Window {
-        &self.window
-    }
-
-    pub fn frames_rendered(&self) -> u64 {
-        self.frames_rendered
-    }
-
-    /// The surface size in physical pixels (0×0 while minimised).
-    pub fn surface_size(&self) -> (u32, u32) {
-        if self.surface.is_drawable() {
-            self.surface.size()
-        } else {
-            (0, 0)
-        }
-    }
-
-    /// Whether frames should be drawn now (false while minimised or occluded).
-    pub fn is_drawable(&self) -> bool {
-        self.surface.is_drawable() && !self.occluded
-    }
-
-    pub fn set_occluded(&mut self, occluded: bool) {
-        self.occluded = occluded;
-        self.window.request_redraw();
-    }
-
-    /// When the next frame should be drawn: `now` while rendering (progressive frames
-    /// never stop), when egui asks while frozen, never while minimised.
-    pub fn next_redraw(&self, now: Instant) -> Option<Instant> {
-        if !self.is_drawable() {
-            return None;
-        }
-        let inspector = &self.state.inspector;
-        let rendering = !inspector.frozen
-            || inspector.step
-            || self.loader.loading().is_some()
-            || self.last_render.is_some_and(|t| now - t < REPORT_GRACE);
-        if rendering { Some(now) } else { self.ui_wakeup }
-    }
-
-    /// Feeds a window event to egui (all keyboard and pointer input goes through egui);
-    /// input egui cares about draws a frame even while frozen.
-    pub fn egui_event(&mut self, event: &winit::event::WindowEvent) {
-        // (egui-winit asks to repaint on RedrawRequested itself: that would never idle.)
-        let repaint = self.egui.on_window_event(&self.window, event);
-        if repaint && !matches!(event, winit::event::WindowEvent::RedrawRequested) {
-            self.window.request_redraw();
-        }
-    }
-
-    /// A new window size; 0×0 (minimised) pauses drawing until the next real size.
-    pub fn resized(&mut self, size: PhysicalSize<u32>) {
-        self.surface.resize(&self.gpu, size.width, size.height);
-        if self.surface.is_drawable() {
-            self.window.request_redraw();
-        }
     }
 
     pub fn redraw(&mut self) -> anyhow::Result<After> {
@@ -319,11 +201,6 @@ impl Viewer {
             _ => {}
         }
         Ok(After::Continue)
-    }
-
-    /// Holds the `--screenshot-after` shot (while the resize test script runs).
-    pub fn hold_screenshot(&mut self, hold: bool) {
-        self.screenshots.hold = hold;
     }
 
     /// The first frame waits until its pipelines are warm (`ScenePreparer`): a CPU driver
@@ -436,7 +313,7 @@ impl Viewer {
         let (teaching, accuracy) = (&self.teaching, &self.accuracy);
         apply::after_frame(&mut self.renderer, &mut self.state, |state, i| {
             let reference = accuracy.reference_luminance(i.pixel);
-            super::tour::driver::push_history(state, teaching, i, reference);
+            push_history(state, teaching, i, reference);
         });
         Ok(render_now)
     }
@@ -473,127 +350,4 @@ impl Viewer {
             }
         }
     }
-
-    fn run_actions(&mut self) {
-        for action in std::mem::take(&mut self.state.actions) {
-            match action {
-                Action::LoadScene(spec) => {
-                    self.state.scene.error = None;
-                    let env = self.scene.environment.clone();
-                    self.loader.start(spec, env, self.renderer.preparer());
-                }
-                Action::LoadEnvironment(Some(spec)) => {
-                    self.state.scene.env_error = None;
-                    let shown = self.scene.clone();
-                    self.loader
-                        .start_environment(spec, shown, self.renderer.preparer());
-                }
-                Action::LoadEnvironment(None) => {
-                    if let Err(e) = self.remove_environment() {
-                        self.state.scene.env_error = Some(e);
-                    }
-                }
-                Action::Screenshot => self.screenshots.requested = true,
-                Action::AutoExposure => {
-                    let linear = if self.state.view.accumulate {
-                        self.renderer.read_accumulated()
-                    } else {
-                        self.renderer.read_radiance()
-                    };
-                    self.state.view.exposure_ev = auto_exposure_ev(&linear);
-                }
-                Action::ResetAccumulation => self.renderer.reset_accumulation(),
-                Action::AutoExposureSoon => {
-                    self.auto_exposure_at = Some(self.frames_rendered + AUTO_EXPOSURE_FRAMES);
-                }
-                Action::LoadTourScene { scene, env } => {
-                    self.state.scene.error = None;
-                    self.loader
-                        .start_with_environment(scene, env, self.renderer.preparer());
-                }
-                Action::ExportPixelHistory => self.export_pixel_history(),
-                Action::StartRecording => self.start_recording(),
-                Action::StopRecording => self.stop_recording(),
-            }
-        }
-        self.state.scene.loading = self.loader.loading().map(str::to_string);
-    }
-
-    /// The same scene without its environment, seen from the same camera (uploaded here:
-    /// no image to decode). On failure nothing changes.
-    fn remove_environment(&mut self) -> Result<(), String> {
-        let scene = with_environment(&self.scene, None)?;
-        let camera = self.renderer.camera();
-        self.renderer
-            .set_scene(&scene)
-            .map_err(|e| format!("{e:#}"))?;
-        self.environment_replaced(scene, camera);
-        Ok(())
-    }
-
-    /// The renderer shows `scene`, the shown scene under another environment: the camera
-    /// stays where it was.
-    fn environment_replaced(&mut self, scene: Scene, camera: restir_render::Camera) {
-        self.renderer.set_camera(camera);
-        self.scene = Arc::new(scene);
-        self.state.scene.info = Some(self.renderer.scene_info().clone());
-        self.state.scene.env_error = None;
-        self.state.stats.clear();
-    }
-
-    /// A finished background load replaces the scene or the environment (keeping scene
-    /// and camera); a failed one keeps what there was and shows why. The load prepared
-    /// the scene, so the swap itself is quick.
-    fn poll_loader(&mut self) {
-        self.state.scene.progress = self.loader.progress();
-        let Some((spec, result)) = self.loader.poll() else {
-            return;
-        };
-        self.state.scene.loading = None;
-        match result {
-            Ok(Loaded::Warmed(prepared)) => {
-                let camera = self.renderer.camera();
-                self.renderer.set_prepared_scene(prepared);
-                self.just_prepared = true;
-                self.renderer.set_camera(camera);
-                self.state.scene.info = Some(self.renderer.scene_info().clone());
-            }
-            Ok(Loaded::Environment(ready)) => {
-                let camera = self.renderer.camera();
-                self.renderer.set_prepared_scene(ready.prepared);
-                self.just_prepared = true;
-                self.environment_replaced(*ready.scene, camera);
-            }
-            Err(e) if is_environment_spec(&spec) => {
-                log::warn!("cannot load {spec}: {e}");
-                self.state.scene.env_error = Some(e);
-            }
-            Ok(Loaded::Scene(ready) | Loaded::SceneWithEnvironment(ready)) => {
-                self.renderer.set_prepared_scene(ready.prepared);
-                self.just_prepared = true;
-                let scene = *ready.scene;
-                self.clock = clock_for(&scene, &mut self.state.time);
-                self.scene = Arc::new(scene);
-                // B is rebuilt on the new scene at the next frame.
-                self.compare = None;
-                apply::scene_loaded(&self.renderer, &mut self.state, spec);
-                self.tour_scene_loaded();
-                self.window.set_title(&title(&self.state));
-                self.auto_exposure_at = Some(self.frames_rendered + AUTO_EXPOSURE_FRAMES);
-            }
-            Err(e) => {
-                log::warn!("cannot load {spec}: {e}");
-                self.state.scene.error = Some(e);
-            }
-        }
-    }
-}
-
-fn title(state: &ViewerState) -> String {
-    let name = state
-        .scene
-        .info
-        .as_ref()
-        .map_or(state.scene.spec.as_str(), |i| i.name.as_str());
-    format!("ReSTIR lab — {name}")
 }

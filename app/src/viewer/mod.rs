@@ -1,7 +1,9 @@
 //! The interactive viewer (`restir-viewer` or `restir-viewer view`): a winit window with
 //! the renderer's image and egui panels that edit plain state (see `state.rs`).
 //!
-//! - `app.rs`: winit event loop; `frame.rs`: one frame from UI to present;
+//! - `app.rs`: winit event loop; `window.rs`: what one window's viewer holds;
+//! - `frame.rs`: one frame from UI to present; `actions.rs`: the UI's requests, finished
+//!   loads; `clock.rs`: scene time; `tour/`: a guided tour and the teaching tools;
 //! - `apply.rs`: state → renderer → state; `gpu_surface.rs`: the swapchain;
 //! - `egui_layer.rs`: egui input and drawing; `scene_view.rs`: image, camera input, picking;
 //! - `camera.rs`: fly camera; `panels/`: one file per panel; `screenshot.rs`;
@@ -9,6 +11,7 @@
 //! - `scene_loader.rs`: background scene loads; `resize_script.rs`: the resize test.
 
 mod accuracy;
+mod actions;
 mod app;
 mod apply;
 mod camera;
@@ -25,6 +28,7 @@ mod screenshot;
 mod split_view;
 mod state;
 mod tour;
+mod window;
 
 use std::path::PathBuf;
 

@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 use anyhow::bail;
 use winit::dpi::PhysicalSize;
 
-use super::frame::Viewer;
+use super::window::Viewer;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Step {

@@ -12,7 +12,7 @@ use restir_render::{Mode, Settings, ViewSettings};
 
 use super::accuracy::AccuracyState;
 use super::camera::CameraState;
-use super::tour::TourState;
+use super::tour::state::TourState;
 use crate::compare::CompareTarget;
 use crate::probe::PixelHistory;
 
@@ -231,7 +231,8 @@ pub struct SceneState {
     pub loading: Option<String>,
     /// Where that load is (its phase and how far), for the progress bar.
     pub progress: super::scene_loader::LoadProgress,
-    /// The viewer's first frame waits for its pipelines to warm (`frame.rs`, `Startup`).
+    /// The viewer's first frame waits for its pipelines to warm (`frame.rs`; `Startup` in
+    /// `window.rs`).
     pub first_frame_waits: bool,
     /// A change's new pipelines are warming beside the window (`Viewer::pipelines_ready`).
     pub pipelines_warming: bool,

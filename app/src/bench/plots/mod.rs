@@ -22,7 +22,8 @@ use plotters::prelude::*;
 use super::BenchInfo;
 use super::csv::pass_names;
 use super::references::CameraPath;
-use super::run_loop::{ConfigResult, FrameRecord};
+use super::run_loop::ConfigResult;
+use super::scoring::FrameRecord;
 use canvas::{
     Area, DrawResult, LineChart, Series, TEXT_SIZE, TITLE_SIZE, color, legend, line_chart,
     log_ticks, render_png, text, tick, with_footnote,

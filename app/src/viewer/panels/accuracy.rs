@@ -2,10 +2,10 @@
 //! the current errors as numbers, and per configuration the error and time curves
 //! (`accuracy_plots.rs`). It edits plain state; `viewer/accuracy/tracker.rs` does the work.
 
-use egui::{Color32, RichText, Ui};
+use egui::Ui;
 use restir_render::Settings;
 
-use super::accuracy_plots;
+use super::accuracy_plots::{self, significant};
 use crate::viewer::accuracy::{AccuracyState, Curve, ReferenceStatus, SPP_CHOICES};
 use crate::viewer::state::ViewerState;
 
@@ -195,36 +195,4 @@ fn measuring(ui: &mut Ui, accuracy: &mut AccuracyState, is_cpu: bool) {
     if is_cpu && matches!(accuracy.reference, ReferenceStatus::Rendering(_)) {
         ui.weak("Pass times are inflated while the reference renders: on a CPU adapter both share the cores");
     }
-}
-
-/// A curve's colour, kept when it becomes a previous (dimmed) curve.
-pub fn curve_color(id: u64, current: bool) -> Color32 {
-    const PALETTE: [Color32; 6] = [
-        Color32::from_rgb(90, 170, 255),
-        Color32::from_rgb(255, 150, 60),
-        Color32::from_rgb(110, 220, 110),
-        Color32::from_rgb(240, 90, 200),
-        Color32::from_rgb(240, 220, 80),
-        Color32::from_rgb(160, 130, 255),
-    ];
-    let c = PALETTE[(id % PALETTE.len() as u64) as usize];
-    if current { c } else { c.gamma_multiply(0.4) }
-}
-
-/// "2: temporal off" in its colour: the name a curve has in legends and tables.
-pub fn curve_name(curve: &Curve) -> String {
-    format!("{}: {}", curve.id + 1, curve.label)
-}
-
-pub fn curve_text(curve: &Curve, current: bool) -> RichText {
-    RichText::new(curve_name(curve)).color(curve_color(curve.id, current))
-}
-
-/// Three significant digits: errors differ by orders of magnitude between scenes.
-pub fn significant(v: f64) -> String {
-    if v == 0.0 || !v.is_finite() {
-        return v.to_string();
-    }
-    let decimals = (2 - v.abs().log10().floor() as i32).clamp(0, 12) as usize;
-    format!("{v:.decimals$}")
 }

@@ -1,15 +1,16 @@
 //! The Accuracy panel's curves: per-frame luma RMSE, accumulated RGB RMSE and frame time
 //! against the frame, one line per configuration (the current one bright, earlier ones
 //! dimmed in the same hue), and the median time of each pass per configuration: what
-//! a change removed in error next to what it cost.
+//! a change removed in error next to what it cost. A curve's name, colour and numbers are
+//! written here (`curve_text`, `significant`), and the panel's numbers (`accuracy.rs`)
+//! write them the same way.
 
 use std::collections::BTreeSet;
 
-use egui::{RichText, Ui};
+use egui::{Color32, RichText, Ui};
 use egui_plot::{Line, Plot, PlotPoints, PlotUi};
 use restir_render::stats::StatsSummary;
 
-use super::accuracy::{curve_color, curve_name, curve_text, significant};
 use super::stats::pass_color;
 use crate::viewer::accuracy::{Curve, CurvePoint, Curves};
 
@@ -183,4 +184,36 @@ fn pass_table(ui: &mut Ui, curves: &Curves) {
             }
             ui.end_row();
         });
+}
+
+/// A curve's colour, kept when it becomes a previous (dimmed) curve.
+fn curve_color(id: u64, current: bool) -> Color32 {
+    const PALETTE: [Color32; 6] = [
+        Color32::from_rgb(90, 170, 255),
+        Color32::from_rgb(255, 150, 60),
+        Color32::from_rgb(110, 220, 110),
+        Color32::from_rgb(240, 90, 200),
+        Color32::from_rgb(240, 220, 80),
+        Color32::from_rgb(160, 130, 255),
+    ];
+    let c = PALETTE[(id % PALETTE.len() as u64) as usize];
+    if current { c } else { c.gamma_multiply(0.4) }
+}
+
+/// "2: temporal off" in its colour: the name a curve has in legends and tables.
+fn curve_name(curve: &Curve) -> String {
+    format!("{}: {}", curve.id + 1, curve.label)
+}
+
+fn curve_text(curve: &Curve, current: bool) -> RichText {
+    RichText::new(curve_name(curve)).color(curve_color(curve.id, current))
+}
+
+/// Three significant digits: errors differ by orders of magnitude between scenes.
+pub fn significant(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return v.to_string();
+    }
+    let decimals = (2 - v.abs().log10().floor() as i32).clamp(0, 12) as usize;
+    format!("{v:.decimals$}")
 }

@@ -1,10 +1,10 @@
-//! The Scene panel's environment part (issue 13): what lights the sky (or nothing),
-//! opening one by path, the built-in sky, removing it; an .hdr/.exr dropped on the window
-//! replaces it (`scene::take_dropped_files`). A failed load keeps the previous one.
+//! The Scene panel's environment part: what lights the sky (or nothing), opening one by
+//! path, the built-in sky, removing it; an .hdr/.exr dropped on the window replaces it
+//! (`scene::take_dropped_files`). A failed load keeps the previous one.
 
 use egui::Ui;
 
-use super::scene::{facts, open_row};
+use super::scene_rows::{facts, open_row};
 use crate::viewer::state::{Action, ViewerState};
 
 pub fn ui(ui: &mut Ui, state: &mut ViewerState) {

@@ -8,6 +8,8 @@ use restir_render::gpu_types::{GpuSurface, NO_LIGHT};
 use restir_render::renderer::{GiInspection, GiStageReservoir, PixelInspection, StageReservoir};
 use restir_render::shader_constants::*;
 
+use super::inspector_pt::pt_inspection;
+use super::inspector_rows::{reject_names, rejections, vec3};
 use crate::viewer::state::InspectorState;
 
 pub fn ui(ui: &mut Ui, inspector: &mut InspectorState) {
@@ -44,10 +46,6 @@ pub fn ui(ui: &mut Ui, inspector: &mut InspectorState) {
         }
         _ => {}
     }
-}
-
-pub(super) fn vec3(v: [f32; 3]) -> String {
-    format!("({:.3}, {:.3}, {:.3})", v[0], v[1], v[2])
 }
 
 /// Everything known about the pixel in one frame.
@@ -89,7 +87,7 @@ pub fn inspection(ui: &mut Ui, i: &PixelInspection) {
     }
     if let Some(pt) = &i.pt {
         ui.separator();
-        super::inspector_pt::pt_inspection(ui, pt);
+        pt_inspection(ui, pt);
     }
 }
 
@@ -270,31 +268,6 @@ fn di_rejections(ui: &mut Ui, stage: &str, mask: u32, merged: bool) {
         RichText::new(text)
     } else {
         RichText::new(text).color(ui.visuals().warn_fg_color)
-    });
-}
-
-/// The names of DI's `REJECT_*` bits set in `mask` (PT's previous-pixel checks are the
-/// same G-buffer checks).
-pub(super) fn reject_names(mask: u32) -> Vec<&'static str> {
-    REJECT_REASON_NAMES
-        .iter()
-        .enumerate()
-        .filter(|(b, _)| mask & (1 << b) != 0)
-        .map(|(_, n)| *n)
-        .collect()
-}
-
-pub(super) fn rejections(ui: &mut Ui, stage: &str, mask: u32, names: &[&str]) {
-    let text = if names.is_empty() {
-        "none".to_string()
-    } else {
-        names.join(", ")
-    };
-    let rich = RichText::new(format!("{stage} rejections: {mask:#010b} {text}"));
-    ui.label(if names.is_empty() {
-        rich
-    } else {
-        rich.color(ui.visuals().warn_fg_color)
     });
 }
 

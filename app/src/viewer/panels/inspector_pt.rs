@@ -6,7 +6,7 @@ use egui::{RichText, Ui};
 use restir_render::renderer::{PtInspection, PtStagePath, PtVertex};
 use restir_render::shader_constants::{PT_FAIL_NONE, PT_FAIL_REASON_COUNT};
 
-use super::inspector::{reject_names, rejections, vec3};
+use super::inspector_rows::{reject_names, rejections, vec3};
 
 /// Marks the reconnection vertex x_{k+1} in the vertex lists. A lozenge: the default
 /// proportional font (Ubuntu-Light) has it, not the filled diamond ◆.

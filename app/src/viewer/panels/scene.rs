@@ -5,6 +5,8 @@
 use egui::Ui;
 use restir_render::scene::builtin::builtin_names;
 
+use super::environment;
+use super::scene_rows::{facts, open_row};
 use crate::viewer::state::{Action, ViewerState};
 
 pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
@@ -74,7 +76,7 @@ pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
         state.request(Action::LoadScene(spec));
     }
     status(ui, state);
-    super::environment::ui(ui, state);
+    environment::ui(ui, state);
     effects(ui, state);
 }
 
@@ -88,33 +90,6 @@ fn extensions(ui: &mut Ui, extensions: &[restir_render::scene::ExtensionUse]) {
     for e in extensions {
         ui.add(egui::Label::new(format!("• {e}")).wrap());
     }
-}
-
-/// A two-column grid of facts.
-pub(super) fn facts(ui: &mut Ui, id: &str, rows: &[(&str, String)]) {
-    egui::Grid::new(id).num_columns(2).show(ui, |ui| {
-        for (k, v) in rows {
-            ui.label(*k);
-            ui.label(v);
-            ui.end_row();
-        }
-    });
-}
-
-/// A path field and a button; the trimmed path when the button is clicked with one.
-pub(super) fn open_row(ui: &mut Ui, path: &mut String, hint: &str, button: &str) -> Option<String> {
-    let mut picked = None;
-    ui.horizontal(|ui| {
-        ui.add(
-            egui::TextEdit::singleline(path)
-                .desired_width(180.0)
-                .hint_text(hint),
-        );
-        if ui.button(button).clicked() && !path.trim().is_empty() {
-            picked = Some(path.trim().to_string());
-        }
-    });
-    picked
 }
 
 fn builtin_label(spec: &str) -> &str {

@@ -8,7 +8,7 @@ use egui::{RichText, Ui};
 use crate::tour::LiveNumber;
 use crate::viewer::state::ViewerState;
 use crate::viewer::tour::lag::LagMeter;
-use crate::viewer::tour::{self, SideNumbers};
+use crate::viewer::tour::{self, state::SideNumbers};
 
 pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
     let Some(t) = &state.tour else {

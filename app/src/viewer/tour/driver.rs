@@ -1,36 +1,14 @@
-//! The viewer's side of issue 20's teaching tools, beside the frame loop (frame.rs calls
-//! in): what each rendered frame feeds the pixel history, the tour's live numbers and a
-//! recording, and the actions that need the renderer or the file system.
+//! The viewer's side of its teaching tools (the pixel history, a tour's live numbers, the
+//! recording), beside the frame loop (`frame.rs` calls in): what each rendered frame feeds
+//! them, and the actions that need the renderer or the file system. What they keep between
+//! frames is `teaching.rs`.
 
-use std::collections::VecDeque;
-
+use super::teaching::Teaching;
 use crate::probe;
 use crate::recording::{RecordedFrame, Recorder, RecordingPlan};
 use crate::tour::LiveNumber;
-use crate::viewer::frame::Viewer;
 use crate::viewer::state::ViewerState;
-
-/// What the frame loop keeps for these tools.
-#[derive(Default)]
-pub struct Teaching {
-    /// Scene time and "a light event came before it" per rendered frame, until the
-    /// frame's inspection comes back (reports arrive a frame or two later).
-    frames: VecDeque<(u64, Option<f32>, bool)>,
-    recorder: Option<Recorder>,
-}
-
-/// How many frames' facts wait for their inspection at most.
-const PENDING_FRAMES: usize = 32;
-
-impl Teaching {
-    /// The time and event of `frame`, once its inspection has arrived.
-    pub fn facts_of(&self, frame: u64) -> (Option<f32>, bool) {
-        self.frames
-            .iter()
-            .find(|(f, ..)| *f == frame)
-            .map_or((None, false), |(_, t, e)| (*t, *e))
-    }
-}
+use crate::viewer::window::Viewer;
 
 impl Viewer {
     /// Right after a frame is rendered: its facts for the pixel history, the tour's lag
@@ -38,11 +16,7 @@ impl Viewer {
     pub(in crate::viewer) fn frame_rendered(&mut self, event: bool) {
         let frame = self.renderer.frame_index().saturating_sub(1);
         let time = (self.state.time.duration > 0.0).then_some(self.state.time.time);
-        let facts = &mut self.teaching.frames;
-        facts.push_back((frame, time, event));
-        while facts.len() > PENDING_FRAMES {
-            facts.pop_front();
-        }
+        self.teaching.push_frame(frame, time, event);
         if self
             .state
             .tour

@@ -1,65 +1,17 @@
-//! A guided tour in the viewer (`--tour FILE`, the Tour section): the current step, what
-//! going to a step does to the plain state (this file: no GPU, testable), the live
-//! numbers the step asks for (`lag.rs` for the reference-free lag), and the viewer's side
-//! of it (`driver.rs`: loading a step's scene, measuring the numbers).
+//! A guided tour in the viewer (`--tour FILE`, the Tour section): the current step and
+//! its live numbers (`state.rs`, part of the viewer's plain state), what going to a step
+//! does to the plain state (this file: no GPU, testable), the reference-free lag (`lag.rs`),
+//! and the viewer's side of it (`driver.rs`: loading a step's scene, measuring the numbers;
+//! `teaching.rs`: what it keeps between frames).
 
 pub mod driver;
 pub mod lag;
+pub mod state;
+pub mod teaching;
 
-use crate::tour::{LiveNumber, Tour, TourStep};
 use crate::viewer::state::{Action, CompareState, ViewerState};
 
-use lag::LagMeter;
-
-/// The live numbers of one side of the image.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct SideNumbers {
-    /// Per-frame luma RMSE against the Accuracy reference.
-    pub rmse: Option<f64>,
-    /// (mean luma − reference's) / reference's, this frame.
-    pub bias: Option<f64>,
-    pub lag: LagMeter,
-}
-
-/// Side A and B (B while the step has a split screen).
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct LiveNumbers {
-    pub a: SideNumbers,
-    pub b: SideNumbers,
-}
-
-#[derive(Clone, Debug, PartialEq)]
-pub struct TourState {
-    pub tour: Tour,
-    /// The step shown (0-based; the panel counts from 1).
-    pub current: usize,
-    /// A step whose scene is loading: its camera and time apply once the scene is there.
-    pub pending: Option<usize>,
-    /// The environment the tour last set (the one loaded now).
-    pub env: Option<String>,
-    pub numbers: LiveNumbers,
-}
-
-impl TourState {
-    /// A tour about to show its first step; `env` is the environment already loaded.
-    pub fn new(tour: Tour, env: Option<String>) -> TourState {
-        TourState {
-            tour,
-            current: 0,
-            pending: None,
-            env,
-            numbers: LiveNumbers::default(),
-        }
-    }
-
-    pub fn step(&self) -> &TourStep {
-        &self.tour.steps[self.current]
-    }
-
-    pub fn shows(&self, number: LiveNumber) -> bool {
-        self.step().show.contains(&number)
-    }
-}
+use state::LiveNumbers;
 
 /// Goes to step `index` (clamped): its mode, parameters, B, view and exposure now; its
 /// scene (with its environment) loads in the background if it is not the one shown, and

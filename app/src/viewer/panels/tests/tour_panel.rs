@@ -4,7 +4,7 @@ use super::inspector_panel::synthetic_inspection;
 use super::*;
 use crate::tour::Tour;
 use crate::viewer::state::Action;
-use crate::viewer::tour::{self as tour_state, TourState};
+use crate::viewer::tour::{self as tour_state, state::TourState};
 
 fn with_tour() -> ViewerState {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/tours/restir.toml");
@@ -118,7 +118,7 @@ fn the_inspector_chart_appears_when_a_pixel_is_picked() {
     assert!(!shows(&h, "Pixel history"), "no pixel, no chart");
     // Pick a pixel; frames come back with its inspection.
     s.inspector.pixel = Some((12, 34));
-    let teaching = crate::viewer::tour::driver::Teaching::default();
+    let teaching = crate::viewer::tour::teaching::Teaching::default();
     for frame in 40..46 {
         let mut i = synthetic_inspection();
         i.frame = frame;

@@ -6,14 +6,16 @@
 use std::time::Instant;
 
 use glam::Vec3;
-use restir_render::effects::EffectSet;
+use restir_render::gpu_scene::SceneUpdateTimes;
 use restir_render::stats::FrameReport;
 use restir_render::timeline::AnimatedScene;
 use restir_render::{Camera, Gpu, Mode, Renderer, Scene, Settings, ViewSettings};
 
-use super::camera_path::{cut_viewpoint, orbit};
-use super::render::{FrameUpdate, RenderArgs};
-use super::render_job::Job;
+use super::job::Job;
+use crate::cli::camera_path::{cut_viewpoint, orbit};
+
+/// One frame's scene update: posing time (ms) and the renderer's update cost.
+pub type FrameUpdate = (f64, SceneUpdateTimes);
 
 /// One side in progress.
 pub struct SideRun {
@@ -29,25 +31,24 @@ pub struct SideRun {
 }
 
 impl SideRun {
-    #[allow(clippy::too_many_arguments)]
+    /// A renderer for one side: `mode` and `settings` (A's or B's), the job's size, seed
+    /// and effects, and `view` (the debug view and exposure both sides show).
     pub fn new(
         gpu: &Gpu,
         loaded: &Scene,
         job: &Job,
         mode: Mode,
         settings: Settings,
-        size: (u32, u32),
-        seed: u32,
-        effects: Option<EffectSet>,
         view: ViewSettings,
     ) -> anyhow::Result<SideRun> {
+        let size = job.size;
         let mut scene = AnimatedScene::new(loaded.clone());
         scene.set_clip_choice(job.clip_choice(loaded)?);
         scene.pose_only(job.timeline.time_of(0));
         let mut renderer = Renderer::new(gpu.clone(), scene.scene(), size.0, size.1, settings)?;
         renderer.set_mode(mode);
-        renderer.set_seed(seed);
-        renderer.force_effects(effects);
+        renderer.set_seed(job.seed);
+        renderer.force_effects(job.effects.clone());
         renderer.set_view(view);
         let start_camera = job.camera.unwrap_or_else(|| renderer.camera());
         let center = renderer.scene_bounds().center();
@@ -64,7 +65,7 @@ impl SideRun {
 
     /// Poses the scene for `frame`, moves the camera and renders (waiting for the frame's
     /// report, so no counter readback is ever dropped).
-    pub fn render(&mut self, frame: u32, job: &Job, args: &RenderArgs) -> anyhow::Result<()> {
+    pub fn render(&mut self, frame: u32, job: &Job) -> anyhow::Result<()> {
         let renderer = &mut self.renderer;
         if frame > 0 {
             let posing = Instant::now();
@@ -79,14 +80,15 @@ impl SideRun {
                     .push(((total - times.total_ms()).max(0.0), times));
             }
         }
-        let mut camera = if args.orbit != 0.0 {
-            orbit(self.start_camera, self.center, args.orbit * frame as f32)
+        let motion = job.motion;
+        let mut camera = if motion.orbit != 0.0 {
+            orbit(self.start_camera, self.center, motion.orbit * frame as f32)
         } else {
             self.start_camera
         };
-        if args.cut_at.is_some_and(|cut| frame >= cut) {
+        if motion.cut_at.is_some_and(|cut| frame >= cut) {
             camera = cut_viewpoint(camera, renderer.scene_bounds());
-            if args.cut_at == Some(frame) {
+            if motion.cut_at == Some(frame) {
                 renderer.request_cut();
             }
         }

@@ -1,18 +1,57 @@
 //! `render --stats`: the JSON document, one block per side with `--compare`, and the
 //! scene-time block of an animated scene.
 
+use std::path::Path;
 use std::time::Instant;
 
+use anyhow::Context;
 use restir_render::stats::{FrameReport, StatsSummary};
-use restir_render::timeline::Timeline;
 use restir_render::{LinearImage, Mode, Renderer};
 use serde::Serialize;
 
-use super::render::{FrameUpdate, RenderArgs};
+use super::display::read_image;
+use super::job::Job;
+use super::render_loop::{FrameUpdate, SideRun};
+
+/// Writes the document for side A (and, with `--compare`, a block per side). `image` is
+/// what was written, the split with `--compare`: the document's own non-finite count is
+/// that image's.
+pub(super) fn write(
+    path: &Path,
+    job: &Job,
+    left: SideRun,
+    right: Option<SideRun>,
+    image: &LinearImage,
+    divider: u32,
+) -> anyhow::Result<()> {
+    let side_of = |run: SideRun| Side {
+        image: read_image(&run.renderer, job.accumulate),
+        scene_time: run
+            .scene
+            .is_animated()
+            .then(|| scene_time_stats(job, &run.updates, &run.renderer, run.scene.scene())),
+        renderer: run.renderer,
+        reports: run.reports,
+    };
+    let left = side_of(left);
+    let right = right.map(side_of);
+    let mut doc = side_stats(&left);
+    doc.summary.nan_inf_pixels = image.non_finite_count() as u64;
+    if let (Some(r), Some(b)) = (&right, &job.compare) {
+        doc.compare = Some(Box::new(CompareStats {
+            divider_column: divider,
+            left: side_stats(&left),
+            right_config: b.label.clone(),
+            right: side_stats(r),
+        }));
+    }
+    let text = serde_json::to_string_pretty(&doc)?;
+    std::fs::write(path, text).with_context(|| format!("{}: cannot write stats", path.display()))
+}
 
 /// Scene time and the per-frame update cost of an animated scene (`--stats`).
 #[derive(Clone, Serialize)]
-pub(super) struct SceneTimeStats {
+struct SceneTimeStats {
     /// Scene time of the first and the last frame, seconds.
     first_time: f32,
     last_time: f32,
@@ -46,7 +85,7 @@ struct LoadStats {
 
 /// The `--stats` JSON document.
 #[derive(Serialize)]
-pub(super) struct StatsFile<'a> {
+struct StatsFile<'a> {
     scene: &'a restir_render::gpu_scene::SceneInfo,
     adapter: String,
     /// The driver and its version (lavapipe: "llvmpipe Mesa 25.0.7…"), so every figure
@@ -78,24 +117,24 @@ pub(super) struct StatsFile<'a> {
     #[serde(skip_serializing_if = "Option::is_none")]
     temporal_window: Option<WindowStats>,
     #[serde(flatten)]
-    pub(super) summary: StatsSummary,
+    summary: StatsSummary,
     /// With `--compare`: a block per side (left = this configuration, right = B).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub(super) compare: Option<Box<CompareStats<'a>>>,
+    compare: Option<Box<CompareStats<'a>>>,
 }
 
 #[derive(Serialize)]
-pub(super) struct CompareStats<'a> {
+struct CompareStats<'a> {
     /// First column of the right side.
-    pub(super) divider_column: u32,
-    pub(super) left: StatsFile<'a>,
-    pub(super) right_config: String,
-    pub(super) right: StatsFile<'a>,
+    divider_column: u32,
+    left: StatsFile<'a>,
+    right_config: String,
+    right: StatsFile<'a>,
 }
 
 /// Where the camera was (position, unit quaternion x y z w, vertical field of view).
 #[derive(Clone, Serialize)]
-pub(super) struct CameraStats {
+struct CameraStats {
     position: [f32; 3],
     rotation: [f32; 4],
     yfov_degrees: f32,
@@ -104,7 +143,7 @@ pub(super) struct CameraStats {
 /// The temporal window of the boiling views at the last frame, over the pixels that see
 /// a surface (README "Debug views").
 #[derive(Clone, Serialize)]
-pub(super) struct WindowStats {
+struct WindowStats {
     frames: u32,
     /// Mean over pixels of σ/mean of luminance in the window.
     mean_boiling: f64,
@@ -133,12 +172,12 @@ fn window_stats(renderer: &Renderer) -> Option<WindowStats> {
 }
 
 /// One side's renderer and what it produced.
-pub(super) struct Side {
-    pub(super) renderer: Renderer,
-    pub(super) reports: Vec<FrameReport>,
-    pub(super) image: LinearImage,
+struct Side {
+    renderer: Renderer,
+    reports: Vec<FrameReport>,
+    image: LinearImage,
     /// Scene time and update costs, for an animated scene.
-    pub(super) scene_time: Option<SceneTimeStats>,
+    scene_time: Option<SceneTimeStats>,
 }
 
 fn median(mut values: Vec<f64>) -> f64 {
@@ -149,13 +188,13 @@ fn median(mut values: Vec<f64>) -> f64 {
     values[values.len() / 2]
 }
 
-pub(super) fn scene_time_stats(
-    timeline: Timeline,
-    args: &RenderArgs,
+fn scene_time_stats(
+    job: &Job,
     updates: &[FrameUpdate],
     renderer: &Renderer,
     scene: &restir_render::Scene,
 ) -> SceneTimeStats {
+    let timeline = job.timeline;
     let of = |f: fn(&FrameUpdate) -> f64| median(updates.iter().map(f).collect());
     let positions: Vec<_> = (0..scene.triangles.len())
         .map(|t| scene.triangle_positions(t))
@@ -165,7 +204,7 @@ pub(super) fn scene_time_stats(
     let bvh_rebuild_ms = build.elapsed().as_secs_f64() * 1e3;
     SceneTimeStats {
         first_time: timeline.time_of(0),
-        last_time: timeline.time_of(args.frames - 1),
+        last_time: timeline.time_of(job.frames - 1),
         fps: timeline.fps,
         median_pose_ms: of(|u| u.0),
         median_bvh_ms: of(|u| u.1.bvh_ms),
@@ -193,7 +232,7 @@ pub(super) fn scene_time_stats(
     }
 }
 
-pub(super) fn side_stats(side: &Side) -> StatsFile<'_> {
+fn side_stats(side: &Side) -> StatsFile<'_> {
     let renderer = &side.renderer;
     let effects = renderer
         .last_effects()

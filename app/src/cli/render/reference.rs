@@ -5,21 +5,19 @@
 use std::io::Write;
 
 use anyhow::bail;
-use restir_render::effects::EffectSet;
 use restir_render::reference_cache::{Progress, ReferenceCache, ReferenceRequest};
 use restir_render::{DebugView, Gpu, LinearImage, Renderer};
 
-use super::render::RenderArgs;
-use super::render_job::Job;
+use super::job::Job;
 use super::render_loop::SideRun;
 
 /// Why a view cannot be compared with one reference, if it cannot: the bias view scores a
 /// running average, which is one image only for a still camera at one moment.
-pub fn check_comparable(job: &Job, args: &RenderArgs, animated: bool) -> anyhow::Result<()> {
+pub fn check_comparable(job: &Job, animated: bool) -> anyhow::Result<()> {
     if job.view != DebugView::Bias {
         return Ok(());
     }
-    if args.orbit != 0.0 || args.cut_at.is_some() {
+    if job.motion.orbit != 0.0 || job.motion.cut_at.is_some() {
         bail!(
             "--debug-view bias compares a running average with one reference: it needs a still camera (no --orbit, no --cut-at)"
         );
@@ -34,27 +32,21 @@ pub fn check_comparable(job: &Job, args: &RenderArgs, animated: bool) -> anyhow:
 
 /// The reference of a side's last frame (same scene time, camera, size, jitter and bounces)
 /// and its own noise (luma RMSE), for `set_reference_image`.
-pub fn reference_of(
-    run: &SideRun,
-    gpu: &Gpu,
-    job: &Job,
-    effects: Option<&EffectSet>,
-    args: &RenderArgs,
-) -> anyhow::Result<(LinearImage, f32)> {
+pub fn reference_of(run: &SideRun, gpu: &Gpu, job: &Job) -> anyhow::Result<(LinearImage, f32)> {
     let settings = run.renderer.settings().clone();
     let mut request = ReferenceRequest::new(
         &job.scene,
         run.scene.scene(),
         run.renderer.camera(),
         run.renderer.size(),
-        args.reference_spp,
+        job.reference_spp,
         settings.jitter,
     )
     .with_max_bounces(settings.reference_bounces());
-    if let Some(e) = effects {
+    if let Some(e) = &job.effects {
         request.effects = e.clone();
     }
-    let cache = match &args.cache_dir {
+    let cache = match &job.cache_dir {
         Some(dir) => ReferenceCache::new(dir),
         None => ReferenceCache::at_default_dir(),
     };

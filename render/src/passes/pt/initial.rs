@@ -1,0 +1,39 @@
+//! ReSTIR PT initial path (pt/initial.wgsl): one path per pixel, its sub-paths (light
+//! sampling and BSDF ends at every vertex past the first) the candidates of the pixel's
+//! path reservoir. Declares the PT resources the other PT passes share.
+
+use crate::passes::pass::{Dispatch, PassDef, read, write};
+use crate::passes::resources::{Allocation, Chain, PixelBuffer, Resource::*, Role};
+use crate::gpu_types::{GpuPtPixelDebug, GpuPtProbeStage, GpuPtReservoir};
+use crate::shader_constants::PT_PROBE_STAGES;
+
+/// ReSTIR PT path reservoirs (their own ping-pong, history kept for PT temporal reuse).
+pub const PT_RESERVOIRS: Chain = Chain {
+    name: "pt reservoirs",
+    stride: std::mem::size_of::<GpuPtReservoir>(),
+};
+/// Per-pixel PT debug records (shift outcomes, the survivor's |J|, M per stage).
+pub const PT_DEBUG: PixelBuffer = PixelBuffer {
+    name: "pt debug",
+    stride: std::mem::size_of::<GpuPtPixelDebug>(),
+    allocation: Allocation::Full,
+};
+/// The inspected pixel's path after each PT stage (pt_probe.wgsl): one record per stage,
+/// whatever the image size.
+pub const PT_PROBE: PixelBuffer = PixelBuffer {
+    name: "pt probe",
+    stride: std::mem::size_of::<GpuPtProbeStage>(),
+    allocation: Allocation::Fixed(PT_PROBE_STAGES as u64),
+};
+
+pub const PASS: PassDef = PassDef {
+    name: "pt initial",
+    shader: "pt/initial.wgsl",
+    group: &[
+        read(Surfaces),
+        write(Chain(&PT_RESERVOIRS, Role::Out)),
+        write(Pixels(&PT_DEBUG)),
+        write(Pixels(&PT_PROBE)),
+    ],
+    dispatch: Dispatch::Pixels,
+};

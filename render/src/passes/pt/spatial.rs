@@ -1,0 +1,19 @@
+//! ReSTIR PT spatial reuse (pt/spatial.wgsl): neighbours' paths shifted here by the chosen
+//! shift mapping, merged under pairwise MIS.
+
+use crate::passes::pass::{Dispatch, PassDef, read, write};
+use super::initial::{PT_DEBUG, PT_PROBE, PT_RESERVOIRS};
+use crate::passes::resources::{Resource::*, Role};
+
+pub const PASS: PassDef = PassDef {
+    name: "pt spatial",
+    shader: "pt/spatial.wgsl",
+    group: &[
+        read(Surfaces),
+        read(Chain(&PT_RESERVOIRS, Role::In)),
+        write(Chain(&PT_RESERVOIRS, Role::Out)),
+        write(Pixels(&PT_DEBUG)),
+        write(Pixels(&PT_PROBE)),
+    ],
+    dispatch: Dispatch::Pixels,
+};

@@ -1,0 +1,22 @@
+//! ReSTIR PT temporal reuse (pt/temporal.wgsl): reprojection and G-buffer validation, the
+//! previous pixel's path shifted here and this pixel's path shifted back, merged under
+//! pairwise MIS with the history's confidence capped at `pt_m_cap`.
+
+use crate::passes::pass::{Dispatch, PassDef, read, write};
+use super::initial::{PT_DEBUG, PT_PROBE, PT_RESERVOIRS};
+use crate::passes::resources::{Resource::*, Role};
+
+pub const PASS: PassDef = PassDef {
+    name: "pt temporal",
+    shader: "pt/temporal.wgsl",
+    group: &[
+        read(Surfaces),
+        read(PrevSurfaces),
+        read(Chain(&PT_RESERVOIRS, Role::In)),
+        read(Chain(&PT_RESERVOIRS, Role::History)),
+        write(Chain(&PT_RESERVOIRS, Role::Out)),
+        write(Pixels(&PT_DEBUG)),
+        write(Pixels(&PT_PROBE)),
+    ],
+    dispatch: Dispatch::Pixels,
+};

@@ -1,0 +1,46 @@
+// ReSTIR GI shading: the indirect radiance f_r(x_v) · L_o · cos θ · W of the pixel's GI
+// sample, added to the frame DI shaded (radiance and running sum) and kept alone for the
+// `indirect` view. No visibility ray here: an initial sample is visible by construction,
+// spatial reuse traces the reconnection (gi_spatial_visibility), and a temporal sample
+// was visible from the previous visible point (README "Indirect" lists what that leaves).
+#include "gi/reuse.wgsl"
+
+@group(2) @binding(0) var<storage, read> surfaces: array<Surface>;
+@group(2) @binding(1) var<storage, read> gi_reservoirs: array<GiReservoir>;
+@group(2) @binding(2) var<storage, read_write> radiance: array<vec4<f32>>;
+@group(2) @binding(3) var<storage, read_write> accumulation: array<vec4<f32>>;
+@group(2) @binding(4) var<storage, read_write> indirect: array<vec4<f32>>;
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    // Once a frame: which indirect technique ran (`--stats` names its block by it).
+    if all(id == vec3<u32>(0u)) {
+        count_stat(STAT_INDIRECT_FRAMES + INDIRECT_GI);
+    }
+    if !pixel_in_frame(id) {
+        return;
+    }
+    let index = pixel_index(id.xy);
+    let s = surfaces[index];
+    var color = vec3<f32>(0.0);
+    if surface_is_valid(s) {
+        let r = gi_checked(gi_reservoirs[index], INDIRECT_PASS_SHADE);
+        if !gi_reservoir_is_null(r) {
+            let sp = shading_point_from_surface(s, frame.camera_position);
+            let d = r.position - sp.position;
+            let len2 = dot(d, d);
+            if len2 > 0.0 && dot(sp.geo_normal, d) > 0.0 {
+                let wi = d * inverseSqrt(len2);
+                let cos_theta = gi_receiver_cosine(sp.position, sp.normal, r.position);
+                color = s.throughput * eval_brdf(sp.brdf, sp.normal, sp.wo, wi) * r.radiance * (cos_theta * r.weight);
+            }
+        }
+    }
+    if !is_finite_vec3(color) {
+        count_stat(STAT_INDIRECT_NONFINITE + INDIRECT_PASS_SHADE);
+        color = vec3<f32>(0.0);
+    }
+    indirect[index] = vec4<f32>(color, 1.0);
+    radiance[index] += vec4<f32>(color, 0.0);
+    accumulation[index] += vec4<f32>(color, 0.0);
+}

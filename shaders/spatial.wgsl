@@ -64,28 +64,14 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     var pass_mask = 0u;
     var c_total = canonical.m;
     var contribution_sum = canonical.p_hat * canonical.weight;
-    let size = vec2<i32>(frame.size);
     let k = min(params.spatial_neighbours, MAX_SPATIAL_NEIGHBOURS);
     for (var i = 0u; i < k; i++) {
         let offset = disk_neighbour_offset(rand_vec2(&rng), params.spatial_radius);
-        var q = vec2<i32>(id.xy) + offset;
-        var mask = 0u;
-        if any(q < vec2<i32>(0)) || any(q >= size) {
-            if check_enabled(REJECT_OFFSCREEN) {
-                mask |= REJECT_OFFSCREEN;
-            }
-            q = clamp(q, vec2<i32>(0), size - 1);
-        }
-        let q_index = pixel_index(vec2<u32>(q));
+        let candidate = reuse_candidate(vec2<i32>(id.xy) + offset, s, false);
+        var mask = candidate.mask;
+        let q_index = candidate.index;
         if mask == 0u {
-            let ns = surfaces[q_index];
-            if !surface_is_valid(ns) {
-                if check_enabled(REJECT_SURFACE) {
-                    mask |= REJECT_SURFACE;
-                }
-            } else {
-                mask |= surface_dissimilarity(s, ns, false);
-            }
+            mask |= candidate_surface_checks(s, surfaces[q_index], false, false);
             let nr = load_neighbour(q_index);
             if reservoir_is_null(nr) && check_enabled(REJECT_RESERVOIR) {
                 mask |= REJECT_RESERVOIR;

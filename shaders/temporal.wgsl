@@ -27,7 +27,7 @@ struct TemporalCandidate {
 
 fn validate_previous(pixel: vec2<i32>, s: Surface, sp: ShadingPoint) -> TemporalCandidate {
     var c = TemporalCandidate(0u, reservoir_empty(), 0.0, 0.0, Surface());
-    let read = previous_pixel(pixel, s);
+    let read = reuse_candidate(pixel, s, true);
     if read.mask != 0u {
         c.mask |= read.mask;
         return c;
@@ -35,13 +35,9 @@ fn validate_previous(pixel: vec2<i32>, s: Surface, sp: ShadingPoint) -> Temporal
     let prev_index = read.index;
     let ps = prev_surfaces[prev_index];
     c.prev_surface = ps;
-    if frame.history_valid == 0u || !surface_is_valid(ps) {
-        if check_enabled(REJECT_SURFACE) {
-            c.mask |= REJECT_SURFACE;
-            return c;
-        }
-    } else {
-        c.mask |= surface_dissimilarity(s, ps, true);
+    c.mask |= candidate_surface_checks(s, ps, true, false);
+    if (c.mask & REJECT_SURFACE) != 0u {
+        return c;
     }
     let prev = checked_reservoir(prev_reservoirs[prev_index], PASS_TEMPORAL);
     c.reservoir = prev;

@@ -136,94 +136,56 @@ fn can_occlude(scene: &Scene) -> bool {
     false
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub enum Effect {
-    AreaLights,
-    EmissiveTextures,
-    PunctualLights,
-    Specular,
-    Metallic,
-    BaseColorTextures,
-    MetallicRoughnessTextures,
-    TextureTransform,
-    AlphaMask,
-    Transparency,
-    Unlit,
-    Shadows,
-    Motion,
-    BsdfCandidates,
-    LightTiles,
-    Environment,
-    Animation,
+/// One row per effect: its variant, its WGSL define (an `#ifdef` name in the shaders) and
+/// its name on the command line (`--effects`) and in `--stats`. Why a scene turns it on is
+/// `EffectSet::detect`.
+macro_rules! effect_table {
+    ($( $(#[$meta:meta])* $variant:ident => $define:literal, $name:literal; )*) => {
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+        pub enum Effect {
+            $( $(#[$meta])* $variant, )*
+        }
+
+        impl Effect {
+            pub const ALL: [Effect; [$( Effect::$variant ),*].len()] = [$( Effect::$variant ),*];
+
+            /// The WGSL define.
+            pub fn define(self) -> &'static str {
+                match self { $( Effect::$variant => $define, )* }
+            }
+
+            /// Lower-case name used on the command line (`--effects`) and in stats.
+            pub fn name(self) -> &'static str {
+                match self { $( Effect::$variant => $name, )* }
+            }
+        }
+    };
+}
+
+effect_table! {
+    AreaLights => "AREA_LIGHTS", "area-lights";
+    EmissiveTextures => "EMISSIVE_TEXTURES", "emissive-textures";
+    PunctualLights => "PUNCTUAL_LIGHTS", "punctual-lights";
+    /// The GGX lobe (some material has specularFactor > 0 or metallic > 0).
+    Specular => "SPECULAR", "specular";
+    Metallic => "METALLIC", "metallic";
+    BaseColorTextures => "BASE_COLOR_TEXTURES", "base-color-textures";
+    MetallicRoughnessTextures => "METALLIC_ROUGHNESS_TEXTURES", "metallic-roughness-textures";
+    /// A KHR_texture_transform other than the identity: only then does a lookup read its
+    /// matrix (docs/src/compile-time.md).
+    TextureTransform => "TEXTURE_TRANSFORM", "texture-transform";
+    AlphaMask => "ALPHA_MASK", "alpha-mask";
+    Transparency => "TRANSPARENCY", "transparency";
+    Unlit => "UNLIT", "unlit";
+    Shadows => "SHADOWS", "shadows";
+    Motion => "MOTION", "motion";
+    BsdfCandidates => "BSDF_CANDIDATES", "bsdf-candidates";
+    LightTiles => "LIGHT_TILES", "light-tiles";
+    Environment => "ENVIRONMENT", "environment";
+    Animation => "ANIMATION", "animation";
 }
 
 impl Effect {
-    pub const ALL: [Effect; 17] = [
-        Effect::AreaLights,
-        Effect::EmissiveTextures,
-        Effect::PunctualLights,
-        Effect::Specular,
-        Effect::Metallic,
-        Effect::BaseColorTextures,
-        Effect::MetallicRoughnessTextures,
-        Effect::TextureTransform,
-        Effect::AlphaMask,
-        Effect::Transparency,
-        Effect::Unlit,
-        Effect::Shadows,
-        Effect::Motion,
-        Effect::BsdfCandidates,
-        Effect::LightTiles,
-        Effect::Environment,
-        Effect::Animation,
-    ];
-
-    /// The WGSL define.
-    pub fn define(self) -> &'static str {
-        match self {
-            Effect::AreaLights => "AREA_LIGHTS",
-            Effect::EmissiveTextures => "EMISSIVE_TEXTURES",
-            Effect::PunctualLights => "PUNCTUAL_LIGHTS",
-            Effect::Specular => "SPECULAR",
-            Effect::Metallic => "METALLIC",
-            Effect::BaseColorTextures => "BASE_COLOR_TEXTURES",
-            Effect::MetallicRoughnessTextures => "METALLIC_ROUGHNESS_TEXTURES",
-            Effect::TextureTransform => "TEXTURE_TRANSFORM",
-            Effect::AlphaMask => "ALPHA_MASK",
-            Effect::Transparency => "TRANSPARENCY",
-            Effect::Unlit => "UNLIT",
-            Effect::Shadows => "SHADOWS",
-            Effect::Motion => "MOTION",
-            Effect::BsdfCandidates => "BSDF_CANDIDATES",
-            Effect::LightTiles => "LIGHT_TILES",
-            Effect::Environment => "ENVIRONMENT",
-            Effect::Animation => "ANIMATION",
-        }
-    }
-
-    /// Lower-case name used on the command line (`--effects`) and in stats.
-    pub fn name(self) -> &'static str {
-        match self {
-            Effect::AreaLights => "area-lights",
-            Effect::EmissiveTextures => "emissive-textures",
-            Effect::PunctualLights => "punctual-lights",
-            Effect::Specular => "specular",
-            Effect::Metallic => "metallic",
-            Effect::BaseColorTextures => "base-color-textures",
-            Effect::MetallicRoughnessTextures => "metallic-roughness-textures",
-            Effect::TextureTransform => "texture-transform",
-            Effect::AlphaMask => "alpha-mask",
-            Effect::Transparency => "transparency",
-            Effect::Unlit => "unlit",
-            Effect::Shadows => "shadows",
-            Effect::Motion => "motion",
-            Effect::BsdfCandidates => "bsdf-candidates",
-            Effect::LightTiles => "light-tiles",
-            Effect::Environment => "environment",
-            Effect::Animation => "animation",
-        }
-    }
-
     pub fn from_name(name: &str) -> Option<Effect> {
         Effect::ALL.into_iter().find(|e| e.name() == name)
     }

@@ -6,10 +6,13 @@
 
 use bytemuck::{Pod, Zeroable};
 
-/// Marks "no light" in a reservoir and "not an emitter" in `GpuTriangle::light`.
-pub const NO_LIGHT: u32 = u32::MAX;
-/// Marks an absent texture slot in `GpuMaterial`.
-pub const NO_TEXTURE: u32 = u32::MAX;
+wgsl_constants! {
+    fn absent_markers;
+    /// Marks "no light" in a reservoir and "not an emitter" in `GpuTriangle::light`.
+    pub const NO_LIGHT: u32 = u32::MAX;
+    /// Marks an absent texture slot in `GpuMaterial`.
+    pub const NO_TEXTURE: u32 = u32::MAX;
+}
 
 /// Triangle positions in BVH order (what rays and the rasteriser read).
 #[repr(C)]
@@ -36,14 +39,17 @@ pub struct GpuTriangleShading {
     pub uvs: [[f32; 2]; 3],
 }
 
-pub const MATERIAL_DOUBLE_SIDED: u32 = 1;
-pub const MATERIAL_ALPHA_MASK: u32 = 2;
-/// Alpha BLEND: base-colour alpha is coverage (transparency.wgsl).
-pub const MATERIAL_ALPHA_BLEND: u32 = 4;
-/// Light can pass through (BLEND or transmission > 0): rays treat the surface as a layer.
-pub const MATERIAL_TRANSPARENT: u32 = 8;
-/// KHR_materials_unlit: seen as its base colour, black to every other light path.
-pub const MATERIAL_UNLIT: u32 = 16;
+wgsl_constants! {
+    fn material_flags;
+    pub const MATERIAL_DOUBLE_SIDED: u32 = 1;
+    pub const MATERIAL_ALPHA_MASK: u32 = 2;
+    /// Alpha BLEND: base-colour alpha is coverage (transparency.wgsl).
+    pub const MATERIAL_ALPHA_BLEND: u32 = 4;
+    /// Light can pass through (BLEND or transmission > 0): rays treat the surface as a layer.
+    pub const MATERIAL_TRANSPARENT: u32 = 8;
+    /// KHR_materials_unlit: seen as its base colour, black to every other light path.
+    pub const MATERIAL_UNLIT: u32 = 16;
+}
 
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
@@ -77,19 +83,25 @@ pub struct GpuTexture {
     pub uv_transform: [[f32; 2]; 3],
 }
 
-/// Bits of `GpuTexture::placement[0]` that hold the first texel: the texel buffer holds at
-/// most 2^28 texels (1 GiB), the two wrap modes take the top four bits.
-pub const TEXEL_OFFSET_BITS: u32 = 28;
+wgsl_constants! {
+    fn texture_packing;
+    /// Bits of `GpuTexture::placement[0]` that hold the first texel: the texel buffer holds at
+    /// most 2^28 texels (1 GiB), the two wrap modes take the top four bits.
+    pub const TEXEL_OFFSET_BITS: u32 = 28;
+}
 /// The largest texture side `GpuTexture::placement[1]` holds.
 pub const MAX_TEXTURE_SIDE: u32 = 0xffff;
 
-pub const LIGHT_KIND_TRIANGLE: u32 = 0;
-pub const LIGHT_KIND_PUNCTUAL: u32 = 1;
-/// The environment's one entry (issue 13); its sample's `uv` is an image coordinate.
-pub const LIGHT_KIND_ENVIRONMENT: u32 = 2;
-/// The light kind lives in the top two bits of `GpuLight::kind_prim`.
-pub const LIGHT_KIND_SHIFT: u32 = 30;
-pub const LIGHT_PRIM_MASK: u32 = (1 << LIGHT_KIND_SHIFT) - 1;
+wgsl_constants! {
+    fn light_kinds;
+    pub const LIGHT_KIND_TRIANGLE: u32 = 0;
+    pub const LIGHT_KIND_PUNCTUAL: u32 = 1;
+    /// The environment's one entry (issue 13); its sample's `uv` is an image coordinate.
+    pub const LIGHT_KIND_ENVIRONMENT: u32 = 2;
+    /// The light kind lives in the top two bits of `GpuLight::kind_prim`.
+    pub const LIGHT_KIND_SHIFT: u32 = 30;
+    pub const LIGHT_PRIM_MASK: u32 = (1 << LIGHT_KIND_SHIFT) - 1;
+}
 
 /// One entry of the power-proportional light table, with its alias-table slot.
 #[repr(C)]
@@ -104,9 +116,12 @@ pub struct GpuLight {
     pub alias_index: u32,
 }
 
-pub const PUNCTUAL_POINT: u32 = 0;
-pub const PUNCTUAL_SPOT: u32 = 1;
-pub const PUNCTUAL_DIRECTIONAL: u32 = 2;
+wgsl_constants! {
+    fn punctual_kinds;
+    pub const PUNCTUAL_POINT: u32 = 0;
+    pub const PUNCTUAL_SPOT: u32 = 1;
+    pub const PUNCTUAL_DIRECTIONAL: u32 = 2;
+}
 
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
@@ -364,7 +379,7 @@ pub struct GpuEnvironment {
 }
 
 /// A ReSTIR GI reservoir (issue 12; the math is reservoir/gi.rs, the WGSL functions
-/// common/gi_reservoir.wgsl): the sample point, its normal and the radiance cached toward
+/// gi/reservoir.wgsl): the sample point, its normal and the radiance cached toward
 /// the pixel that drew it, and the reservoir's weights, in 48 bytes. The visible point it
 /// belongs to is the pixel's `GpuSurface`. The sample's source pdf is not stored: after
 /// initial resampling `weight` (W) stands for it.

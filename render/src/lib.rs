@@ -2,6 +2,8 @@
 //! pipeline (G-buffer → initial RIS → temporal → spatial → shade) with a brute-force
 //! reference, debug buffers and metrics. Usable headless; the viewer drives it too.
 
+#[macro_use]
+pub mod wgsl_constants;
 pub mod effects;
 pub mod environment;
 pub mod flicker;

@@ -3,30 +3,37 @@
 //! the shaders cannot drift apart.
 
 use crate::gpu_types;
+use crate::wgsl_constants::WgslValue;
 
-/// Validation checks; the same bits form the temporal and spatial rejection masks
-/// (restir-notes.md §2.2). Bit order is the order of the rejection-view legend.
-pub const REJECT_OFFSCREEN: u32 = 1 << 0;
-pub const REJECT_SURFACE: u32 = 1 << 1;
-pub const REJECT_MATERIAL: u32 = 1 << 2;
-pub const REJECT_NORMAL: u32 = 1 << 3;
-pub const REJECT_DEPTH: u32 = 1 << 4;
-pub const REJECT_RESERVOIR: u32 = 1 << 5;
-pub const REJECT_TARGET: u32 = 1 << 6;
-pub const REJECT_TARGET_RATIO: u32 = 1 << 7;
-/// The stored sample's light is off or gone (dynamic scenes): never reusable, so this one
-/// is not a switchable check.
-pub const REJECT_LIGHT_GONE: u32 = 1 << 8;
-pub const REJECT_REASON_COUNT: usize = 9;
+wgsl_constants! {
+    fn rejection_bits;
+    /// Validation checks; the same bits form the temporal and spatial rejection masks
+    /// (restir-notes.md §2.2). Bit order is the order of the rejection-view legend.
+    pub const REJECT_OFFSCREEN: u32 = 1 << 0;
+    pub const REJECT_SURFACE: u32 = 1 << 1;
+    pub const REJECT_MATERIAL: u32 = 1 << 2;
+    pub const REJECT_NORMAL: u32 = 1 << 3;
+    pub const REJECT_DEPTH: u32 = 1 << 4;
+    pub const REJECT_RESERVOIR: u32 = 1 << 5;
+    pub const REJECT_TARGET: u32 = 1 << 6;
+    pub const REJECT_TARGET_RATIO: u32 = 1 << 7;
+    /// The stored sample's light is off or gone (dynamic scenes): never reusable, so this one
+    /// is not a switchable check.
+    pub const REJECT_LIGHT_GONE: u32 = 1 << 8;
+    pub const REJECT_REASON_COUNT: usize = 9;
+}
 /// Every temporal rejection reason (the rejection view's default reason mask; its
 /// spatial part is a count of rejected neighbours, not a mask).
 pub const REJECT_TEMPORAL_REASONS: u32 = (1 << REJECT_REASON_COUNT) - 1;
-/// The checks that read the G-buffer only (the candidate's surface, never its sample).
-/// Under pairwise MIS only these decide whether a temporal or spatial candidate takes part
-/// (issue 18); the others (reservoir null, target 0, target ratio, light gone) look at the
-/// sample and are counted, not acted on: the candidate stays in the MIS as a domain.
-pub const REJECT_SURFACE_CHECKS: u32 =
-    REJECT_OFFSCREEN | REJECT_SURFACE | REJECT_MATERIAL | REJECT_NORMAL | REJECT_DEPTH;
+wgsl_constants! {
+    fn surface_checks;
+    /// The checks that read the G-buffer only (the candidate's surface, never its sample).
+    /// Under pairwise MIS only these decide whether a temporal or spatial candidate takes part
+    /// (issue 18); the others (reservoir null, target 0, target ratio, light gone) look at the
+    /// sample and are counted, not acted on: the candidate stays in the MIS as a domain.
+    pub const REJECT_SURFACE_CHECKS: u32 =
+        REJECT_OFFSCREEN | REJECT_SURFACE | REJECT_MATERIAL | REJECT_NORMAL | REJECT_DEPTH;
+}
 
 /// Human names of the rejection bits, in bit order (stats JSON keys and UI legend).
 pub const REJECT_REASON_NAMES: [&str; REJECT_REASON_COUNT] = [
@@ -41,49 +48,55 @@ pub const REJECT_REASON_NAMES: [&str; REJECT_REASON_COUNT] = [
     "light_gone",
 ];
 
-/// Which stage's candidate survived in a pixel.
-pub const SOURCE_NULL: u32 = 0;
-pub const SOURCE_INITIAL: u32 = 1;
-pub const SOURCE_TEMPORAL: u32 = 2;
-pub const SOURCE_SPATIAL: u32 = 3;
+wgsl_constants! {
+    fn sources;
+    /// Which stage's candidate survived in a pixel.
+    pub const SOURCE_NULL: u32 = 0;
+    pub const SOURCE_INITIAL: u32 = 1;
+    pub const SOURCE_TEMPORAL: u32 = 2;
+    pub const SOURCE_SPATIAL: u32 = 3;
+}
 pub const SOURCE_NAMES: [&str; 4] = ["null", "initial", "temporal", "spatial"];
-/// `Reservoir.source` holds the SOURCE_* in its low bits and the sample's age (frames
-/// since it was first drawn) above AGE_SHIFT: no new field, so the reservoir layout and
-/// its memory traffic stay what they are.
-pub const SOURCE_MASK: u32 = 0xff;
-pub const AGE_SHIFT: u32 = 8;
-/// The largest age stored (24 bits).
-pub const AGE_MAX: u32 = (1 << (32 - AGE_SHIFT)) - 1;
+wgsl_constants! {
+    fn packing_and_flags;
+    /// `Reservoir.source` holds the SOURCE_* in its low bits and the sample's age (frames
+    /// since it was first drawn) above AGE_SHIFT: no new field, so the reservoir layout and
+    /// its memory traffic stay what they are.
+    pub const SOURCE_MASK: u32 = 0xff;
+    pub const AGE_SHIFT: u32 = 8;
+    /// The largest age stored (24 bits).
+    pub const AGE_MAX: u32 = (1 << (32 - AGE_SHIFT)) - 1;
 
-pub const DEBUG_FLAG_TEMPORAL_CAP: u32 = 1 << 0;
-pub const DEBUG_FLAG_SPATIAL_CAP: u32 = 1 << 1;
-pub const DEBUG_FLAG_FALLBACK_TRIED: u32 = 1 << 2;
-pub const DEBUG_FLAG_FALLBACK_USED: u32 = 1 << 3;
-pub const DEBUG_FLAG_TEMPORAL_MERGED: u32 = 1 << 4;
-/// The survivor at shading is an environment direction (the source view lightens it).
-pub const DEBUG_FLAG_ENVIRONMENT_SAMPLE: u32 = 1 << 5;
+    pub const DEBUG_FLAG_TEMPORAL_CAP: u32 = 1 << 0;
+    pub const DEBUG_FLAG_SPATIAL_CAP: u32 = 1 << 1;
+    pub const DEBUG_FLAG_FALLBACK_TRIED: u32 = 1 << 2;
+    pub const DEBUG_FLAG_FALLBACK_USED: u32 = 1 << 3;
+    pub const DEBUG_FLAG_TEMPORAL_MERGED: u32 = 1 << 4;
+    /// The survivor at shading is an environment direction (the source view lightens it).
+    pub const DEBUG_FLAG_ENVIRONMENT_SAMPLE: u32 = 1 << 5;
 
-pub const PARAM_FLAG_PERMUTATION: u32 = 1 << 0;
-pub const PARAM_FLAG_PAIRWISE: u32 = 1 << 1;
-pub const PARAM_FLAG_JITTER: u32 = 1 << 2;
-pub const PARAM_FLAG_INITIAL_VISIBILITY: u32 = 1 << 3;
-/// Pairwise MIS evaluates the canonical sample at the previous pixel with last frame's
-/// lights (`previous_lights`; only compiled in for animated scenes).
-pub const PARAM_FLAG_PREVIOUS_LIGHTS: u32 = 1 << 10;
-/// Pairwise MIS with visibility in the target (`mis_visibility`): every pairwise term is
-/// p̂·V, so reuse traces the shadow rays the MIS weights need and shading traces none.
-pub const PARAM_FLAG_MIS_VISIBILITY: u32 = 1 << 11;
-/// Pairwise MIS traces the canonical sample's visibility at the previous pixel against last
-/// frame's geometry (`previous_geometry`; only compiled in for animated scenes).
-pub const PARAM_FLAG_PREVIOUS_GEOMETRY: u32 = 1 << 12;
+    pub const PARAM_FLAG_PERMUTATION: u32 = 1 << 0;
+    pub const PARAM_FLAG_PAIRWISE: u32 = 1 << 1;
+    pub const PARAM_FLAG_JITTER: u32 = 1 << 2;
+    pub const PARAM_FLAG_INITIAL_VISIBILITY: u32 = 1 << 3;
+    /// Pairwise MIS evaluates the canonical sample at the previous pixel with last frame's
+    /// lights (`previous_lights`; only compiled in for animated scenes).
+    pub const PARAM_FLAG_PREVIOUS_LIGHTS: u32 = 1 << 10;
+    /// Pairwise MIS with visibility in the target (`mis_visibility`): every pairwise term is
+    /// p̂·V, so reuse traces the shadow rays the MIS weights need and shading traces none.
+    pub const PARAM_FLAG_MIS_VISIBILITY: u32 = 1 << 11;
+    /// Pairwise MIS traces the canonical sample's visibility at the previous pixel against last
+    /// frame's geometry (`previous_geometry`; only compiled in for animated scenes).
+    pub const PARAM_FLAG_PREVIOUS_GEOMETRY: u32 = 1 << 12;
 
-/// Passes that count non-finite values (issue "hard cases": a GPU-side guard).
-pub const PASS_GBUFFER: u32 = 0;
-pub const PASS_INITIAL: u32 = 1;
-pub const PASS_TEMPORAL: u32 = 2;
-pub const PASS_SPATIAL: u32 = 3;
-pub const PASS_SHADE: u32 = 4;
-pub const PASS_REFERENCE: u32 = 5;
+    /// Passes that count non-finite values (issue "hard cases": a GPU-side guard).
+    pub const PASS_GBUFFER: u32 = 0;
+    pub const PASS_INITIAL: u32 = 1;
+    pub const PASS_TEMPORAL: u32 = 2;
+    pub const PASS_SPATIAL: u32 = 3;
+    pub const PASS_SHADE: u32 = 4;
+    pub const PASS_REFERENCE: u32 = 5;
+}
 pub const GUARDED_PASS_NAMES: [&str; 6] = [
     "gbuffer",
     "initial",
@@ -93,158 +106,163 @@ pub const GUARDED_PASS_NAMES: [&str; 6] = [
     "reference",
 ];
 
-/// Indices into the per-frame atomic counter buffer (REJECT_REASON_COUNT each for the
-/// temporal and spatial rejections).
-pub const STAT_TEMPORAL_REJECT: u32 = 0;
-pub const STAT_SPATIAL_REJECT: u32 = 40;
-pub const STAT_SOURCE: u32 = 16;
-pub const STAT_TEMPORAL_CAP: u32 = 20;
-pub const STAT_SPATIAL_CAP: u32 = 21;
-pub const STAT_FALLBACK_TRIED: u32 = 22;
-pub const STAT_FALLBACK_USED: u32 = 23;
-pub const STAT_NONFINITE: u32 = 24;
-pub const STAT_SURFACE_PIXELS: u32 = 32;
-pub const STAT_TEMPORAL_ACCEPTED: u32 = 33;
-pub const STAT_BOILING_DROPPED: u32 = 34;
-/// ReSTIR GI's counters follow DI's: non-finite values per GI pass, then the GI temporal
-/// and spatial rejections (GI_REJECT_REASON_COUNT each), then merged temporal candidates.
-pub const STAT_GI_NONFINITE: u32 = STAT_SPATIAL_REJECT + REJECT_REASON_COUNT as u32;
-pub const STAT_GI_TEMPORAL_REJECT: u32 = STAT_GI_NONFINITE + GI_GUARDED_PASS_NAMES.len() as u32;
-pub const STAT_GI_SPATIAL_REJECT: u32 = STAT_GI_TEMPORAL_REJECT + GI_REJECT_REASON_COUNT as u32;
-pub const STAT_GI_TEMPORAL_ACCEPTED: u32 = STAT_GI_SPATIAL_REJECT + GI_REJECT_REASON_COUNT as u32;
-/// Shadow rays traced by each DI pass, at STAT_SHADOW_RAYS + PASS_* (GUARDED_PASS_NAMES
-/// order; the reference's rays are not counted), summed over pixels.
-pub const STAT_SHADOW_RAYS: u32 = STAT_GI_TEMPORAL_ACCEPTED + 1;
-pub const STAT_COUNT: u32 = STAT_SHADOW_RAYS + GUARDED_PASS_NAMES.len() as u32;
+wgsl_constants! {
+    fn counters;
+    /// Indices into the per-frame atomic counter buffer, each block right after the one
+    /// before it (nothing is numbered by hand): DI's temporal rejections by reason, the
+    /// survivors' sources, the M caps and permutation fallbacks, non-finite values per DI
+    /// pass, surface pixels, merged temporal candidates, boiling drops, DI's spatial
+    /// rejections by reason.
+    pub const STAT_TEMPORAL_REJECT: u32 = 0;
+    pub const STAT_SOURCE: u32 = STAT_TEMPORAL_REJECT + REJECT_REASON_COUNT as u32;
+    pub const STAT_TEMPORAL_CAP: u32 = STAT_SOURCE + SOURCE_NAMES.len() as u32;
+    pub const STAT_SPATIAL_CAP: u32 = STAT_TEMPORAL_CAP + 1;
+    pub const STAT_FALLBACK_TRIED: u32 = STAT_SPATIAL_CAP + 1;
+    pub const STAT_FALLBACK_USED: u32 = STAT_FALLBACK_TRIED + 1;
+    pub const STAT_NONFINITE: u32 = STAT_FALLBACK_USED + 1;
+    pub const STAT_SURFACE_PIXELS: u32 = STAT_NONFINITE + GUARDED_PASS_NAMES.len() as u32;
+    pub const STAT_TEMPORAL_ACCEPTED: u32 = STAT_SURFACE_PIXELS + 1;
+    pub const STAT_BOILING_DROPPED: u32 = STAT_TEMPORAL_ACCEPTED + 1;
+    pub const STAT_SPATIAL_REJECT: u32 = STAT_BOILING_DROPPED + 1;
+    /// The indirect technique's counters follow DI's (ReSTIR GI's or PT's, whichever ran: they
+    /// never run together): non-finite values per indirect pass, then the temporal and spatial
+    /// rejections (GI_REJECT_REASON_COUNT each: DI's reasons, then GI's reconnection ones),
+    /// then merged temporal candidates and the fallback counters, then the frames each
+    /// technique shaded (STAT_INDIRECT_FRAMES + INDIRECT_GI / INDIRECT_PT), which tell
+    /// `--stats` which ran.
+    pub const STAT_INDIRECT_NONFINITE: u32 = STAT_SPATIAL_REJECT + REJECT_REASON_COUNT as u32;
+    pub const STAT_INDIRECT_TEMPORAL_REJECT: u32 = STAT_INDIRECT_NONFINITE + INDIRECT_GUARDED_PASS_NAMES.len() as u32;
+    pub const STAT_INDIRECT_SPATIAL_REJECT: u32 = STAT_INDIRECT_TEMPORAL_REJECT + GI_REJECT_REASON_COUNT as u32;
+    pub const STAT_INDIRECT_TEMPORAL_ACCEPTED: u32 = STAT_INDIRECT_SPATIAL_REJECT + GI_REJECT_REASON_COUNT as u32;
+    /// Temporal reuse's retries of the plain reprojection after a failed permuted read, and
+    /// the retries that passed (as DI's STAT_FALLBACK_*).
+    pub const STAT_INDIRECT_FALLBACK_TRIED: u32 = STAT_INDIRECT_TEMPORAL_ACCEPTED + 1;
+    pub const STAT_INDIRECT_FALLBACK_USED: u32 = STAT_INDIRECT_FALLBACK_TRIED + 1;
+    pub const STAT_INDIRECT_FRAMES: u32 = STAT_INDIRECT_FALLBACK_USED + 1;
+    /// Shadow rays traced by each DI pass, at STAT_SHADOW_RAYS + PASS_* (GUARDED_PASS_NAMES
+    /// order; the reference's rays are not counted), summed over pixels.
+    pub const STAT_SHADOW_RAYS: u32 = STAT_INDIRECT_FRAMES + INDIRECT_NAMES.len() as u32;
+    pub const STAT_COUNT: u32 = STAT_SHADOW_RAYS + GUARDED_PASS_NAMES.len() as u32;
 
-/// The GI passes that count non-finite values (at STAT_GI_NONFINITE + id).
-pub const GI_PASS_INITIAL: u32 = 0;
-pub const GI_PASS_TEMPORAL: u32 = 1;
-pub const GI_PASS_SPATIAL: u32 = 2;
-pub const GI_PASS_SHADE: u32 = 3;
-pub const GI_GUARDED_PASS_NAMES: [&str; 4] =
-    ["gi initial", "gi temporal", "gi spatial", "gi shade"];
+    /// The indirect passes that count non-finite values (at STAT_INDIRECT_NONFINITE + id),
+    /// named in `--stats` after the technique that ran ("gi initial", "pt initial", ...).
+    pub const INDIRECT_PASS_INITIAL: u32 = 0;
+    pub const INDIRECT_PASS_TEMPORAL: u32 = 1;
+    pub const INDIRECT_PASS_SPATIAL: u32 = 2;
+    pub const INDIRECT_PASS_SHADE: u32 = 3;
+}
+pub const INDIRECT_GUARDED_PASS_NAMES: [&str; 4] = ["initial", "temporal", "spatial", "shade"];
+wgsl_constants! {
+    fn indirect_techniques;
+    /// The indirect techniques (STAT_INDIRECT_FRAMES + id), by their settings' names.
+    pub const INDIRECT_GI: u32 = 0;
+    pub const INDIRECT_PT: u32 = 1;
+}
+pub const INDIRECT_NAMES: [&str; 2] = ["gi", "pt"];
 
-/// Random-number streams, one per purpose (`rng_seed` in rng.wgsl).
-pub const STREAM_INITIAL: u32 = 0;
-pub const STREAM_TEMPORAL: u32 = 1;
-pub const STREAM_REFERENCE: u32 = 2;
-pub const STREAM_LIGHT_TILES: u32 = 3;
-pub const STREAM_SPATIAL: u32 = 4;
-// Spatial passes use STREAM_SPATIAL + pass index (4..4 + MAX_SPATIAL_PASSES).
-pub const STREAM_GI_INITIAL: u32 = 12;
-pub const STREAM_GI_TEMPORAL: u32 = 13;
-pub const STREAM_GI_SPATIAL: u32 = 14;
-/// The G-buffer's choice at each transparent layer (solid or pass, transparency.wgsl).
-pub const STREAM_TRANSPARENCY: u32 = 15;
-/// The most transparent layers a ray passes before the next one counts as opaque: every
-/// ray type (camera, path, shadow) stops at the same count, so all modes agree on the
-/// model, and a ray through a stack of glass still terminates.
-pub const MAX_TRANSPARENT_LAYERS: u32 = 8;
-/// `rng_seed` mixes frame_index × STREAM_COUNT + stream: a stream ≥ STREAM_COUNT would
-/// replay another stream of a later frame (GI once drew DI's next-frame numbers).
-pub const STREAM_COUNT: u32 = 16;
+wgsl_constants! {
+    fn streams_and_limits;
+    /// Random-number streams, one per purpose (`rng_seed` in rng.wgsl).
+    pub const STREAM_INITIAL: u32 = 0;
+    pub const STREAM_TEMPORAL: u32 = 1;
+    pub const STREAM_REFERENCE: u32 = 2;
+    pub const STREAM_LIGHT_TILES: u32 = 3;
+    pub const STREAM_SPATIAL: u32 = 4;
+    // Spatial passes use STREAM_SPATIAL + pass index (4..4 + MAX_SPATIAL_PASSES).
+    pub const STREAM_INDIRECT_INITIAL: u32 = 12;
+    pub const STREAM_INDIRECT_TEMPORAL: u32 = 13;
+    pub const STREAM_INDIRECT_SPATIAL: u32 = 14;
+    /// The G-buffer's choice at each transparent layer (solid or pass, transparency.wgsl).
+    pub const STREAM_TRANSPARENCY: u32 = 15;
+    /// The most transparent layers a ray passes before the next one counts as opaque: every
+    /// ray type (camera, path, shadow) stops at the same count, so all modes agree on the
+    /// model, and a ray through a stack of glass still terminates.
+    pub const MAX_TRANSPARENT_LAYERS: u32 = 8;
+    /// `rng_seed` mixes frame_index × STREAM_COUNT + stream: a stream ≥ STREAM_COUNT would
+    /// replay another stream of a later frame (GI once drew DI's next-frame numbers).
+    pub const STREAM_COUNT: u32 = 16;
 
-/// `bench-rays` (ray_bench.wgsl): rays per surface pixel and dispatch, and the two kinds
-/// (the dispatch's `PassInfo` slot). 16 rays keep one dispatch far above its fixed cost on
-/// a GPU and well inside Mesa 22's loop-iteration cap (REFERENCE_SAMPLES_PER_DISPATCH).
-pub const RAY_BENCH_RAYS_PER_PIXEL: u32 = 16;
-pub const RAY_BENCH_SHADOW: u32 = 0;
-pub const RAY_BENCH_CLOSEST: u32 = 1;
+    /// `bench-rays` (ray_bench.wgsl): rays per surface pixel and dispatch, and the two kinds
+    /// (the dispatch's `PassInfo` slot). 16 rays keep one dispatch far above its fixed cost on
+    /// a GPU and well inside Mesa 22's loop-iteration cap (REFERENCE_SAMPLES_PER_DISPATCH).
+    pub const RAY_BENCH_RAYS_PER_PIXEL: u32 = 16;
+    pub const RAY_BENCH_SHADOW: u32 = 0;
+    pub const RAY_BENCH_CLOSEST: u32 = 1;
 
-/// The reference renders its samples per pixel in dispatches of at most this many.
-/// lavapipe (Mesa 22) bounds the total loop iterations of one shader invocation (one
-/// counter shared by all loops, 65535): a single invocation tracing a few hundred BVH rays
-/// silently stops early. Small chunks keep every invocation far below that bound.
-pub const REFERENCE_SAMPLES_PER_DISPATCH: u32 = 8;
+    /// The reference renders its samples per pixel in dispatches of at most this many.
+    /// lavapipe (Mesa 22) bounds the total loop iterations of one shader invocation (one
+    /// counter shared by all loops, 65535): a single invocation tracing a few hundred BVH rays
+    /// silently stops early. Small chunks keep every invocation far below that bound.
+    pub const REFERENCE_SAMPLES_PER_DISPATCH: u32 = 8;
 
-/// The most path vertices the reference shades (the `max_bounces` range). Each bounce adds a
-/// shadow ray and a BSDF ray per sample: at 8 bounces and REFERENCE_SAMPLES_PER_DISPATCH
-/// samples an invocation traces 136 rays, still within lavapipe's loop bound on the
-/// built-in scenes.
-pub const MAX_BOUNCES: u32 = 8;
+    /// The most path vertices the reference shades (the `max_bounces` range). Each bounce adds a
+    /// shadow ray and a BSDF ray per sample: at 8 bounces and REFERENCE_SAMPLES_PER_DISPATCH
+    /// samples an invocation traces 136 rays, still within lavapipe's loop bound on the
+    /// built-in scenes.
+    pub const MAX_BOUNCES: u32 = 8;
 
-/// Light tiles (notes §6; RTXDI): every frame LIGHT_TILE_COUNT tiles of LIGHT_TILE_SIZE
-/// power-sampled lights are drawn once; each LIGHT_TILE_PIXELS² block of pixels draws its
-/// initial candidates from one tile, so candidate reads hit a small, shared working set
-/// whatever the number of lights.
-pub const LIGHT_TILE_COUNT: u32 = 128;
-pub const LIGHT_TILE_SIZE: u32 = 1024;
-pub const LIGHT_TILE_PIXELS: u32 = 16;
+    /// Light tiles (notes §6; RTXDI): every frame LIGHT_TILE_COUNT tiles of LIGHT_TILE_SIZE
+    /// power-sampled lights are drawn once; each LIGHT_TILE_PIXELS² block of pixels draws its
+    /// initial candidates from one tile, so candidate reads hit a small, shared working set
+    /// whatever the number of lights.
+    pub const LIGHT_TILE_COUNT: u32 = 128;
+    pub const LIGHT_TILE_SIZE: u32 = 1024;
+    pub const LIGHT_TILE_PIXELS: u32 = 16;
 
-/// Upper bound of `spatial_neighbours` (the shader keeps accepted ones in an array).
-pub const MAX_SPATIAL_NEIGHBOURS: u32 = 32;
+    /// Upper bound of `spatial_neighbours` (the shader keeps accepted ones in an array).
+    pub const MAX_SPATIAL_NEIGHBOURS: u32 = 32;
+}
 /// Spatial passes a frame runs at most (the `spatial_passes` range).
 pub const MAX_SPATIAL_PASSES: u32 = 8;
 
-/// Motion of a point that was behind the previous camera (always off-screen).
-pub const NO_MOTION: f32 = -1e9;
+wgsl_constants! {
+    fn motion_and_view_limits;
+    /// Motion of a point that was behind the previous camera (always off-screen).
+    pub const NO_MOTION: f32 = -1e9;
 
-pub const VIEW_FINAL: u32 = 0;
-pub const VIEW_SOURCE: u32 = 1;
-pub const VIEW_M: u32 = 2;
-pub const VIEW_REJECTION: u32 = 3;
-pub const VIEW_WEIGHT: u32 = 4;
-pub const VIEW_NORMALS: u32 = 5;
-pub const VIEW_ALBEDO: u32 = 6;
-pub const VIEW_DEPTH: u32 = 7;
-pub const VIEW_MOTION: u32 = 8;
-pub const VIEW_ERROR: u32 = 9;
-pub const VIEW_DIFFERENCE: u32 = 10;
-pub const VIEW_AGE: u32 = 11;
-pub const VIEW_INDIRECT: u32 = 12;
-pub const VIEW_GI_SOURCE: u32 = 13;
-pub const VIEW_GI_M: u32 = 14;
-pub const VIEW_GI_REJECTION: u32 = 15;
-pub const VIEW_GI_JACOBIAN: u32 = 16;
-pub const VIEW_BIAS: u32 = 17;
-/// Frames per batch mean of the bias view's noise estimate (moments.wgsl): long enough to
-/// hold most of the frame-to-frame correlation at the default M cap of 20, short enough
-/// that a few hundred frames give a usable spread.
-pub const BIAS_BATCH: u32 = 16;
-/// The bias view paints a pixel when |mean − reference| exceeds this many standard errors
-/// (two-sided false alarm 0.3 % for Gaussian noise).
-pub const BIAS_SIGNIFICANCE: f32 = 3.0;
-/// … and by more than this fraction of the reference: smaller differences are white in its
-/// palette anyway, and the reference's noise, known only as an image-wide RMSE, is larger
-/// than that in its brightest pixels.
-pub const BIAS_NEGLIGIBLE: f32 = 0.01;
-pub const VIEW_BOILING: u32 = 18;
-pub const VIEW_SURVIVOR_CHANGE: u32 = 19;
-/// ReSTIR PT's views (pt_view.wgsl): the survivor's path length n, its reconnection
-/// vertex's depth, why shifts to the pixel failed, and log2 |J| of its last shift.
-pub const VIEW_PT_LENGTH: u32 = 20;
-pub const VIEW_PT_RECONNECTION: u32 = 21;
-pub const VIEW_PT_FAILURE: u32 = 22;
-pub const VIEW_PT_JACOBIAN: u32 = 23;
-/// Frames in the temporal window of the boiling and survivor-change views (the
-/// `temporal window` pass): long enough that the relative standard deviation of a steady
-/// pixel is estimated to ±18 % (1/√(2·15)), short enough that a switched light leaves it
-/// within half a second at 30 fps.
-pub const TEMPORAL_WINDOW_FRAMES: u32 = 16;
-/// The boiling view's palette runs from 0 to this relative standard deviation (σ/mean of
-/// a pixel's luminance over the window); stronger flicker saturates at yellow.
-pub const BOILING_VIEW_MAX: f32 = 1.5;
+    /// Frames per batch mean of the bias view's noise estimate (moments.wgsl): long enough to
+    /// hold most of the frame-to-frame correlation at the default M cap of 20, short enough
+    /// that a few hundred frames give a usable spread.
+    pub const BIAS_BATCH: u32 = 16;
+    /// The bias view paints a pixel when |mean − reference| exceeds this many standard errors
+    /// (two-sided false alarm 0.3 % for Gaussian noise).
+    pub const BIAS_SIGNIFICANCE: f32 = 3.0;
+    /// … and by more than this fraction of the reference: smaller differences are white in its
+    /// palette anyway, and the reference's noise, known only as an image-wide RMSE, is larger
+    /// than that in its brightest pixels.
+    pub const BIAS_NEGLIGIBLE: f32 = 0.01;
+        /// Frames in the temporal window of the boiling and survivor-change views (the
+    /// `temporal window` pass): long enough that the relative standard deviation of a steady
+    /// pixel is estimated to ±18 % (1/√(2·15)), short enough that a switched light leaves it
+    /// within half a second at 30 fps.
+    pub const TEMPORAL_WINDOW_FRAMES: u32 = 16;
+    /// The boiling view's palette runs from 0 to this relative standard deviation (σ/mean of
+    /// a pixel's luminance over the window); stronger flicker saturates at yellow.
+    pub const BOILING_VIEW_MAX: f32 = 1.5;
+}
 /// A pixel *boils* when its σ/mean over the window exceeds this (the palette's middle,
 /// teal): a 16-frame window of a steadily noisy ReSTIR pixel rarely gets there, a pixel
 /// whose survivor comes and goes does (render/tests/temporal_window.rs).
 pub const BOILING_THRESHOLD: f32 = 0.75;
 
-pub const TONEMAP_ACES: u32 = 0;
-pub const TONEMAP_REINHARD: u32 = 1;
-pub const TONEMAP_CLAMP: u32 = 2;
+wgsl_constants! {
+    fn tonemappers_and_gi_rejections;
+    pub const TONEMAP_ACES: u32 = 0;
+    pub const TONEMAP_REINHARD: u32 = 1;
+    pub const TONEMAP_CLAMP: u32 = 2;
 
-/// ReSTIR GI validation (issue 12): the GI rejection mask's bits 0..5 are the DI checks
-/// with the same bits and meaning (`REJECT_OFFSCREEN` .. `REJECT_RESERVOIR`, so a
-/// `surface_dissimilarity` mask is used as it is); these three are GI's own.
-/// The reconnection shift is undefined: the sample point is (nearly) on the receiver, seen
-/// at a grazing angle, or the receiver is behind the sample's surface (gi_jacobian.rs).
-pub const GI_REJECT_RECONNECTION: u32 = 1 << 6;
-/// The reconnection Jacobian is outside [1/gi_jacobian_max, gi_jacobian_max].
-pub const GI_REJECT_JACOBIAN: u32 = 1 << 7;
-/// The reconnection segment from the receiver to the sample point is occluded.
-pub const GI_REJECT_OCCLUDED: u32 = 1 << 8;
-pub const GI_REJECT_REASON_COUNT: usize = 9;
+    /// ReSTIR GI validation (issue 12): the GI rejection mask's bits 0..5 are the DI checks
+    /// with the same bits and meaning (`REJECT_OFFSCREEN` .. `REJECT_RESERVOIR`, so a
+    /// `surface_dissimilarity` mask is used as it is); these three are GI's own.
+    /// The reconnection shift is undefined: the sample point is (nearly) on the receiver, seen
+    /// at a grazing angle, or the receiver is behind the sample's surface (gi_jacobian.rs).
+    pub const GI_REJECT_RECONNECTION: u32 = 1 << 6;
+    /// The reconnection Jacobian is outside [1/gi_jacobian_max, gi_jacobian_max].
+    pub const GI_REJECT_JACOBIAN: u32 = 1 << 7;
+    /// The reconnection segment from the receiver to the sample point is occluded.
+    pub const GI_REJECT_OCCLUDED: u32 = 1 << 8;
+    pub const GI_REJECT_REASON_COUNT: usize = 9;
+}
 /// Human names of the GI rejection bits, in bit order (the first six are DI's).
 pub const GI_REJECT_REASON_NAMES: [&str; GI_REJECT_REASON_COUNT] = [
     REJECT_REASON_NAMES[0],
@@ -257,60 +275,63 @@ pub const GI_REJECT_REASON_NAMES: [&str; GI_REJECT_REASON_COUNT] = [
     "jacobian",
     "occluded",
 ];
-/// `GiReservoir.packed`: SOURCE_* in bits 0..4, the GI rejection mask of the stage that
-/// wrote it in bits 4..16, the sample's age in frames in bits 16..32 (saturating).
-pub const GI_SOURCE_MASK: u32 = 0xf;
-pub const GI_FLAGS_SHIFT: u32 = 4;
-pub const GI_FLAGS_MASK: u32 = 0xfff;
-pub const GI_AGE_SHIFT: u32 = 16;
-pub const GI_AGE_MAX: u32 = 0xffff;
-/// Thresholds of the reconnection Jacobian (reservoir/gi_jacobian.rs), the same on both sides.
-/// Shortest reconnection (world units, squared) with a usable direction. Positions are f32:
-/// at a scene scale of ~100 one ulp is ~7.6e-6, so below ~1e-5 the direction from x_s to the
-/// receiver is rounding noise, and the Jacobian's `1/d²` runs away.
-pub const GI_MIN_DISTANCE_SQ: f32 = 1e-10;
-/// Longest reconnection (squared; 1e10 units, far beyond any scene). With the two bounds and
-/// `GI_MIN_COS` every quotient below stays finite: J ≤ 1e6 · 1e20 / 1e-10 = 1e36 < f32::MAX,
-/// which matters on the GPU, where WGSL leaves an overflowing division indeterminate.
-pub const GI_MAX_DISTANCE_SQ: f32 = 1e20;
-/// Smallest |cos φ| at the sample point (from either receiver): below it the patch has no
-/// solid angle to speak of (J = 0 or ∞ up to rounding), and no window in the settings'
-/// range (j_max ≤ 1000) could accept the result anyway.
-pub const GI_MIN_COS: f32 = 1e-6;
-/// `Params.flags` bits of the Indirect stage.
-pub const PARAM_FLAG_GI: u32 = 1 << 4;
-pub const PARAM_FLAG_GI_TEMPORAL: u32 = 1 << 5;
-pub const PARAM_FLAG_GI_SPATIAL: u32 = 1 << 6;
-pub const PARAM_FLAG_GI_SPATIAL_VISIBILITY: u32 = 1 << 7;
-pub const PARAM_FLAG_GI_PAIRWISE: u32 = 1 << 8;
-pub const PARAM_FLAG_GI_MIS_VISIBILITY: u32 = 1 << 9;
+wgsl_constants! {
+    fn gi_packing_and_flags;
+    /// `GiReservoir.packed`: SOURCE_* in bits 0..4, the GI rejection mask of the stage that
+    /// wrote it in bits 4..16, the sample's age in frames in bits 16..32 (saturating).
+    pub const GI_SOURCE_MASK: u32 = 0xf;
+    pub const GI_FLAGS_SHIFT: u32 = 4;
+    pub const GI_FLAGS_MASK: u32 = 0xfff;
+    pub const GI_AGE_SHIFT: u32 = 16;
+    pub const GI_AGE_MAX: u32 = 0xffff;
+    /// Thresholds of the reconnection Jacobian (reservoir/gi_jacobian.rs), the same on both sides.
+    /// Shortest reconnection (world units, squared) with a usable direction. Positions are f32:
+    /// at a scene scale of ~100 one ulp is ~7.6e-6, so below ~1e-5 the direction from x_s to the
+    /// receiver is rounding noise, and the Jacobian's `1/d²` runs away.
+    pub const RECONNECTION_MIN_DISTANCE_SQ: f32 = 1e-10;
+    /// Longest reconnection (squared; 1e10 units, far beyond any scene). With the two bounds and
+    /// `RECONNECTION_MIN_COS` every quotient below stays finite: J ≤ 1e6 · 1e20 / 1e-10 = 1e36 < f32::MAX,
+    /// which matters on the GPU, where WGSL leaves an overflowing division indeterminate.
+    pub const RECONNECTION_MAX_DISTANCE_SQ: f32 = 1e20;
+    /// Smallest |cos φ| at the sample point (from either receiver): below it the patch has no
+    /// solid angle to speak of (J = 0 or ∞ up to rounding), and no window in the settings'
+    /// range (j_max ≤ 1000) could accept the result anyway.
+    pub const RECONNECTION_MIN_COS: f32 = 1e-6;
+    /// `Params.flags` bits of the Indirect stage.
+    pub const PARAM_FLAG_GI: u32 = 1 << 4;
+    pub const PARAM_FLAG_GI_TEMPORAL: u32 = 1 << 5;
+    pub const PARAM_FLAG_GI_SPATIAL: u32 = 1 << 6;
+    pub const PARAM_FLAG_GI_SPATIAL_VISIBILITY: u32 = 1 << 7;
+    pub const PARAM_FLAG_GI_PAIRWISE: u32 = 1 << 8;
+    pub const PARAM_FLAG_GI_MIS_VISIBILITY: u32 = 1 << 9;
 
-/// ReSTIR PT's shift mappings (`Params.pt_shift`, settings `pt_shift`).
-pub const PT_SHIFT_RECONNECTION: u32 = 0;
-pub const PT_SHIFT_RANDOM_REPLAY: u32 = 1;
-pub const PT_SHIFT_HYBRID: u32 = 2;
-/// A path reservoir's `packed` word (pt_reservoir.wgsl): source | n << 4 | end << 8 |
-/// k << 9 | lobes << 13. The end technique of x_n → z:
-pub const PT_END_NEE: u32 = 0;
-pub const PT_END_BSDF: u32 = 1;
-/// k for a path that is replayed whole (no reconnection).
-pub const PT_RC_NONE: u32 = 15;
-pub const PT_LOBE_DIFFUSE: u32 = 0;
-pub const PT_LOBE_SPECULAR: u32 = 1;
-/// Why a path could not be moved to another pixel (pt_shift in pt_path.wgsl; the CPU
-/// model's `path_reuse::shift::Failure`). `PT_FAIL_NONE`: it moved and carries light there.
-pub const PT_FAIL_NONE: u32 = 0;
-/// The replayed prefix left the path (missed, met another lobe's zero, left the scene).
-pub const PT_FAIL_REPLAY: u32 = 1;
-/// The reconnection is undefined (too near or far, grazing, the other side of its surface).
-pub const PT_FAIL_UNDEFINED: u32 = 2;
-/// The reconnection segment is blocked.
-pub const PT_FAIL_OCCLUDED: u32 = 3;
-/// Hybrid: the shifted path would reconnect at another bounce (not a bijection there).
-pub const PT_FAIL_ELSEWHERE: u32 = 4;
-/// Moved, but its integrand is zero at the new pixel (below the surface, outside the lobe).
-pub const PT_FAIL_ZERO: u32 = 5;
-pub const PT_FAIL_REASON_COUNT: usize = 6;
+    /// ReSTIR PT's shift mappings (`Params.pt_shift`, settings `pt_shift`).
+    pub const PT_SHIFT_RECONNECTION: u32 = 0;
+    pub const PT_SHIFT_RANDOM_REPLAY: u32 = 1;
+    pub const PT_SHIFT_HYBRID: u32 = 2;
+    /// A path reservoir's `packed` word (pt_reservoir.wgsl): source | n << 4 | end << 8 |
+    /// k << 9 | lobes << 13. The end technique of x_n → z:
+    pub const PT_END_NEE: u32 = 0;
+    pub const PT_END_BSDF: u32 = 1;
+    /// k for a path that is replayed whole (no reconnection).
+    pub const PT_RC_NONE: u32 = 15;
+    pub const PT_LOBE_DIFFUSE: u32 = 0;
+    pub const PT_LOBE_SPECULAR: u32 = 1;
+    /// Why a path could not be moved to another pixel (pt_shift in pt_path.wgsl; the CPU
+    /// model's `path_reuse::shift::Failure`). `PT_FAIL_NONE`: it moved and carries light there.
+    pub const PT_FAIL_NONE: u32 = 0;
+    /// The replayed prefix left the path (missed, met another lobe's zero, left the scene).
+    pub const PT_FAIL_REPLAY: u32 = 1;
+    /// The reconnection is undefined (too near or far, grazing, the other side of its surface).
+    pub const PT_FAIL_UNDEFINED: u32 = 2;
+    /// The reconnection segment is blocked.
+    pub const PT_FAIL_OCCLUDED: u32 = 3;
+    /// Hybrid: the shifted path would reconnect at another bounce (not a bijection there).
+    pub const PT_FAIL_ELSEWHERE: u32 = 4;
+    /// Moved, but its integrand is zero at the new pixel (below the surface, outside the lobe).
+    pub const PT_FAIL_ZERO: u32 = 5;
+    pub const PT_FAIL_REASON_COUNT: usize = 6;
+}
 pub const PT_FAIL_NAMES: [&str; PT_FAIL_REASON_COUNT] = [
     "moved",
     "replay left the path",
@@ -319,211 +340,52 @@ pub const PT_FAIL_NAMES: [&str; PT_FAIL_REASON_COUNT] = [
     "reconnects elsewhere (hybrid)",
     "zero where moved",
 ];
-/// `PtPixelDebug.temporal_failure` when no temporal shift was tried (no history, or the
-/// previous surface failed the G-buffer checks).
-pub const PT_FAIL_NOT_TRIED: u32 = 0xff;
-/// The PT stages the pixel inspector's path probe keeps (pt initial, temporal, spatial),
-/// and the vertices one stage's path can have: x_1 … x_n and the light point z.
-pub const PT_PROBE_STAGES: u32 = 3;
-pub const PT_PROBE_VERTICES: u32 = MAX_BOUNCES + 1;
-/// `PtProbeVertex.flags` bits.
-pub const PT_VERTEX_RECONNECTION: u32 = 1;
-pub const PT_VERTEX_LIGHT: u32 = 2;
-/// The light end is a direction (the environment), not a point.
-pub const PT_VERTEX_DIRECTION: u32 = 4;
-/// `GpuFrame.inspect_pixel` when no pixel is inspected.
-pub const NO_INSPECT_PIXEL: u32 = 0xffff_ffff;
+wgsl_constants! {
+    fn pt_probe;
+    /// `PtPixelDebug.temporal_failure` when no temporal shift was tried (no history, or the
+    /// previous surface failed the G-buffer checks).
+    pub const PT_FAIL_NOT_TRIED: u32 = 0xff;
+    /// The PT stages the pixel inspector's path probe keeps (pt initial, temporal, spatial),
+    /// and the vertices one stage's path can have: x_1 … x_n and the light point z.
+    pub const PT_PROBE_STAGES: u32 = 3;
+    pub const PT_PROBE_VERTICES: u32 = MAX_BOUNCES + 1;
+    /// `PtProbeVertex.flags` bits.
+    pub const PT_VERTEX_RECONNECTION: u32 = 1;
+    pub const PT_VERTEX_LIGHT: u32 = 2;
+    /// The light end is a direction (the environment), not a point.
+    pub const PT_VERTEX_DIRECTION: u32 = 4;
+    /// `GpuFrame.inspect_pixel` when no pixel is inspected.
+    pub const NO_INSPECT_PIXEL: u32 = 0xffff_ffff;
+}
 
-/// The WGSL prelude: every constant above as a `const` declaration.
+/// The WGSL prelude: every constant declared in a `wgsl_constants!` block, here and in
+/// gpu_types.rs, as a WGSL `const` (one row emits the Rust constant and its WGSL line).
 pub fn wgsl_prelude() -> String {
-    let u32s: &[(&str, u32)] = &[
-        ("NO_LIGHT", gpu_types::NO_LIGHT),
-        ("NO_TEXTURE", gpu_types::NO_TEXTURE),
-        ("TEXEL_OFFSET_BITS", gpu_types::TEXEL_OFFSET_BITS),
-        ("MATERIAL_DOUBLE_SIDED", gpu_types::MATERIAL_DOUBLE_SIDED),
-        ("MATERIAL_ALPHA_MASK", gpu_types::MATERIAL_ALPHA_MASK),
-        ("MATERIAL_ALPHA_BLEND", gpu_types::MATERIAL_ALPHA_BLEND),
-        ("MATERIAL_TRANSPARENT", gpu_types::MATERIAL_TRANSPARENT),
-        ("MATERIAL_UNLIT", gpu_types::MATERIAL_UNLIT),
-        ("LIGHT_KIND_TRIANGLE", gpu_types::LIGHT_KIND_TRIANGLE),
-        ("LIGHT_KIND_PUNCTUAL", gpu_types::LIGHT_KIND_PUNCTUAL),
-        ("LIGHT_KIND_ENVIRONMENT", gpu_types::LIGHT_KIND_ENVIRONMENT),
-        ("LIGHT_KIND_SHIFT", gpu_types::LIGHT_KIND_SHIFT),
-        ("LIGHT_PRIM_MASK", gpu_types::LIGHT_PRIM_MASK),
-        ("PUNCTUAL_POINT", gpu_types::PUNCTUAL_POINT),
-        ("PUNCTUAL_SPOT", gpu_types::PUNCTUAL_SPOT),
-        ("PUNCTUAL_DIRECTIONAL", gpu_types::PUNCTUAL_DIRECTIONAL),
-        ("REJECT_OFFSCREEN", REJECT_OFFSCREEN),
-        ("REJECT_SURFACE", REJECT_SURFACE),
-        ("REJECT_MATERIAL", REJECT_MATERIAL),
-        ("REJECT_NORMAL", REJECT_NORMAL),
-        ("REJECT_DEPTH", REJECT_DEPTH),
-        ("REJECT_RESERVOIR", REJECT_RESERVOIR),
-        ("REJECT_TARGET", REJECT_TARGET),
-        ("REJECT_TARGET_RATIO", REJECT_TARGET_RATIO),
-        ("REJECT_LIGHT_GONE", REJECT_LIGHT_GONE),
-        ("REJECT_REASON_COUNT", REJECT_REASON_COUNT as u32),
-        ("REJECT_SURFACE_CHECKS", REJECT_SURFACE_CHECKS),
-        ("SOURCE_NULL", SOURCE_NULL),
-        ("SOURCE_INITIAL", SOURCE_INITIAL),
-        ("SOURCE_TEMPORAL", SOURCE_TEMPORAL),
-        ("SOURCE_SPATIAL", SOURCE_SPATIAL),
-        ("SOURCE_MASK", SOURCE_MASK),
-        ("AGE_SHIFT", AGE_SHIFT),
-        ("AGE_MAX", AGE_MAX),
-        ("DEBUG_FLAG_TEMPORAL_CAP", DEBUG_FLAG_TEMPORAL_CAP),
-        ("DEBUG_FLAG_SPATIAL_CAP", DEBUG_FLAG_SPATIAL_CAP),
-        ("DEBUG_FLAG_FALLBACK_TRIED", DEBUG_FLAG_FALLBACK_TRIED),
-        ("DEBUG_FLAG_FALLBACK_USED", DEBUG_FLAG_FALLBACK_USED),
-        ("DEBUG_FLAG_TEMPORAL_MERGED", DEBUG_FLAG_TEMPORAL_MERGED),
-        (
-            "DEBUG_FLAG_ENVIRONMENT_SAMPLE",
-            DEBUG_FLAG_ENVIRONMENT_SAMPLE,
-        ),
-        ("PARAM_FLAG_PERMUTATION", PARAM_FLAG_PERMUTATION),
-        ("PARAM_FLAG_PAIRWISE", PARAM_FLAG_PAIRWISE),
-        ("PARAM_FLAG_JITTER", PARAM_FLAG_JITTER),
-        (
-            "PARAM_FLAG_INITIAL_VISIBILITY",
-            PARAM_FLAG_INITIAL_VISIBILITY,
-        ),
-        ("PARAM_FLAG_PREVIOUS_LIGHTS", PARAM_FLAG_PREVIOUS_LIGHTS),
-        ("PARAM_FLAG_MIS_VISIBILITY", PARAM_FLAG_MIS_VISIBILITY),
-        ("PARAM_FLAG_PREVIOUS_GEOMETRY", PARAM_FLAG_PREVIOUS_GEOMETRY),
-        ("PASS_GBUFFER", PASS_GBUFFER),
-        ("PASS_INITIAL", PASS_INITIAL),
-        ("PASS_TEMPORAL", PASS_TEMPORAL),
-        ("PASS_SPATIAL", PASS_SPATIAL),
-        ("PASS_SHADE", PASS_SHADE),
-        ("PASS_REFERENCE", PASS_REFERENCE),
-        ("STAT_TEMPORAL_REJECT", STAT_TEMPORAL_REJECT),
-        ("STAT_SPATIAL_REJECT", STAT_SPATIAL_REJECT),
-        ("STAT_SOURCE", STAT_SOURCE),
-        ("STAT_TEMPORAL_CAP", STAT_TEMPORAL_CAP),
-        ("STAT_SPATIAL_CAP", STAT_SPATIAL_CAP),
-        ("STAT_FALLBACK_TRIED", STAT_FALLBACK_TRIED),
-        ("STAT_FALLBACK_USED", STAT_FALLBACK_USED),
-        ("STAT_NONFINITE", STAT_NONFINITE),
-        ("STAT_SURFACE_PIXELS", STAT_SURFACE_PIXELS),
-        ("STAT_TEMPORAL_ACCEPTED", STAT_TEMPORAL_ACCEPTED),
-        ("STAT_BOILING_DROPPED", STAT_BOILING_DROPPED),
-        ("STAT_COUNT", STAT_COUNT),
-        ("STAT_GI_NONFINITE", STAT_GI_NONFINITE),
-        ("STAT_GI_TEMPORAL_REJECT", STAT_GI_TEMPORAL_REJECT),
-        ("STAT_GI_SPATIAL_REJECT", STAT_GI_SPATIAL_REJECT),
-        ("STAT_GI_TEMPORAL_ACCEPTED", STAT_GI_TEMPORAL_ACCEPTED),
-        ("STAT_SHADOW_RAYS", STAT_SHADOW_RAYS),
-        ("GI_PASS_INITIAL", GI_PASS_INITIAL),
-        ("GI_PASS_TEMPORAL", GI_PASS_TEMPORAL),
-        ("GI_PASS_SPATIAL", GI_PASS_SPATIAL),
-        ("GI_PASS_SHADE", GI_PASS_SHADE),
-        ("STREAM_INITIAL", STREAM_INITIAL),
-        ("STREAM_TEMPORAL", STREAM_TEMPORAL),
-        ("STREAM_REFERENCE", STREAM_REFERENCE),
-        ("STREAM_LIGHT_TILES", STREAM_LIGHT_TILES),
-        ("LIGHT_TILE_COUNT", LIGHT_TILE_COUNT),
-        ("LIGHT_TILE_SIZE", LIGHT_TILE_SIZE),
-        ("LIGHT_TILE_PIXELS", LIGHT_TILE_PIXELS),
-        ("STREAM_SPATIAL", STREAM_SPATIAL),
-        ("STREAM_GI_INITIAL", STREAM_GI_INITIAL),
-        ("STREAM_GI_TEMPORAL", STREAM_GI_TEMPORAL),
-        ("STREAM_GI_SPATIAL", STREAM_GI_SPATIAL),
-        ("STREAM_TRANSPARENCY", STREAM_TRANSPARENCY),
-        ("MAX_TRANSPARENT_LAYERS", MAX_TRANSPARENT_LAYERS),
-        ("STREAM_COUNT", STREAM_COUNT),
-        ("RAY_BENCH_RAYS_PER_PIXEL", RAY_BENCH_RAYS_PER_PIXEL),
-        ("RAY_BENCH_SHADOW", RAY_BENCH_SHADOW),
-        ("RAY_BENCH_CLOSEST", RAY_BENCH_CLOSEST),
-        ("MAX_SPATIAL_NEIGHBOURS", MAX_SPATIAL_NEIGHBOURS),
-        (
-            "REFERENCE_SAMPLES_PER_DISPATCH",
-            REFERENCE_SAMPLES_PER_DISPATCH,
-        ),
-        ("MAX_BOUNCES", MAX_BOUNCES),
-        ("VIEW_FINAL", VIEW_FINAL),
-        ("VIEW_SOURCE", VIEW_SOURCE),
-        ("VIEW_M", VIEW_M),
-        ("VIEW_REJECTION", VIEW_REJECTION),
-        ("VIEW_WEIGHT", VIEW_WEIGHT),
-        ("VIEW_NORMALS", VIEW_NORMALS),
-        ("VIEW_ALBEDO", VIEW_ALBEDO),
-        ("VIEW_DEPTH", VIEW_DEPTH),
-        ("VIEW_MOTION", VIEW_MOTION),
-        ("VIEW_ERROR", VIEW_ERROR),
-        ("VIEW_DIFFERENCE", VIEW_DIFFERENCE),
-        ("VIEW_AGE", VIEW_AGE),
-        ("VIEW_INDIRECT", VIEW_INDIRECT),
-        ("VIEW_GI_SOURCE", VIEW_GI_SOURCE),
-        ("VIEW_GI_M", VIEW_GI_M),
-        ("VIEW_GI_REJECTION", VIEW_GI_REJECTION),
-        ("VIEW_GI_JACOBIAN", VIEW_GI_JACOBIAN),
-        ("VIEW_BIAS", VIEW_BIAS),
-        ("BIAS_BATCH", BIAS_BATCH),
-        ("VIEW_BOILING", VIEW_BOILING),
-        ("VIEW_SURVIVOR_CHANGE", VIEW_SURVIVOR_CHANGE),
-        ("TEMPORAL_WINDOW_FRAMES", TEMPORAL_WINDOW_FRAMES),
-        ("TONEMAP_ACES", TONEMAP_ACES),
-        ("TONEMAP_REINHARD", TONEMAP_REINHARD),
-        ("TONEMAP_CLAMP", TONEMAP_CLAMP),
-        ("GI_REJECT_RECONNECTION", GI_REJECT_RECONNECTION),
-        ("GI_REJECT_JACOBIAN", GI_REJECT_JACOBIAN),
-        ("GI_REJECT_OCCLUDED", GI_REJECT_OCCLUDED),
-        ("GI_REJECT_REASON_COUNT", GI_REJECT_REASON_COUNT as u32),
-        ("GI_SOURCE_MASK", GI_SOURCE_MASK),
-        ("GI_FLAGS_SHIFT", GI_FLAGS_SHIFT),
-        ("GI_FLAGS_MASK", GI_FLAGS_MASK),
-        ("GI_AGE_SHIFT", GI_AGE_SHIFT),
-        ("GI_AGE_MAX", GI_AGE_MAX),
-        ("PARAM_FLAG_GI", PARAM_FLAG_GI),
-        ("PARAM_FLAG_GI_TEMPORAL", PARAM_FLAG_GI_TEMPORAL),
-        ("PARAM_FLAG_GI_SPATIAL", PARAM_FLAG_GI_SPATIAL),
-        (
-            "PARAM_FLAG_GI_SPATIAL_VISIBILITY",
-            PARAM_FLAG_GI_SPATIAL_VISIBILITY,
-        ),
-        ("PARAM_FLAG_GI_PAIRWISE", PARAM_FLAG_GI_PAIRWISE),
-        ("PARAM_FLAG_GI_MIS_VISIBILITY", PARAM_FLAG_GI_MIS_VISIBILITY),
-        ("PT_SHIFT_RECONNECTION", PT_SHIFT_RECONNECTION),
-        ("PT_SHIFT_RANDOM_REPLAY", PT_SHIFT_RANDOM_REPLAY),
-        ("PT_SHIFT_HYBRID", PT_SHIFT_HYBRID),
-        ("PT_END_NEE", PT_END_NEE),
-        ("PT_END_BSDF", PT_END_BSDF),
-        ("PT_RC_NONE", PT_RC_NONE),
-        ("PT_LOBE_DIFFUSE", PT_LOBE_DIFFUSE),
-        ("PT_LOBE_SPECULAR", PT_LOBE_SPECULAR),
-        ("PT_FAIL_NONE", PT_FAIL_NONE),
-        ("PT_FAIL_REPLAY", PT_FAIL_REPLAY),
-        ("PT_FAIL_UNDEFINED", PT_FAIL_UNDEFINED),
-        ("PT_FAIL_OCCLUDED", PT_FAIL_OCCLUDED),
-        ("PT_FAIL_ELSEWHERE", PT_FAIL_ELSEWHERE),
-        ("PT_FAIL_ZERO", PT_FAIL_ZERO),
-        ("PT_FAIL_REASON_COUNT", PT_FAIL_REASON_COUNT as u32),
-        ("PT_FAIL_NOT_TRIED", PT_FAIL_NOT_TRIED),
-        ("PT_PROBE_STAGES", PT_PROBE_STAGES),
-        ("PT_PROBE_VERTICES", PT_PROBE_VERTICES),
-        ("PT_VERTEX_RECONNECTION", PT_VERTEX_RECONNECTION),
-        ("PT_VERTEX_LIGHT", PT_VERTEX_LIGHT),
-        ("PT_VERTEX_DIRECTION", PT_VERTEX_DIRECTION),
-        ("NO_INSPECT_PIXEL", NO_INSPECT_PIXEL),
-        ("VIEW_PT_LENGTH", VIEW_PT_LENGTH),
-        ("VIEW_PT_RECONNECTION", VIEW_PT_RECONNECTION),
-        ("VIEW_PT_FAILURE", VIEW_PT_FAILURE),
-        ("VIEW_PT_JACOBIAN", VIEW_PT_JACOBIAN),
-    ];
     let mut out = String::from("// Generated from render/src/shader_constants.rs: edit there.\n");
-    for (name, value) in u32s {
-        out.push_str(&format!("const {name}: u32 = {value}u;\n"));
-    }
-    out.push_str(&format!("const NO_MOTION: f32 = {NO_MOTION:e};\n"));
-    for (name, value) in [
-        ("GI_MIN_DISTANCE_SQ", GI_MIN_DISTANCE_SQ),
-        ("GI_MAX_DISTANCE_SQ", GI_MAX_DISTANCE_SQ),
-        ("GI_MIN_COS", GI_MIN_COS),
-        ("BIAS_SIGNIFICANCE", BIAS_SIGNIFICANCE),
-        ("BIAS_NEGLIGIBLE", BIAS_NEGLIGIBLE),
-        ("BOILING_VIEW_MAX", BOILING_VIEW_MAX),
-    ] {
-        out.push_str(&format!("const {name}: f32 = {value:e};\n"));
+    let blocks: [fn() -> Vec<(&'static str, WgslValue)>; 17] = [
+        gpu_types::absent_markers,
+        gpu_types::material_flags,
+        gpu_types::texture_packing,
+        gpu_types::light_kinds,
+        gpu_types::punctual_kinds,
+        crate::view::view_codes,
+        rejection_bits,
+        surface_checks,
+        sources,
+        packing_and_flags,
+        counters,
+        indirect_techniques,
+        streams_and_limits,
+        motion_and_view_limits,
+        tonemappers_and_gi_rejections,
+        gi_packing_and_flags,
+        pt_probe,
+    ];
+    for block in blocks {
+        for (name, value) in block() {
+            out.push_str(&value.declaration(name));
+            out.push('\n');
+        }
     }
     out
 }
@@ -539,9 +401,9 @@ mod stream_tests {
             STREAM_TEMPORAL,
             STREAM_REFERENCE,
             STREAM_LIGHT_TILES,
-            STREAM_GI_INITIAL,
-            STREAM_GI_TEMPORAL,
-            STREAM_GI_SPATIAL,
+            STREAM_INDIRECT_INITIAL,
+            STREAM_INDIRECT_TEMPORAL,
+            STREAM_INDIRECT_SPATIAL,
             STREAM_TRANSPARENCY,
         ];
         streams.extend((0..MAX_SPATIAL_PASSES).map(|p| STREAM_SPATIAL + p));
@@ -550,6 +412,47 @@ mod stream_tests {
         streams.dedup();
         assert_eq!(streams.len(), count, "two purposes share a stream");
         assert!(streams.iter().all(|&s| s < STREAM_COUNT));
+    }
+
+    /// The counter blocks follow one another without gaps or overlaps, and STAT_COUNT holds
+    /// them all: (start, size) of each, in buffer order.
+    #[test]
+    fn the_counter_blocks_tile_the_buffer() {
+        let reasons = REJECT_REASON_COUNT as u32;
+        let gi_reasons = GI_REJECT_REASON_COUNT as u32;
+        let blocks = [
+            (STAT_TEMPORAL_REJECT, reasons),
+            (STAT_SOURCE, SOURCE_NAMES.len() as u32),
+            (STAT_TEMPORAL_CAP, 1),
+            (STAT_SPATIAL_CAP, 1),
+            (STAT_FALLBACK_TRIED, 1),
+            (STAT_FALLBACK_USED, 1),
+            (STAT_NONFINITE, GUARDED_PASS_NAMES.len() as u32),
+            (STAT_SURFACE_PIXELS, 1),
+            (STAT_TEMPORAL_ACCEPTED, 1),
+            (STAT_BOILING_DROPPED, 1),
+            (STAT_SPATIAL_REJECT, reasons),
+            (
+                STAT_INDIRECT_NONFINITE,
+                INDIRECT_GUARDED_PASS_NAMES.len() as u32,
+            ),
+            (STAT_INDIRECT_TEMPORAL_REJECT, gi_reasons),
+            (STAT_INDIRECT_SPATIAL_REJECT, gi_reasons),
+            (STAT_INDIRECT_TEMPORAL_ACCEPTED, 1),
+            (STAT_INDIRECT_FALLBACK_TRIED, 1),
+            (STAT_INDIRECT_FALLBACK_USED, 1),
+            (STAT_INDIRECT_FRAMES, INDIRECT_NAMES.len() as u32),
+            (STAT_SHADOW_RAYS, GUARDED_PASS_NAMES.len() as u32),
+        ];
+        let mut next = 0;
+        for (start, size) in blocks {
+            assert_eq!(
+                start, next,
+                "a counter block starts at {start}, expected {next}"
+            );
+            next += size;
+        }
+        assert_eq!(next, STAT_COUNT);
     }
 
     /// Every `Params.flags` bit has one meaning (DI, GI and dynamic-scene switches were

@@ -34,8 +34,8 @@ impl FrameCounters {
         let di: u64 = (0..GUARDED_PASS_NAMES.len() as u32)
             .map(|p| self.get(STAT_NONFINITE + p))
             .sum();
-        let gi: u64 = (0..GI_GUARDED_PASS_NAMES.len() as u32)
-            .map(|p| self.get(STAT_GI_NONFINITE + p))
+        let gi: u64 = (0..INDIRECT_GUARDED_PASS_NAMES.len() as u32)
+            .map(|p| self.get(STAT_INDIRECT_NONFINITE + p))
             .sum();
         di + gi
     }
@@ -70,11 +70,12 @@ pub struct StatsSummary {
     pub non_finite_by_pass: BTreeMap<String, u64>,
     pub temporal_rejections: BTreeMap<String, u64>,
     pub spatial_rejections: BTreeMap<String, u64>,
-    /// ReSTIR GI's rejections by reason (zeros when GI is off).
-    pub gi_temporal_rejections: BTreeMap<String, u64>,
-    pub gi_spatial_rejections: BTreeMap<String, u64>,
-    /// Fraction of surface pixels whose GI temporal candidate was merged.
-    pub gi_temporal_accepted_fraction: f64,
+    /// ReSTIR GI's counters, when it ran (`gi` in the JSON).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gi: Option<IndirectStats>,
+    /// ReSTIR PT's counters, when it ran (`pt` in the JSON).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pt: Option<IndirectStats>,
     /// Fraction of surface pixels whose survivor came from each source.
     pub source_fractions: BTreeMap<String, f64>,
     /// Fraction of surface pixels where the temporal or spatial M cap fired.
@@ -89,6 +90,23 @@ pub struct StatsSummary {
     /// out), and their total.
     pub shadow_rays_per_pixel: BTreeMap<String, f64>,
     pub shadow_rays_per_pixel_total: f64,
+}
+
+/// What an indirect technique (ReSTIR GI or PT) counted: its block of `--stats`, under
+/// the technique's name.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct IndirectStats {
+    /// Frames it shaded.
+    pub frames: u64,
+    /// Its temporal and spatial rejections by reason (DI's reasons, then GI's
+    /// reconnection ones).
+    pub temporal_rejections: BTreeMap<String, u64>,
+    pub spatial_rejections: BTreeMap<String, u64>,
+    /// Fraction of surface pixels whose temporal candidate was merged.
+    pub temporal_accepted_fraction: f64,
+    /// Retries of the plain reprojection after a failed permuted read, and those that passed.
+    pub fallback_tried: u64,
+    pub fallback_used: u64,
 }
 
 fn median(mut v: Vec<f64>) -> Option<f64> {
@@ -146,6 +164,21 @@ impl StatsSummary {
                 .map(|(i, n)| (n.to_string(), total.get(base + i as u32)))
                 .collect()
         };
+        // The indirect technique that ran (GI and PT never run together): its block, and the
+        // name its passes' counters go under.
+        let frames_of = |technique: u32| total.get(STAT_INDIRECT_FRAMES + technique);
+        let indirect = |technique: u32| {
+            (frames_of(technique) > 0).then(|| IndirectStats {
+                frames: frames_of(technique),
+                temporal_rejections: gi_named(STAT_INDIRECT_TEMPORAL_REJECT),
+                spatial_rejections: gi_named(STAT_INDIRECT_SPATIAL_REJECT),
+                temporal_accepted_fraction: fraction(total.get(STAT_INDIRECT_TEMPORAL_ACCEPTED)),
+                fallback_tried: total.get(STAT_INDIRECT_FALLBACK_TRIED),
+                fallback_used: total.get(STAT_INDIRECT_FALLBACK_USED),
+            })
+        };
+        let indirect_name =
+            INDIRECT_NAMES[(frames_of(INDIRECT_PT) > frames_of(INDIRECT_GI)) as usize];
         // Surface pixels are counted every frame, so this is per pixel and frame.
         let rays: BTreeMap<String, f64> = GUARDED_PASS_NAMES
             .iter()
@@ -167,15 +200,19 @@ impl StatsSummary {
                 .enumerate()
                 .map(|(i, n)| (n.to_string(), total.get(STAT_NONFINITE + i as u32)))
                 .chain(
-                    GI_GUARDED_PASS_NAMES
+                    INDIRECT_GUARDED_PASS_NAMES
                         .iter()
                         .enumerate()
-                        .map(|(i, n)| (n.to_string(), total.get(STAT_GI_NONFINITE + i as u32))),
+                        .map(|(i, n)| {
+                            (
+                                format!("{indirect_name} {n}"),
+                                total.get(STAT_INDIRECT_NONFINITE + i as u32),
+                            )
+                        }),
                 )
                 .collect(),
-            gi_temporal_rejections: gi_named(STAT_GI_TEMPORAL_REJECT),
-            gi_spatial_rejections: gi_named(STAT_GI_SPATIAL_REJECT),
-            gi_temporal_accepted_fraction: fraction(total.get(STAT_GI_TEMPORAL_ACCEPTED)),
+            gi: indirect(INDIRECT_GI),
+            pt: indirect(INDIRECT_PT),
             temporal_rejections: named(STAT_TEMPORAL_REJECT),
             spatial_rejections: named(STAT_SPATIAL_REJECT),
             source_fractions: SOURCE_NAMES
@@ -233,5 +270,37 @@ mod tests {
         assert_eq!(s.shadow_rays_per_pixel.len(), 1);
         assert!((s.shadow_rays_per_pixel["spatial"] - 2.5).abs() < 1e-12);
         assert!((s.shadow_rays_per_pixel_total - 2.5).abs() < 1e-12);
+        // No indirect technique ran: no block.
+        assert!(s.gi.is_none() && s.pt.is_none());
+        assert!(s.non_finite_by_pass.contains_key("gi initial"));
+    }
+
+    /// The indirect counters go under the technique that ran (PT's used to read as GI's).
+    #[test]
+    fn the_indirect_block_is_named_after_the_technique_that_ran() {
+        let mut c = vec![0u32; STAT_COUNT as usize];
+        c[STAT_SURFACE_PIXELS as usize] = 10;
+        c[(STAT_INDIRECT_FRAMES + INDIRECT_PT) as usize] = 1;
+        c[(STAT_INDIRECT_TEMPORAL_REJECT + 1) as usize] = 3;
+        c[(STAT_INDIRECT_NONFINITE + INDIRECT_PASS_SPATIAL) as usize] = 2;
+        let report = FrameReport {
+            frame: 0,
+            counters: FrameCounters(c),
+            pass_ms: vec![],
+            inspection: None,
+        };
+        let s = StatsSummary::from_reports(&[report], 0);
+        assert!(s.gi.is_none());
+        let pt = s.pt.as_ref().expect("pt ran");
+        assert_eq!(
+            (pt.frames, pt.temporal_rejections["surface_invalid"]),
+            (1, 3)
+        );
+        assert_eq!(s.non_finite_by_pass["pt spatial"], 2);
+        let json = serde_json::to_value(&s).unwrap();
+        assert!(
+            json.get("pt").is_some() && json.get("gi").is_none(),
+            "{json}"
+        );
     }
 }

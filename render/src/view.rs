@@ -48,164 +48,121 @@ impl Mode {
     }
 }
 
-/// The debug views (names as on the command line: `--debug-view NAME`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum DebugView {
-    Final,
-    Source,
-    M,
-    Rejection,
-    Weight,
-    Normals,
-    Albedo,
-    Depth,
-    Motion,
-    Error,
+/// Which pass draws a debug view (the frame plan dispatches it only while it is shown).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DrawnBy {
+    /// display.wgsl, from the frame's buffers.
+    Display,
+    /// ReSTIR GI's view pass (gi/view.wgsl), only while GI runs.
+    GiView,
+    /// The indirect light alone: GI's view pass, or PT's while PT runs.
+    IndirectView,
+    /// ReSTIR PT's view pass (pt/view.wgsl), only while PT runs.
+    PtView,
+    /// bias_view.wgsl: the running average against the Accuracy reference.
+    BiasView,
+    /// window_view.wgsl, from the temporal window (kept only while such a view is shown).
+    WindowView,
+}
+
+/// One row per debug view: its variant, its name on the command line
+/// (`--debug-view NAME`), its code (the WGSL constant `VIEW_*` the passes switch on), the
+/// pass that draws it and whether it compares with the Accuracy reference (which must then
+/// be fetched). Adding a view is a row here, a branch in the WGSL of the pass named and a
+/// legend in the View panel (docs/src/adding-a-debug-view.md).
+macro_rules! debug_views {
+    ($( $(#[$meta:meta])* $variant:ident, $name:literal, $code:ident = $value:literal, $drawn_by:ident, $reference:literal; )*) => {
+        /// The debug views (names as on the command line: `--debug-view NAME`).
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+        pub enum DebugView {
+            $( $(#[$meta])* $variant, )*
+        }
+
+        $( pub const $code: u32 = $value; )*
+
+        /// The views' codes, for the WGSL prelude (shader_constants.rs).
+        pub(crate) fn view_codes() -> Vec<(&'static str, crate::wgsl_constants::WgslValue)> {
+            vec![$( (stringify!($code), crate::wgsl_constants::WgslValue::from($code)) ),*]
+        }
+
+        impl DebugView {
+            pub const ALL: [DebugView; [$( DebugView::$variant ),*].len()] = [$( DebugView::$variant ),*];
+
+            pub fn name(self) -> &'static str {
+                match self { $( DebugView::$variant => $name, )* }
+            }
+
+            pub fn gpu_code(self) -> u32 {
+                match self { $( DebugView::$variant => $code, )* }
+            }
+
+            /// The pass that draws the view.
+            pub fn drawn_by(self) -> DrawnBy {
+                match self { $( DebugView::$variant => DrawnBy::$drawn_by, )* }
+            }
+
+            /// Whether the view compares with the Accuracy reference (which must be fetched).
+            pub fn needs_reference(self) -> bool {
+                match self { $( DebugView::$variant => $reference, )* }
+            }
+        }
+    };
+}
+
+debug_views! {
+    Final, "final", VIEW_FINAL = 0, Display, false;
+    Source, "source", VIEW_SOURCE = 1, Display, false;
+    M, "m", VIEW_M = 2, Display, false;
+    Rejection, "rejection", VIEW_REJECTION = 3, Display, false;
+    Weight, "w", VIEW_WEIGHT = 4, Display, false;
+    Normals, "normals", VIEW_NORMALS = 5, Display, false;
+    Albedo, "albedo", VIEW_ALBEDO = 6, Display, false;
+    Depth, "depth", VIEW_DEPTH = 7, Display, false;
+    Motion, "motion", VIEW_MOTION = 8, Display, false;
+    Error, "error", VIEW_ERROR = 9, Display, true;
     /// |A − B| against the other side of a split-screen comparison.
-    Difference,
+    Difference, "difference", VIEW_DIFFERENCE = 10, Display, false;
     /// The running average minus the reference, signed, where it exceeds the noise.
-    Bias,
-    Age,
-    /// ReSTIR GI: the indirect radiance alone, and the GI reservoirs (drawn by gi_view).
-    Indirect,
-    GiSource,
-    GiM,
-    GiRejection,
-    GiJacobian,
-    /// ReSTIR PT (drawn by pt_view): the survivor's path length, the depth of its
-    /// reconnection vertex, why shifts to the pixel failed, log2 |J| of its last shift.
-    PtLength,
-    PtReconnection,
-    PtFailure,
-    PtJacobian,
+    Bias, "bias", VIEW_BIAS = 17, BiasView, true;
+    Age, "age", VIEW_AGE = 11, Display, false;
+    /// The indirect radiance alone (ReSTIR GI or PT).
+    Indirect, "indirect", VIEW_INDIRECT = 12, IndirectView, false;
+    /// ReSTIR GI's reservoirs.
+    GiSource, "gi-source", VIEW_GI_SOURCE = 13, GiView, false;
+    GiM, "gi-m", VIEW_GI_M = 14, GiView, false;
+    GiRejection, "gi-rejection", VIEW_GI_REJECTION = 15, GiView, false;
+    GiJacobian, "gi-jacobian", VIEW_GI_JACOBIAN = 16, GiView, false;
+    /// ReSTIR PT: the survivor's path length, the depth of its reconnection vertex, why
+    /// shifts to the pixel failed, log2 |J| of its last shift.
+    PtLength, "pt-length", VIEW_PT_LENGTH = 20, PtView, false;
+    PtReconnection, "pt-reconnection", VIEW_PT_RECONNECTION = 21, PtView, false;
+    PtFailure, "pt-failure", VIEW_PT_FAILURE = 22, PtView, false;
+    PtJacobian, "pt-jacobian", VIEW_PT_JACOBIAN = 23, PtView, false;
     /// σ/mean of each pixel's luminance over the temporal window: where the image flickers.
-    Boiling,
+    Boiling, "boiling", VIEW_BOILING = 18, WindowView, false;
     /// How often the survivor's light changed within the temporal window.
-    SurvivorChange,
+    SurvivorChange, "survivor-change", VIEW_SURVIVOR_CHANGE = 19, WindowView, false;
 }
 
 impl DebugView {
-    pub const ALL: [DebugView; 24] = [
-        DebugView::Final,
-        DebugView::Source,
-        DebugView::M,
-        DebugView::Rejection,
-        DebugView::Weight,
-        DebugView::Normals,
-        DebugView::Albedo,
-        DebugView::Depth,
-        DebugView::Motion,
-        DebugView::Error,
-        DebugView::Difference,
-        DebugView::Bias,
-        DebugView::Age,
-        DebugView::Indirect,
-        DebugView::GiSource,
-        DebugView::GiM,
-        DebugView::GiRejection,
-        DebugView::GiJacobian,
-        DebugView::PtLength,
-        DebugView::PtReconnection,
-        DebugView::PtFailure,
-        DebugView::PtJacobian,
-        DebugView::Boiling,
-        DebugView::SurvivorChange,
-    ];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            DebugView::Final => "final",
-            DebugView::Source => "source",
-            DebugView::M => "m",
-            DebugView::Rejection => "rejection",
-            DebugView::Weight => "w",
-            DebugView::Normals => "normals",
-            DebugView::Albedo => "albedo",
-            DebugView::Depth => "depth",
-            DebugView::Motion => "motion",
-            DebugView::Error => "error",
-            DebugView::Difference => "difference",
-            DebugView::Bias => "bias",
-            DebugView::Age => "age",
-            DebugView::Indirect => "indirect",
-            DebugView::GiSource => "gi-source",
-            DebugView::GiM => "gi-m",
-            DebugView::GiRejection => "gi-rejection",
-            DebugView::GiJacobian => "gi-jacobian",
-            DebugView::PtLength => "pt-length",
-            DebugView::PtReconnection => "pt-reconnection",
-            DebugView::PtFailure => "pt-failure",
-            DebugView::PtJacobian => "pt-jacobian",
-            DebugView::Boiling => "boiling",
-            DebugView::SurvivorChange => "survivor-change",
-        }
-    }
-
     pub fn from_name(s: &str) -> Option<DebugView> {
         DebugView::ALL.into_iter().find(|v| v.name() == s)
     }
 
-    pub fn gpu_code(self) -> u32 {
-        match self {
-            DebugView::Final => VIEW_FINAL,
-            DebugView::Source => VIEW_SOURCE,
-            DebugView::M => VIEW_M,
-            DebugView::Rejection => VIEW_REJECTION,
-            DebugView::Weight => VIEW_WEIGHT,
-            DebugView::Normals => VIEW_NORMALS,
-            DebugView::Albedo => VIEW_ALBEDO,
-            DebugView::Depth => VIEW_DEPTH,
-            DebugView::Motion => VIEW_MOTION,
-            DebugView::Error => VIEW_ERROR,
-            DebugView::Difference => VIEW_DIFFERENCE,
-            DebugView::Bias => VIEW_BIAS,
-            DebugView::Age => VIEW_AGE,
-            DebugView::Indirect => VIEW_INDIRECT,
-            DebugView::GiSource => VIEW_GI_SOURCE,
-            DebugView::GiM => VIEW_GI_M,
-            DebugView::GiRejection => VIEW_GI_REJECTION,
-            DebugView::GiJacobian => VIEW_GI_JACOBIAN,
-            DebugView::PtLength => VIEW_PT_LENGTH,
-            DebugView::PtReconnection => VIEW_PT_RECONNECTION,
-            DebugView::PtFailure => VIEW_PT_FAILURE,
-            DebugView::PtJacobian => VIEW_PT_JACOBIAN,
-            DebugView::Boiling => VIEW_BOILING,
-            DebugView::SurvivorChange => VIEW_SURVIVOR_CHANGE,
-        }
-    }
-
-    /// Whether the view compares with the Accuracy reference (which must be fetched).
-    pub fn needs_reference(self) -> bool {
-        matches!(self, DebugView::Error | DebugView::Bias)
-    }
-
     /// Whether the view shows ReSTIR GI data (drawn by the gi_view pass, only when GI runs).
     pub fn is_indirect(self) -> bool {
-        matches!(
-            self,
-            DebugView::Indirect
-                | DebugView::GiSource
-                | DebugView::GiM
-                | DebugView::GiRejection
-                | DebugView::GiJacobian
-        )
+        matches!(self.drawn_by(), DrawnBy::GiView | DrawnBy::IndirectView)
     }
 
     /// Whether the view shows ReSTIR PT's path reservoirs (drawn by the pt_view pass, only
     /// when PT runs; `Indirect` is drawn there too while PT is on).
     pub fn is_path_view(self) -> bool {
-        matches!(
-            self,
-            DebugView::PtLength
-                | DebugView::PtReconnection
-                | DebugView::PtFailure
-                | DebugView::PtJacobian
-        )
+        self.drawn_by() == DrawnBy::PtView
     }
 
     /// Whether the view reads the temporal window (kept only while such a view is shown).
     pub fn uses_temporal_window(self) -> bool {
-        matches!(self, DebugView::Boiling | DebugView::SurvivorChange)
+        self.drawn_by() == DrawnBy::WindowView
     }
 }
 
@@ -281,4 +238,30 @@ pub fn auto_exposure_ev(image: &crate::image::LinearImage) -> f32 {
     }
     let log_avg = (sum / n as f64).exp();
     (0.18 / log_avg).log2().clamp(-40.0, 40.0) as f32
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every view has its own name and code, and a code the passes can switch on.
+    #[test]
+    fn each_debug_view_row_is_its_own() {
+        let mut names: Vec<_> = DebugView::ALL.iter().map(|v| v.name()).collect();
+        let mut codes: Vec<_> = DebugView::ALL.iter().map(|v| v.gpu_code()).collect();
+        names.sort();
+        names.dedup();
+        codes.sort();
+        codes.dedup();
+        assert_eq!(names.len(), DebugView::ALL.len());
+        assert_eq!(codes.len(), DebugView::ALL.len());
+        let prelude = crate::shader_constants::wgsl_prelude();
+        for v in DebugView::ALL {
+            assert_eq!(DebugView::from_name(v.name()), Some(v));
+            assert!(prelude.contains(&format!("= {}u;", v.gpu_code())));
+        }
+        assert!(prelude.contains("const VIEW_PT_JACOBIAN: u32 = 23u;"));
+        assert_eq!(DebugView::Indirect.drawn_by(), DrawnBy::IndirectView);
+        assert!(DebugView::Bias.needs_reference() && !DebugView::Boiling.needs_reference());
+    }
 }

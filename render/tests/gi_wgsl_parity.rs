@@ -1,4 +1,4 @@
-//! The WGSL GI library (shaders/common/gi_reservoir.wgsl) computes what its Rust mirror
+//! The WGSL GI library (shaders/gi/reservoir.wgsl) computes what its Rust mirror
 //! (render/src/reservoir/gi.rs, gi_jacobian.rs) computes, so the Rust statistical tests vouch
 //! for the shader: a compute kernel evaluates the Jacobian, the shift's rejection bits, the
 //! target and a small 1/M merge for random and singular configurations, and the results are
@@ -206,7 +206,7 @@ fn close(a: f32, b: f32) -> bool {
 #[test]
 fn wgsl_gi_library_matches_the_rust_mirror() {
     let gpu = common::gpu();
-    let mut source = compose("common/gi_reservoir.wgsl", &BTreeSet::new()).unwrap();
+    let mut source = compose("gi/reservoir.wgsl", &BTreeSet::new()).unwrap();
     source.push_str(KERNEL);
     let module = gpu
         .device

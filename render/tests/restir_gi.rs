@@ -9,7 +9,7 @@ mod common;
 
 use common::indirect::mean_luma;
 use glam::Vec3;
-use restir_render::shader_constants::{GI_PASS_TEMPORAL, STAT_GI_NONFINITE};
+use restir_render::shader_constants::{INDIRECT_PASS_TEMPORAL, STAT_INDIRECT_NONFINITE};
 use restir_render::{Camera, Mode, Renderer, Scene, load_scene};
 
 const W: u32 = 64;
@@ -264,8 +264,10 @@ fn a_poisoned_gi_history_is_counted_and_dropped() {
     let scene = load_scene("builtin:cornell").unwrap();
     let mut r = render(&scene, &["gi=true"], None, 2);
     r.poison_gi_history_for_tests();
-    let counted =
-        common::indirect::count_in_next_frame(&mut r, STAT_GI_NONFINITE + GI_PASS_TEMPORAL);
+    let counted = common::indirect::count_in_next_frame(
+        &mut r,
+        STAT_INDIRECT_NONFINITE + INDIRECT_PASS_TEMPORAL,
+    );
     assert!(
         counted as u32 >= W * H / 2,
         "only {counted} poisoned reservoirs counted"

@@ -8,7 +8,7 @@ mod common;
 
 use common::indirect::mean_luma;
 use glam::Vec3;
-use restir_render::shader_constants::{GI_PASS_TEMPORAL, STAT_GI_NONFINITE};
+use restir_render::shader_constants::{INDIRECT_PASS_TEMPORAL, STAT_INDIRECT_NONFINITE};
 use restir_render::{Camera, Mode, Renderer, Scene, load_scene};
 
 const W: u32 = 64;
@@ -227,6 +227,20 @@ fn pt_passes_run_only_when_pt_is_on() {
     assert!(!no_temporal.last_passes().contains(&"pt temporal"));
     let alone = render(&scene, &["pt=true", "pt_spatial=false"], None, 1);
     assert!(!alone.last_passes().contains(&"pt spatial"));
+    // ris reuses nothing: PT's path is traced and shaded, never reused (its reuse switches
+    // were forgotten before the settings table marked them).
+    let mut ris = render(&scene, &["pt=true"], None, 0);
+    ris.set_mode(Mode::Ris);
+    for _ in 0..2 {
+        ris.render_frame().unwrap();
+    }
+    assert_eq!(indirect_passes(&ris), ["pt initial", "pt shade"]);
+    // `--stats` names the indirect block after the technique that ran.
+    let mut pt = render(&scene, &["pt=true"], None, 0);
+    let summary = common::stats_of(&mut pt, 2);
+    assert!(summary.pt.is_some_and(|b| b.frames == 2) && summary.gi.is_none());
+    assert!(summary.non_finite_by_pass.contains_key("pt temporal"));
+    assert!(!summary.non_finite_by_pass.contains_key("gi temporal"));
 }
 
 /// Hard cases with PT on (3 bounces, every shift in turn across the scenes): paths that
@@ -277,8 +291,10 @@ fn a_poisoned_pt_history_is_counted_and_dropped() {
     let scene = load_scene("builtin:cornell").unwrap();
     let mut r = render(&scene, &["pt=true"], None, 2);
     r.poison_pt_history_for_tests();
-    let counted =
-        common::indirect::count_in_next_frame(&mut r, STAT_GI_NONFINITE + GI_PASS_TEMPORAL);
+    let counted = common::indirect::count_in_next_frame(
+        &mut r,
+        STAT_INDIRECT_NONFINITE + INDIRECT_PASS_TEMPORAL,
+    );
     assert!(
         counted as u32 >= W * H / 2,
         "PT temporal counted {counted} poisoned reservoirs of {}",

@@ -82,12 +82,12 @@ const BUDGETS: &[(&str, usize, usize)] = &[
     ("spatial.wgsl", 1, 7),
     ("shade.wgsl", 1, 5),
     ("reference.wgsl", 5, 48),
-    ("gi_initial.wgsl", 2, 19),
-    ("gi_temporal.wgsl", 2, 8),
-    ("gi_spatial.wgsl", 2, 8),
-    ("pt_initial.wgsl", 3, 33),
-    ("pt_temporal.wgsl", 5, 45),
-    ("pt_spatial.wgsl", 5, 45),
+    ("gi/initial.wgsl", 2, 19),
+    ("gi/temporal.wgsl", 2, 8),
+    ("gi/spatial.wgsl", 2, 8),
+    ("pt/initial.wgsl", 3, 33),
+    ("pt/temporal.wgsl", 5, 45),
+    ("pt/spatial.wgsl", 5, 45),
     ("ray_bench.wgsl", 2, 9),
 ];
 

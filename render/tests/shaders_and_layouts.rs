@@ -84,10 +84,10 @@ fn every_pass_validates_for_every_effect_set() {
         parse_and_validate("reference.wgsl", &bare);
     } // The GI tests' planted errors (render/tests/restir_gi.rs).
     for (shader, planted) in [
-        ("gi_spatial.wgsl", "PLANTED_GI_NO_JACOBIAN"),
-        ("gi_spatial.wgsl", "PLANTED_GI_INVERTED_JACOBIAN"),
-        ("gi_temporal.wgsl", "PLANTED_GI_INVERTED_JACOBIAN"),
-        ("gi_temporal.wgsl", "PLANTED_GI_NO_TEMPORAL_VISIBILITY"),
+        ("gi/spatial.wgsl", "PLANTED_GI_NO_JACOBIAN"),
+        ("gi/spatial.wgsl", "PLANTED_GI_INVERTED_JACOBIAN"),
+        ("gi/temporal.wgsl", "PLANTED_GI_INVERTED_JACOBIAN"),
+        ("gi/temporal.wgsl", "PLANTED_GI_NO_TEMPORAL_VISIBILITY"),
         // The boiling view's planted twin (render/tests/temporal_window.rs).
         ("temporal_window.wgsl", "PLANTED_WINDOW_CURRENT_FRAME_ONLY"),
         // The tracing backends' twins (render/tests/ray_backends.rs).
@@ -156,8 +156,8 @@ fn gi_library_check(@builtin(global_invocation_id) id: vec3<u32>) {
     gi_reservoir_finalize(&r, 1.0);
     r.m = 1.0;
     var s = gi_reservoir_empty();
-    let m_i = gi_pairwise_noncanonical(3.0, 1.0, 2.0, p, p, j);
-    let m_c = confidence_share(1.0, 3.0) + gi_pairwise_canonical_term(3.0, 1.0, 2.0, p, p, j);
+    let m_i = shifted_pairwise_noncanonical(3.0, 1.0, 2.0, p, p, j);
+    let m_c = confidence_share(1.0, 3.0) + shifted_pairwise_canonical_term(3.0, 1.0, 2.0, p, p, j);
     gi_reservoir_merge_mis(&s, r, p, 1.0, m_c, gi_pack(gi_source(r), 0u, gi_age(r)), 0.25);
     gi_reservoir_merge_mis(&s, other, p, j, m_i, gi_pack(SOURCE_SPATIAL, 0u, gi_age(other)), 0.75);
     gi_reservoir_merge(&s, other, p, j, min(other.m, 10.0), gi_pack(SOURCE_TEMPORAL, 0u, gi_age(other) + 1u), 0.5);
@@ -174,7 +174,7 @@ fn gi_library_check(@builtin(global_invocation_id) id: vec3<u32>) {
 #[test]
 fn gi_reservoir_library_validates_in_a_compute_entry_point() {
     for defines in [BTreeSet::new(), EffectSet::all().defines()] {
-        let mut source = compose("common/gi_reservoir.wgsl", &defines).unwrap();
+        let mut source = compose("gi/reservoir.wgsl", &defines).unwrap();
         source.push_str(GI_LIBRARY_ENTRY);
         let module = validate_source("gi_reservoir.wgsl in a compute entry point", &source);
         assert_eq!(module.entry_points.len(), 1);

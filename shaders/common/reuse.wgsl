@@ -68,24 +68,43 @@ fn disk_neighbour_offset(u: vec2<f32>, radius: f32) -> vec2<i32> {
     return offset;
 }
 
-// Where temporal reuse (DI and GI) reads the previous frame: the reprojected `pixel`, or
-// REJECT_OFFSCREEN when it left the image (or the point was behind the previous camera);
-// with that check disabled, the nearest pixel inside.
-struct PreviousPixel {
-    mask: u32,
-    index: u32,
+// The G-buffer checks of a reuse candidate, one validation for the six reuse passes (DI,
+// GI and PT, temporal and spatial), with the same switches (`check_*`) and the same
+// rejection bits (docs/src/temporal-reuse.md, "Validation"). Whether a candidate takes part depends on these
+// alone, never on its sample (the rule of unbiased reuse).
+//
+// First where it is: `pixel` (a reprojected previous pixel when `temporal`, else a spatial
+// neighbour) fails REJECT_OFFSCREEN when it lies outside the image, or (temporal) the point
+// was behind the previous camera; with that check off, the nearest pixel inside is read.
+struct ReuseCandidate {
+    mask: u32,   // REJECT_* bits of the failed checks
+    index: u32,  // the pixel to read when `mask` is 0
 }
 
-fn previous_pixel(pixel: vec2<i32>, s: Surface) -> PreviousPixel {
+fn reuse_candidate(pixel: vec2<i32>, s: Surface, temporal: bool) -> ReuseCandidate {
     let size = vec2<i32>(frame.size);
     var p = pixel;
-    if any(p < vec2<i32>(0)) || any(p >= size) || s.motion.x <= NO_MOTION {
+    if any(p < vec2<i32>(0)) || any(p >= size) || (temporal && s.motion.x <= NO_MOTION) {
         if check_enabled(REJECT_OFFSCREEN) {
-            return PreviousPixel(REJECT_OFFSCREEN, 0u);
+            return ReuseCandidate(REJECT_OFFSCREEN, 0u);
         }
         p = clamp(p, vec2<i32>(0), size - 1);
     }
-    return PreviousPixel(0u, pixel_index(vec2<u32>(p)));
+    return ReuseCandidate(0u, pixel_index(vec2<u32>(p)));
+}
+
+// Then what it saw (`other`, read by the caller from its pass's buffer: WGSL passes no
+// storage pointers): REJECT_SURFACE when it saw no surface or (temporal) the history was
+// invalidated, else the material, normal and position/depth checks. The one meant
+// difference: GI and PT `need_surface` (their samples are reconnected or shifted from the
+// candidate's visible point, so without one there is nothing to reuse whatever
+// check_surface says); DI's light samples need none.
+fn candidate_surface_checks(s: Surface, other: Surface, temporal: bool, need_surface: bool) -> u32 {
+    let valid = surface_is_valid(other) && (!temporal || frame.history_valid != 0u);
+    if !valid {
+        return select(0u, REJECT_SURFACE, check_enabled(REJECT_SURFACE) || need_surface);
+    }
+    return surface_dissimilarity(s, other, temporal);
 }
 
 fn pairwise_mis() -> bool {

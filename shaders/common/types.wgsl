@@ -213,7 +213,7 @@ struct Environment {
     _pad1: u32,
 }
 
-// A ReSTIR GI reservoir (issue 12; functions in common/gi_reservoir.wgsl, math in
+// A ReSTIR GI reservoir (issue 12; functions in gi/reservoir.wgsl, math in
 // render/src/reservoir/gi.rs). The pixel's Surface is its visible point.
 struct GiReservoir {
     position: vec3<f32>,  // x_s, the secondary hit
@@ -226,8 +226,8 @@ struct GiReservoir {
     packed: u32,          // SOURCE_* | GI flags << GI_FLAGS_SHIFT | age << GI_AGE_SHIFT
 }
 
-// A ReSTIR PT path reservoir (issue 27; functions in common/pt_reservoir.wgsl and
-// common/pt_path.wgsl, the CPU model in render/src/path_reuse). The pixel's Surface is the
+// A ReSTIR PT path reservoir (issue 27; functions in pt/reservoir.wgsl and
+// pt/path.wgsl, the CPU model in render/src/path_reuse). The pixel's Surface is the
 // path's first vertex x_1; the path x_1 → … → x_n → z (a light point) is stored as what
 // its shifts need: its random seed (replay), its reconnection vertex x_{k+1} and what lies
 // beyond it (reconnection), and the densities and geometry of the side it was found on.

@@ -18,8 +18,10 @@ pub const NO_RAY_QUERY_ENV: &str = "RESTIR_NO_RAY_QUERY";
 #[derive(Debug, thiserror::Error)]
 pub enum GpuError {
     #[error(
-        "no GPU adapter found ({0}). On a machine without a GPU install Mesa's lavapipe \
-         (Debian/Ubuntu: apt-get install mesa-vulkan-drivers) and run again"
+        "no GPU adapter found ({0}). On a machine without a GPU driver install Mesa's \
+         lavapipe (Vulkan on the CPU) and the Vulkan loader: `.ci/setup` in the repository \
+         does it on Debian/Ubuntu (or: sudo apt-get install mesa-vulkan-drivers libvulkan1), \
+         then run again"
     )]
     NoAdapter(String),
     #[error("the GPU adapter '{adapter}' is not capable enough: {problem}")]

@@ -11,19 +11,11 @@ pub mod resources;
 pub mod bias_view;
 pub mod display;
 pub mod gbuffer;
-pub mod gi_initial;
-pub mod gi_shade;
-pub mod gi_spatial;
-pub mod gi_temporal;
-pub mod gi_view;
+pub mod gi;
 pub mod initial;
 pub mod moments;
 pub mod presample;
-pub mod pt_initial;
-pub mod pt_shade;
-pub mod pt_spatial;
-pub mod pt_temporal;
-pub mod pt_view;
+pub mod pt;
 pub mod ray_bench;
 pub mod reference;
 pub mod shade;
@@ -47,20 +39,20 @@ pub const ALL: [&PassDef; 24] = [
     &temporal::PASS,
     &spatial::PASS,
     &shade::PASS,
-    &gi_initial::PASS,
-    &gi_temporal::PASS,
-    &gi_spatial::PASS,
-    &gi_shade::PASS,
-    &pt_initial::PASS,
-    &pt_temporal::PASS,
-    &pt_spatial::PASS,
-    &pt_shade::PASS,
+    &gi::initial::PASS,
+    &gi::temporal::PASS,
+    &gi::spatial::PASS,
+    &gi::shade::PASS,
+    &pt::initial::PASS,
+    &pt::temporal::PASS,
+    &pt::spatial::PASS,
+    &pt::shade::PASS,
     &reference::PASS,
     &moments::PASS,
     &temporal_window::PASS,
     &display::PASS,
-    &gi_view::PASS,
-    &pt_view::PASS,
+    &gi::view::PASS,
+    &pt::view::PASS,
     &bias_view::PASS,
     &window_view::PASS,
     &ray_bench::PASS,

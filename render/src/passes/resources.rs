@@ -77,6 +77,13 @@ pub const ACCUMULATION: PixelBuffer = PixelBuffer {
     stride: 16,
     allocation: Allocation::Full,
 };
+/// This frame's indirect radiance alone, whichever technique made it (ReSTIR GI or PT;
+/// the `indirect` view).
+pub const INDIRECT: PixelBuffer = PixelBuffer {
+    name: "indirect",
+    stride: 16,
+    allocation: Allocation::Full,
+};
 /// A reference image for the error view (zeros until one is uploaded).
 pub const REFERENCE: PixelBuffer = PixelBuffer {
     name: "reference",

@@ -11,9 +11,8 @@ use std::ops::Range;
 
 use crate::passes::resources::{Chain, RESERVOIRS};
 use crate::passes::{
-    PassDef, bias_view, display, gbuffer, gi_initial, gi_shade, gi_spatial, gi_temporal, gi_view,
-    initial, moments, presample, pt_initial, pt_shade, pt_spatial, pt_temporal, pt_view, reference,
-    shade, spatial, temporal, temporal_window, window_view,
+    PassDef, bias_view, display, gbuffer, gi, initial, moments, presample, pt, reference, shade,
+    spatial, temporal, temporal_window, window_view,
 };
 
 /// One pass of the frame.
@@ -58,7 +57,7 @@ impl Step {
 
     fn inspect_gi(mut self, stage: &'static str) -> Step {
         self.inspect = Some(Inspect {
-            chain: &gi_initial::GI_RESERVOIRS,
+            chain: &gi::initial::GI_RESERVOIRS,
             stage,
         });
         self
@@ -116,24 +115,24 @@ pub fn frame_plan(f: &FrameSwitches) -> Vec<Step> {
         }
         steps.push(Step::new(&shade::PASS));
         if f.gi {
-            steps.push(Step::new(&gi_initial::PASS).inspect_gi("gi initial"));
+            steps.push(Step::new(&gi::initial::PASS).inspect_gi("gi initial"));
             if f.gi_temporal {
-                steps.push(Step::new(&gi_temporal::PASS).inspect_gi("gi temporal"));
+                steps.push(Step::new(&gi::temporal::PASS).inspect_gi("gi temporal"));
             }
             if f.gi_spatial {
-                steps.push(Step::new(&gi_spatial::PASS).inspect_gi("gi spatial"));
+                steps.push(Step::new(&gi::spatial::PASS).inspect_gi("gi spatial"));
             }
-            steps.push(Step::new(&gi_shade::PASS));
+            steps.push(Step::new(&gi::shade::PASS));
         }
         if f.pt {
-            steps.push(Step::new(&pt_initial::PASS));
+            steps.push(Step::new(&pt::initial::PASS));
             if f.pt_temporal {
-                steps.push(Step::new(&pt_temporal::PASS));
+                steps.push(Step::new(&pt::temporal::PASS));
             }
             if f.pt_spatial {
-                steps.push(Step::new(&pt_spatial::PASS));
+                steps.push(Step::new(&pt::spatial::PASS));
             }
-            steps.push(Step::new(&pt_shade::PASS));
+            steps.push(Step::new(&pt::shade::PASS));
         }
     } else {
         steps.push(Step::new(&reference::PASS).slots(0..f.reference_chunks.max(1)));
@@ -151,10 +150,10 @@ pub fn frame_plan(f: &FrameSwitches) -> Vec<Step> {
     }
     steps.push(Step::new(&display::PASS));
     if f.realtime && f.gi && f.gi_view {
-        steps.push(Step::new(&gi_view::PASS));
+        steps.push(Step::new(&gi::view::PASS));
     }
     if f.realtime && f.pt && f.pt_view {
-        steps.push(Step::new(&pt_view::PASS));
+        steps.push(Step::new(&pt::view::PASS));
     }
     if f.bias_view {
         steps.push(Step::new(&bias_view::PASS));
@@ -170,10 +169,10 @@ pub fn frame_plan(f: &FrameSwitches) -> Vec<Step> {
 pub fn display_only(gi_view: bool, pt_view: bool, bias_view: bool, window_view: bool) -> Vec<Step> {
     let mut steps = vec![Step::new(&display::PASS)];
     if gi_view {
-        steps.push(Step::new(&gi_view::PASS));
+        steps.push(Step::new(&gi::view::PASS));
     }
     if pt_view {
-        steps.push(Step::new(&pt_view::PASS));
+        steps.push(Step::new(&pt::view::PASS));
     }
     if bias_view {
         steps.push(Step::new(&bias_view::PASS));

@@ -277,6 +277,37 @@ impl InspectCapture {
     }
 
     /// Copies the pixel's surface, final debug record and radiance.
+    /// The inspected pixel's records at the end of a frame: its surface, debug record and
+    /// radiance, and the indirect technique's debug records while GI or PT runs.
+    pub fn copy_frame_records(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        targets: &crate::frame_targets::FrameTargets,
+        surfaces: usize,
+        gi: bool,
+        pt: bool,
+    ) {
+        use crate::passes::gi::initial::GI_DEBUG;
+        use crate::passes::pt::initial::{PT_DEBUG, PT_PROBE};
+        use crate::passes::resources::{DEBUG, RADIANCE};
+        self.copy_pixel_records(
+            encoder,
+            &targets.surfaces[surfaces],
+            targets.pixels(&DEBUG),
+            targets.pixels(&RADIANCE),
+        );
+        if gi {
+            self.copy_gi_debug(encoder, targets.pixels(&GI_DEBUG));
+        }
+        if pt {
+            self.copy_pt(
+                encoder,
+                targets.pixels(&PT_DEBUG),
+                targets.pixels(&PT_PROBE),
+            );
+        }
+    }
+
     pub fn copy_pixel_records(
         &self,
         encoder: &mut wgpu::CommandEncoder,

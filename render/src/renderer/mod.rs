@@ -20,6 +20,7 @@ mod record;
 mod reports;
 pub mod resolve;
 mod setup;
+mod state;
 mod uniforms;
 mod window;
 
@@ -32,12 +33,9 @@ pub use window::TemporalWindow;
 
 use std::collections::HashMap;
 
-use glam::Mat4;
-
 use crate::effects::{EffectSet, SceneFeatures};
 use crate::frame_targets::FrameTargets;
-use crate::gpu::readback::ReadbackRing;
-use crate::gpu::timing::{PassTimer, TimingMode};
+use crate::gpu::timing::TimingMode;
 use crate::gpu::{Gpu, GpuError};
 use crate::gpu_scene::{GpuScene, SceneInfo, SceneUpdateTimes};
 use crate::gpu_types::*;
@@ -46,7 +44,6 @@ use crate::passes::{ComputePass, PassLayouts, gbuffer::RasterPass};
 use crate::scene::animation::SceneChange;
 use crate::scene::{Camera, Scene};
 use crate::settings::Settings;
-use crate::stats::FrameCounters;
 use crate::view::{Mode, ViewSettings};
 
 use bind_groups::BindGroupCache;
@@ -66,63 +63,29 @@ struct PipelineVariant {
 }
 
 pub struct Renderer {
+    /// The uniform buffers every pass reads, the stats buffer and the frame bind group.
+    buffers: state::FrameBuffers,
+    /// Compiled pipeline variants and what their compiles took.
+    pipelines: state::Pipelines,
+    /// What the next frame takes over from this one.
+    history: state::History,
+    /// Counters, pass times and inspections on their way back from the GPU.
+    readbacks: state::Readbacks,
     gpu: Gpu,
     layouts: PassLayouts,
-    variants: HashMap<String, PipelineVariant>,
     scene: GpuScene,
     features: SceneFeatures,
     targets: FrameTargets,
     bind_groups: BindGroupCache,
-    frame_uniform: wgpu::Buffer,
-    params_uniform: wgpu::Buffer,
-    display_uniform: wgpu::Buffer,
-    pass_info: wgpu::Buffer,
-    /// Light tiles: a one-element placeholder until the first frame that uses them.
-    light_tiles: wgpu::Buffer,
-    stats_buffer: wgpu::Buffer,
-    frame_bind_group: wgpu::BindGroup,
-    timer: PassTimer,
-    stats_ring: ReadbackRing,
-    inspect_ring: ReadbackRing,
-    inspect_staging: wgpu::Buffer,
     inspected_pixel: Option<(u32, u32)>,
-    pending_inspections: HashMap<u64, inspect::PendingInspection>,
-    /// Inspections read back, waiting for their frame's counters (a separate readback).
-    arrived_inspections: HashMap<u64, PixelInspection>,
-    timing_mode: TimingMode,
-    pending_counters: HashMap<u64, FrameCounters>,
-    pending_times: HashMap<u64, Vec<(&'static str, f64)>>,
 
     mode: Mode,
     settings: Settings,
     view: ViewSettings,
-    /// `Some` forces an effect set (`--effects`); `None` derives it from the scene.
-    forced_effects: Option<EffectSet>,
-    /// Test-only `PLANTED_*` defines added to whatever effect set the frame uses.
-    planted: std::collections::BTreeSet<String>,
     camera: Camera,
-    prev_camera: Option<Camera>,
-    prev_view_proj: Option<Mat4>,
-    prev_jitter: glam::Vec2,
     frame_index: u64,
     seed: u32,
-    /// Where last frame's reservoirs and surfaces are (the ping-pong).
-    carried: resolve::Carried,
-    history_valid: bool,
-    cut_requested: bool,
     accumulated_frames: u32,
-    last_final: Option<usize>,
-    /// The effect set of the last frame (reused while its inputs stay the same).
-    last_effects: Option<std::sync::Arc<record::ActiveEffects>>,
-    /// Every pipeline compiled so far and how long it took (`pipelines.rs`).
-    pipeline_compiles: Vec<pipelines::PipelineCompile>,
-    /// The first frame's pipelines as one load phase (`None` before the first frame).
-    first_frame_pipelines: Option<crate::load_phases::Phase>,
-    /// The scene's first frame, from recording to finished on the device, less the
-    /// pipelines' phase (`None` before it).
-    first_frame: Option<crate::load_phases::Phase>,
-    /// Hears pipeline compiles (headless `render` prints them, the viewer shows progress).
-    compile_watcher: Option<CompileWatcher>,
     last_passes: Vec<&'static str>,
     /// Radiance scale of the comparison image (1/N of an accumulated other side).
     comparison_scale: f32,
@@ -148,26 +111,28 @@ impl Renderer {
     /// info), then the first frame's pipelines once it has been rendered.
     pub fn load_phases(&self) -> crate::load_phases::LoadPhases {
         let mut phases = self.scene.info.load.clone();
-        phases.phases.extend(self.first_frame_pipelines.clone());
-        phases.phases.extend(self.first_frame.clone());
+        phases
+            .phases
+            .extend(self.pipelines.first_frame_pipelines.clone());
+        phases.phases.extend(self.pipelines.first_frame.clone());
         phases
     }
 
     /// How many phases `load_phases` has (cheap: the viewer polls it every frame).
     pub fn load_phase_count(&self) -> usize {
         self.scene.info.load.phases.len()
-            + self.first_frame_pipelines.is_some() as usize
-            + self.first_frame.is_some() as usize
+            + self.pipelines.first_frame_pipelines.is_some() as usize
+            + self.pipelines.first_frame.is_some() as usize
     }
 
     /// Every pipeline compiled so far, with its compile time.
     pub fn pipeline_compiles(&self) -> &[PipelineCompile] {
-        &self.pipeline_compiles
+        &self.pipelines.pipeline_compiles
     }
 
     /// Who hears pipeline compiles from now on (`None`: nobody).
     pub fn set_compile_watcher(&mut self, watcher: Option<CompileWatcher>) {
-        self.compile_watcher = watcher;
+        self.pipelines.compile_watcher = watcher;
     }
 
     pub fn scene_scale(&self) -> f32 {
@@ -228,7 +193,7 @@ impl Renderer {
         self.targets = FrameTargets::new(&self.gpu, width, height);
         self.bind_groups.clear();
         // The new targets start without history buffers.
-        self.carried = resolve::Carried::default();
+        self.history.carried = resolve::Carried::default();
         self.invalidate_history();
         self.reset_accumulation();
         Ok(())
@@ -269,7 +234,7 @@ impl Renderer {
 
     /// Forces an effect set (`--effects all|LIST`), or `None` for the scene-derived one.
     pub fn force_effects(&mut self, effects: Option<EffectSet>) {
-        self.forced_effects = effects;
+        self.pipelines.forced_effects = effects;
     }
 
     /// Test-only: compiles the `PLANTED_*` defines `defines` into every pass from the next
@@ -277,13 +242,13 @@ impl Renderer {
     /// its detector fires on a known error.
     #[doc(hidden)]
     pub fn plant_for_tests(&mut self, defines: &[&str]) {
-        self.planted = defines.iter().map(|d| d.to_string()).collect();
-        self.last_effects = None;
+        self.pipelines.planted = defines.iter().map(|d| d.to_string()).collect();
+        self.pipelines.last_effects = None;
     }
 
     /// The effect set of the last rendered frame and the passes it dispatched.
     pub fn last_effects(&self) -> Option<&EffectSet> {
-        self.last_effects.as_ref().map(|e| &e.set)
+        self.pipelines.last_effects.as_ref().map(|e| &e.set)
     }
 
     pub fn last_passes(&self) -> &[&'static str] {
@@ -292,7 +257,7 @@ impl Renderer {
 
     /// What traced the last frame's rays (`ray_backend` resolved on this device).
     pub fn last_ray_backend(&self) -> Option<crate::tracing::RayBackend> {
-        self.last_effects.as_ref().map(|e| e.backend)
+        self.pipelines.last_effects.as_ref().map(|e| e.backend)
     }
 
     pub fn camera(&self) -> Camera {
@@ -314,15 +279,12 @@ impl Renderer {
 
     /// Treats the next frame as a camera cut: the previous surfaces are invalid.
     pub fn request_cut(&mut self) {
-        self.cut_requested = true;
+        self.history.cut_requested = true;
     }
 
     fn invalidate_history(&mut self) {
-        self.history_valid = false;
+        self.history.invalidate();
         self.window.restart();
-        self.prev_camera = None;
-        self.prev_view_proj = None;
-        self.last_final = None;
     }
 
     /// Fault injection for tests of the non-finite guard: overwrites the history
@@ -342,7 +304,7 @@ impl Renderer {
         let data = vec![poisoned; self.targets.pixel_count() as usize];
         self.gpu.queue.write_buffer(
             self.targets
-                .chain(&RESERVOIRS, self.carried.history(&RESERVOIRS)),
+                .chain(&RESERVOIRS, self.history.carried.history(&RESERVOIRS)),
             0,
             bytemuck::cast_slice(&data),
         );
@@ -352,8 +314,8 @@ impl Renderer {
     /// weights and positions, which the next GI temporal pass must count and drop.
     #[doc(hidden)]
     pub fn poison_gi_history_for_tests(&mut self) {
-        use crate::passes::gi_initial::GI_RESERVOIRS;
-        if !self.carried.has_history(&GI_RESERVOIRS) {
+        use crate::passes::gi::initial::GI_RESERVOIRS;
+        if !self.history.carried.has_history(&GI_RESERVOIRS) {
             return;
         }
         let poisoned = GpuGiReservoir {
@@ -367,7 +329,7 @@ impl Renderer {
             packed: GpuGiReservoir::pack(crate::shader_constants::SOURCE_TEMPORAL, 0, 0),
         };
         let data = vec![poisoned; self.targets.pixel_count() as usize];
-        let history = self.carried.history(&GI_RESERVOIRS);
+        let history = self.history.carried.history(&GI_RESERVOIRS);
         self.gpu.queue.write_buffer(
             self.targets.chain(&GI_RESERVOIRS, history),
             0,
@@ -379,8 +341,8 @@ impl Renderer {
     /// weights and geometry, which the next PT temporal pass must count and drop.
     #[doc(hidden)]
     pub fn poison_pt_history_for_tests(&mut self) {
-        use crate::passes::pt_initial::PT_RESERVOIRS;
-        if !self.carried.has_history(&PT_RESERVOIRS) {
+        use crate::passes::pt::initial::PT_RESERVOIRS;
+        if !self.history.carried.has_history(&PT_RESERVOIRS) {
             return;
         }
         let poisoned = crate::gpu_types::GpuPtReservoir {
@@ -396,7 +358,7 @@ impl Renderer {
             ..Default::default()
         };
         let data = vec![poisoned; self.targets.pixel_count() as usize];
-        let history = self.carried.history(&PT_RESERVOIRS);
+        let history = self.history.carried.history(&PT_RESERVOIRS);
         self.gpu.queue.write_buffer(
             self.targets.chain(&PT_RESERVOIRS, history),
             0,
@@ -466,12 +428,12 @@ impl Renderer {
 
     /// How passes are timed (wall clock on CPU adapters, timestamps on GPUs).
     pub fn timing_mode(&self) -> TimingMode {
-        self.timing_mode
+        self.readbacks.timing_mode
     }
 
     /// `Off` stops timing (fastest); `WallClock` forces per-pass submissions.
     pub fn set_timing_mode(&mut self, mode: TimingMode) {
-        self.timing_mode = if mode == TimingMode::Timestamps && !self.gpu.timestamps {
+        self.readbacks.timing_mode = if mode == TimingMode::Timestamps && !self.gpu.timestamps {
             TimingMode::Off
         } else {
             mode

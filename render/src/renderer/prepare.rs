@@ -82,7 +82,7 @@ impl Renderer {
             mode: self.mode,
             settings: self.settings.clone(),
             view: self.view,
-            forced_effects: self.forced_effects.clone(),
+            forced_effects: self.pipelines.forced_effects.clone(),
             warm_up: true,
         }
     }
@@ -94,10 +94,10 @@ impl Renderer {
         self.features = prepared.features;
         // The effect set is cached while settings stay the same: the new scene's features
         // decide it afresh (textures, glass, an environment).
-        self.last_effects = None;
+        self.pipelines.last_effects = None;
         self.camera = prepared.camera;
-        self.first_frame_pipelines = None;
-        self.first_frame = None;
+        self.pipelines.first_frame_pipelines = None;
+        self.pipelines.first_frame = None;
         // The resolve group binds the scene's previous-triangle buffer.
         self.bind_groups.clear();
         self.invalidate_history();

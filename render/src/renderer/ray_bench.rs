@@ -75,7 +75,7 @@ impl Renderer {
     /// Traces `kind` rays from the last frame's surfaces `dispatches` times with the last
     /// frame's pipeline variant (its backend and effects). Render a frame first.
     pub fn bench_rays(&mut self, kind: RayKind, dispatches: u32) -> Result<RayRate, GpuError> {
-        let Some(active) = self.last_effects.clone() else {
+        let Some(active) = self.pipelines.last_effects.clone() else {
             return Err(GpuError::Validation(
                 "bench_rays needs a rendered frame (its G-buffer)".into(),
             ));
@@ -86,14 +86,18 @@ impl Renderer {
             slots: slot..slot + 1,
             inspect: None,
         }];
-        let variant = self.variants.entry(active.key.clone()).or_default();
+        let variant = self
+            .pipelines
+            .variants
+            .entry(active.key.clone())
+            .or_default();
         variant.compile(&self.gpu, &self.layouts, &active.defines, &PASS)?;
-        let resolved = resolve(&plan, &self.carried, false, false);
+        let resolved = resolve(&plan, &self.history.carried, false, false);
         self.targets.ensure(&self.gpu, &resolved.needs);
         let uniforms = Uniforms {
-            pass_info: &self.pass_info,
-            display: &self.display_uniform,
-            light_tiles: &self.light_tiles,
+            pass_info: &self.buffers.pass_info,
+            display: &self.buffers.display_uniform,
+            light_tiles: &self.buffers.light_tiles,
         };
         let group = self.bind_groups.get(
             &self.gpu,
@@ -104,14 +108,15 @@ impl Renderer {
             &resolved.steps[0].bound,
         );
         let scene_group = self.scene.bind_group(active.backend).clone();
-        let pass = &self.variants[&active.key].passes[PASS.name];
+        let pass = &self.pipelines.variants[&active.key].passes[PASS.name];
         self.gpu.wait_idle();
         let mut dispatch_ms = Vec::new();
         for _ in 0..dispatches.max(1) {
-            let mut rec = FrameRecorder::new(&self.gpu, &mut self.timer, TimingMode::WallClock);
+            let mut rec =
+                FrameRecorder::new(&self.gpu, &mut self.readbacks.timer, TimingMode::WallClock);
             pass.record(
                 &mut rec,
-                [&self.frame_bind_group, &scene_group, &group],
+                [&self.buffers.frame_bind_group, &scene_group, &group],
                 &[slot * PASS_INFO_STRIDE],
                 (self.targets.width, self.targets.height),
             );

@@ -4,7 +4,7 @@ use super::Renderer;
 use crate::gpu::readback::{read_buffer, read_rgba8_texture};
 use crate::gpu_types::{GpuPixelDebug, GpuReservoir, GpuSurface};
 use crate::image::LinearImage;
-use crate::passes::gi_initial::GI_RESERVOIRS;
+use crate::passes::gi::initial::GI_RESERVOIRS;
 use crate::passes::resources::{ACCUMULATION, DEBUG, RADIANCE, RESERVOIRS};
 
 impl Renderer {
@@ -61,7 +61,7 @@ impl Renderer {
 
     /// The reservoirs the last frame shaded with (empty after a reference frame).
     pub fn read_final_reservoirs(&self) -> Vec<GpuReservoir> {
-        match self.last_final {
+        match self.history.last_final {
             Some(i) => self.pixel_records(self.targets.chain(&RESERVOIRS, i)),
             None => Vec::new(),
         }
@@ -69,31 +69,31 @@ impl Renderer {
 
     /// The last frame's final ReSTIR GI reservoirs (empty unless the last frame ran GI).
     pub fn read_gi_reservoirs(&self) -> Vec<crate::gpu_types::GpuGiReservoir> {
-        if !self.carried.has_history(&GI_RESERVOIRS) {
+        if !self.history.carried.has_history(&GI_RESERVOIRS) {
             return Vec::new();
         }
-        let final_buffer = self.carried.history(&GI_RESERVOIRS);
+        let final_buffer = self.history.carried.history(&GI_RESERVOIRS);
         self.pixel_records(self.targets.chain(&GI_RESERVOIRS, final_buffer))
     }
 
     /// The last frame's final ReSTIR PT path reservoirs (empty unless the last frame ran PT).
     pub fn read_pt_reservoirs(&self) -> Vec<crate::gpu_types::GpuPtReservoir> {
-        use crate::passes::pt_initial::PT_RESERVOIRS;
-        if !self.carried.has_history(&PT_RESERVOIRS) {
+        use crate::passes::pt::initial::PT_RESERVOIRS;
+        if !self.history.carried.has_history(&PT_RESERVOIRS) {
             return Vec::new();
         }
-        let final_buffer = self.carried.history(&PT_RESERVOIRS);
+        let final_buffer = self.history.carried.history(&PT_RESERVOIRS);
         self.pixel_records(self.targets.chain(&PT_RESERVOIRS, final_buffer))
     }
 
     /// The last frame's ReSTIR PT debug records (the PT views' data; meaningful only after a
     /// frame that ran PT).
     pub fn read_pt_debug(&self) -> Vec<crate::gpu_types::GpuPtPixelDebug> {
-        self.pixel_records(self.targets.pixels(&crate::passes::pt_initial::PT_DEBUG))
+        self.pixel_records(self.targets.pixels(&crate::passes::pt::initial::PT_DEBUG))
     }
 
     /// The last frame's G-buffer surfaces.
     pub fn read_surfaces(&self) -> Vec<GpuSurface> {
-        self.pixel_records(&self.targets.surfaces[self.carried.surfaces])
+        self.pixel_records(&self.targets.surfaces[self.history.carried.surfaces])
     }
 }

@@ -15,10 +15,10 @@ use crate::effects::{Effect, EffectSet};
 use crate::gpu::timing::FrameRecorder;
 use crate::gpu::{Gpu, GpuError};
 use crate::passes::gbuffer::RasterPass;
-use crate::passes::gi_initial::{GI_DEBUG, GI_RESERVOIRS};
+use crate::passes::gi::initial::GI_RESERVOIRS;
 use crate::passes::pass::Dispatch;
-use crate::passes::pt_initial::{PT_DEBUG, PT_PROBE, PT_RESERVOIRS};
-use crate::passes::resources::{DEBUG, RADIANCE, RESERVOIRS};
+use crate::passes::pt::initial::{PT_PROBE, PT_RESERVOIRS};
+use crate::passes::resources::RESERVOIRS;
 use crate::passes::{ComputePass, PASS_INFO_SLOTS, PASS_INFO_STRIDE, PassDef, PassLayouts};
 use crate::settings::Settings;
 use crate::shader_constants::{MAX_SPATIAL_PASSES, REFERENCE_SAMPLES_PER_DISPATCH};
@@ -108,22 +108,28 @@ impl Renderer {
         moved: bool,
     ) -> Result<Arc<ActiveEffects>, GpuError> {
         let inputs = self
+            .pipelines
             .forced_effects
             .is_none()
             .then(|| (settings.clone(), moved));
         let unchanged = |last: &ActiveEffects| {
             last.inputs == inputs
-                && (inputs.is_some() || Some(&last.set) == self.forced_effects.as_ref())
+                && (inputs.is_some() || Some(&last.set) == self.pipelines.forced_effects.as_ref())
         };
-        if let Some(last) = self.last_effects.as_ref().filter(|l| unchanged(l)) {
+        if let Some(last) = self
+            .pipelines
+            .last_effects
+            .as_ref()
+            .filter(|l| unchanged(l))
+        {
             return Ok(last.clone());
         }
         let backend = crate::tracing::resolve_for(&self.gpu, settings.ray_backend)?;
-        let mut set = match &self.forced_effects {
+        let mut set = match &self.pipelines.forced_effects {
             Some(forced) => forced.clone(),
             None => EffectSet::detect(&self.features, settings, moved),
         };
-        set.planted.extend(self.planted.iter().cloned());
+        set.planted.extend(self.pipelines.planted.iter().cloned());
         let mut defines = set.defines();
         defines.extend(backend.define().map(str::to_string));
         let key = defines.iter().cloned().collect::<Vec<_>>().join(",");
@@ -188,12 +194,12 @@ impl Renderer {
                 .min(PASS_INFO_SLOTS),
             gi: realtime && settings.gi && !settings.pt,
             pt: realtime && settings.pt,
-            pt_temporal: settings.pt_temporal && self.carried.has_history(&PT_RESERVOIRS),
+            pt_temporal: settings.pt_temporal && self.history.carried.has_history(&PT_RESERVOIRS),
             pt_spatial: settings.pt_spatial && settings.pt_spatial_neighbours > 0,
             pt_view: self.view.view.is_path_view() || self.view.view == DebugView::Indirect,
             // A chain has a history only if last frame used it (GI switched on again, or
             // back from the reference, starts fresh).
-            gi_temporal: settings.gi_temporal && self.carried.has_history(&GI_RESERVOIRS),
+            gi_temporal: settings.gi_temporal && self.history.carried.has_history(&GI_RESERVOIRS),
             gi_spatial: settings.gi_spatial && settings.gi_spatial_neighbours > 0,
             gi_view: self.view.view.is_indirect(),
             bias_view: self.view.view == DebugView::Bias,
@@ -207,11 +213,11 @@ impl Renderer {
     /// dispatch): `ScenePreparer::warm_effects`.
     pub fn effects_to_compile(&mut self) -> Result<Option<EffectSet>, GpuError> {
         let settings = self.effective_settings();
-        let moved = self.prev_camera.is_some_and(|p| p != self.camera);
+        let moved = self.history.prev_camera.is_some_and(|p| p != self.camera);
         let active = self.active_effects(&settings, moved)?;
         let plan = frame_plan(&self.frame_switches(&settings, &active.set));
         let empty = PipelineVariant::default();
-        let variant = self.variants.get(&active.key).unwrap_or(&empty);
+        let variant = self.pipelines.variants.get(&active.key).unwrap_or(&empty);
         let missing = super::pipelines::missing(variant, plan.iter().map(|s| s.pass));
         Ok((!missing.is_empty()).then(|| active.set.clone()))
     }
@@ -222,23 +228,21 @@ impl Renderer {
         self.scene.begin_frame(&self.gpu);
         let settings = self.effective_settings();
         let camera = self.camera;
-        let moved = self.prev_camera.is_some_and(|p| p != camera);
-        let jump = self
-            .prev_camera
-            .map_or(0.0, |p| (p.position - camera.position).length());
-        if self.cut_requested || jump > settings.camera_cut * self.scene.scale {
-            self.history_valid = false;
+        let moved = self.history.prev_camera.is_some_and(|p| p != camera);
+        if self
+            .history
+            .take_cut(camera, settings.camera_cut * self.scene.scale)
+        {
             self.window.restart();
         }
-        self.cut_requested = false;
 
         self.scene
             .set_environment_share(&self.gpu, settings.environment_share);
         let active = self.active_effects(&settings, moved)?;
-        let (effects, defines, key) = (&active.set, &active.defines, active.key.as_str());
+        let (effects, key) = (&active.set, active.key.as_str());
         let (view_proj, jitter) = self.write_frame_uniform(&settings);
         self.gpu.queue.write_buffer(
-            &self.params_uniform,
+            &self.buffers.params_uniform,
             0,
             bytemuck::bytes_of(&settings.gpu_params(self.targets.height)),
         );
@@ -246,33 +250,17 @@ impl Renderer {
         let switches = self.frame_switches(&settings, effects);
         let plan = frame_plan(&switches);
         if switches.light_tiles
-            && super::setup::ensure_light_tiles(&self.gpu, &mut self.light_tiles)
+            && super::setup::ensure_light_tiles(&self.gpu, &mut self.buffers.light_tiles)
         {
             self.bind_groups.clear();
         }
-        let variant = self.variants.entry(key.to_string()).or_default();
-        let missing = super::pipelines::missing(variant, plan.iter().map(|s| s.pass));
-        let compile_start = std::time::Instant::now();
-        let watch = self.compile_watcher.clone();
-        let compiled = super::pipelines::compile_all(
-            &self.gpu,
-            &self.layouts,
-            defines,
-            variant,
-            &missing,
-            &|e| watch.as_ref().map_or((), |w| w(e)),
-        )?;
-        if self.first_frame_pipelines.is_none() && !compiled.is_empty() {
-            let wall = compile_start.elapsed().as_secs_f64() * 1e3;
-            self.first_frame_pipelines = Some(super::pipelines::phase(&compiled, wall));
-        }
-        self.pipeline_compiles.extend(compiled);
-        let variant = &self.variants[key];
+        self.compile_frame_pipelines(&active, &plan)?;
+        let variant = &self.pipelines.variants[key];
 
         self.accumulated_frames += 1;
         let show_accumulation = self.shows_accumulation();
         self.write_display_uniform(&settings);
-        let resolved = resolve(&plan, &self.carried, true, show_accumulation);
+        let resolved = resolve(&plan, &self.history.carried, true, show_accumulation);
         self.targets.ensure(&self.gpu, &resolved.needs);
         super::window::begin_window_frame(
             &mut self.window,
@@ -281,35 +269,36 @@ impl Renderer {
             switches.temporal_window,
         );
 
-        let frame_group = self.frame_bind_group.clone();
+        let frame_group = self.buffers.frame_bind_group.clone();
         let scene_group = self.scene.bind_group(active.backend).clone();
         let size = self.size();
         let mut dispatched: Vec<&'static str> = Vec::new();
         let mut capture = self
             .inspected_pixel
-            .map(|p| InspectCapture::new(p, size, self.inspect_staging.clone()));
+            .map(|p| InspectCapture::new(p, size, self.readbacks.inspect_staging.clone()));
         // A frame with first dispatches is timed pass by pass, whatever the timing mode:
         // that is where a CPU driver compiles (pipelines.rs, first_dispatch_ms).
         let first_dispatches = super::pipelines::awaits_first_dispatch(
-            &self.pipeline_compiles,
+            &self.pipelines.pipeline_compiles,
             key,
             plan.iter().map(|s| s.pass.name),
         );
         let timing = if first_dispatches {
             crate::gpu::timing::TimingMode::WallClock
         } else {
-            self.timing_mode
+            self.readbacks.timing_mode
         };
-        let mut rec = FrameRecorder::new(&self.gpu, &mut self.timer, timing);
-        rec.encoder().clear_buffer(&self.stats_buffer, 0, None);
+        let mut rec = FrameRecorder::new(&self.gpu, &mut self.readbacks.timer, timing);
+        rec.encoder()
+            .clear_buffer(&self.buffers.stats_buffer, 0, None);
         if capture.is_some() && switches.pt {
             rec.encoder()
                 .clear_buffer(self.targets.pixels(&PT_PROBE), 0, None);
         }
         let uniforms = Uniforms {
-            pass_info: &self.pass_info,
-            display: &self.display_uniform,
-            light_tiles: &self.light_tiles,
+            pass_info: &self.buffers.pass_info,
+            display: &self.buffers.display_uniform,
+            light_tiles: &self.buffers.light_tiles,
         };
         let steps = StepContext {
             gpu: &self.gpu,
@@ -336,28 +325,19 @@ impl Renderer {
             }
         }
         if let Some(c) = &mut capture {
-            c.copy_pixel_records(
+            c.copy_frame_records(
                 rec.encoder(),
-                &self.targets.surfaces[resolved.surfaces],
-                self.targets.pixels(&DEBUG),
-                self.targets.pixels(&RADIANCE),
+                &self.targets,
+                resolved.surfaces,
+                switches.gi,
+                switches.pt,
             );
-            if switches.gi {
-                c.copy_gi_debug(rec.encoder(), self.targets.pixels(&GI_DEBUG));
-            }
-            if switches.pt {
-                c.copy_pt(
-                    rec.encoder(),
-                    self.targets.pixels(&PT_DEBUG),
-                    self.targets.pixels(&PT_PROBE),
-                );
-            }
         }
 
         let frame = self.frame_index;
-        let stats_ring = &mut self.stats_ring;
-        let stats_buffer = &self.stats_buffer;
-        let inspect_ring = &mut self.inspect_ring;
+        let stats_ring = &mut self.readbacks.stats_ring;
+        let stats_buffer = &self.buffers.stats_buffer;
+        let inspect_ring = &mut self.readbacks.inspect_ring;
         let device = self.gpu.device.clone();
         let wall_times = rec.submit(frame, |encoder| {
             stats_ring.copy_from(&device, encoder, stats_buffer, stats_buffer.size(), frame);
@@ -365,54 +345,106 @@ impl Renderer {
                 c.submit_copy(&device, encoder, inspect_ring, frame);
             }
         });
-        self.stats_ring.after_submit();
-        self.inspect_ring.after_submit();
+        self.file_frame(
+            wall_times,
+            capture,
+            &active.key,
+            first_dispatches,
+            frame_start,
+        )?;
+
+        self.history.hand_over(
+            resolved,
+            self.targets.surfaces.len(),
+            switches.realtime,
+            camera,
+            view_proj,
+            jitter,
+        );
+        self.frame_index += 1;
+        self.pipelines.last_effects = Some(active.clone());
+        self.last_passes = dispatched;
+        Ok(())
+    }
+
+    /// Compiles the pipelines of `plan` that the frame's variant lacks (on every core),
+    /// recording each compile and, for the scene's first frame, the "pipelines" phase.
+    fn compile_frame_pipelines(
+        &mut self,
+        active: &ActiveEffects,
+        plan: &[Step],
+    ) -> Result<(), GpuError> {
+        let variant = self
+            .pipelines
+            .variants
+            .entry(active.key.clone())
+            .or_default();
+        let missing = super::pipelines::missing(variant, plan.iter().map(|s| s.pass));
+        let compile_start = std::time::Instant::now();
+        let watch = self.pipelines.compile_watcher.clone();
+        let compiled = super::pipelines::compile_all(
+            &self.gpu,
+            &self.layouts,
+            &active.defines,
+            variant,
+            &missing,
+            &|e| watch.as_ref().map_or((), |w| w(e)),
+        )?;
+        if self.pipelines.first_frame_pipelines.is_none() && !compiled.is_empty() {
+            let wall = compile_start.elapsed().as_secs_f64() * 1e3;
+            self.pipelines.first_frame_pipelines = Some(super::pipelines::phase(&compiled, wall));
+        }
+        self.pipelines.pipeline_compiles.extend(compiled);
+        Ok(())
+    }
+
+    /// Files what a submitted frame sends back, by frame index: its pass times, its first
+    /// dispatches, the pending inspection. The scene's first frame is waited for (a CPU
+    /// driver compiles its shaders there) and becomes the "first frame" phase.
+    fn file_frame(
+        &mut self,
+        wall_times: Vec<(&'static str, f64)>,
+        capture: Option<InspectCapture>,
+        variant: &str,
+        first_dispatches: bool,
+        frame_start: std::time::Instant,
+    ) -> Result<(), GpuError> {
+        let frame = self.frame_index;
+        self.readbacks.stats_ring.after_submit();
+        self.readbacks.inspect_ring.after_submit();
         if first_dispatches {
             super::pipelines::record_first_dispatches(
-                &mut self.pipeline_compiles,
-                &active.key,
+                &mut self.pipelines.pipeline_compiles,
+                variant,
                 &wall_times,
             );
         }
         if !wall_times.is_empty() {
-            self.pending_times.insert(frame, wall_times);
+            self.readbacks.pending_times.insert(frame, wall_times);
         }
         if let Some(c) = capture {
-            self.pending_inspections.insert(frame, c.into_pending());
+            self.readbacks
+                .pending_inspections
+                .insert(frame, c.into_pending());
         }
         self.gpu.check()?;
-        if self.first_frame.is_none() {
+        if self.pipelines.first_frame.is_none() {
             // The scene's first frame, waited for: a CPU driver (lavapipe) compiles its
             // shaders at the first dispatch, not at pipeline creation, so on a cold shader
             // cache this is where the compile time shows.
             self.gpu.wait_idle();
-            let compiled_ms = self.first_frame_pipelines.as_ref().map_or(0.0, |p| p.ms);
+            let compiled_ms = self
+                .pipelines
+                .first_frame_pipelines
+                .as_ref()
+                .map_or(0.0, |p| p.ms);
             let ms = frame_start.elapsed().as_secs_f64() * 1e3 - compiled_ms;
-            self.first_frame = Some(crate::load_phases::Phase {
+            self.pipelines.first_frame = Some(crate::load_phases::Phase {
                 name: "first frame",
                 ms,
                 detail: "recorded, run and waited for (lavapipe compiles its shaders here)".into(),
             });
         }
-
-        // Hand over to the next frame.
-        let final_reservoirs = resolved.finals.get(RESERVOIRS.name).copied();
-        // Only the chains this frame used carry a history into the next.
-        self.carried.history = resolved.finals;
-        self.carried.surfaces = resolved.surfaces;
-        self.carried.surface_buffers = self.targets.surfaces.len();
-        self.history_valid = switches.realtime;
-        self.last_final = if switches.realtime {
-            final_reservoirs
-        } else {
-            None
-        };
-        self.prev_camera = Some(camera);
-        self.prev_view_proj = Some(view_proj);
-        self.prev_jitter = jitter;
-        self.frame_index += 1;
-        self.last_effects = Some(active.clone());
-        self.last_passes = dispatched;
         Ok(())
     }
 
@@ -427,11 +459,15 @@ impl Renderer {
         let settings = self.effective_settings();
         self.write_display_uniform(&settings);
         // The display pass of the last frame's variant (any variant's would do).
-        let Some(active) = self.last_effects.clone() else {
+        let Some(active) = self.pipelines.last_effects.clone() else {
             return Ok(());
         };
         let shown_accumulation = self.shows_accumulation();
-        let variant = self.variants.entry(active.key.clone()).or_default();
+        let variant = self
+            .pipelines
+            .variants
+            .entry(active.key.clone())
+            .or_default();
         let gi_view = settings.gi
             && !settings.pt
             && self.mode != Mode::Reference
@@ -448,18 +484,18 @@ impl Renderer {
         for step in &plan {
             variant.compile(&self.gpu, &self.layouts, &active.defines, step.pass)?;
         }
-        let resolved = resolve(&plan, &self.carried, false, shown_accumulation);
+        let resolved = resolve(&plan, &self.history.carried, false, shown_accumulation);
         // Normally there already (a GI view right after GI was switched on shows zeros).
         self.targets.ensure(&self.gpu, &resolved.needs);
-        let variant = &self.variants[&active.key];
+        let variant = &self.pipelines.variants[&active.key];
         let uniforms = Uniforms {
-            pass_info: &self.pass_info,
-            display: &self.display_uniform,
-            light_tiles: &self.light_tiles,
+            pass_info: &self.buffers.pass_info,
+            display: &self.buffers.display_uniform,
+            light_tiles: &self.buffers.light_tiles,
         };
         let mut rec = FrameRecorder::new(
             &self.gpu,
-            &mut self.timer,
+            &mut self.readbacks.timer,
             crate::gpu::timing::TimingMode::Off,
         );
         let steps = StepContext {
@@ -469,7 +505,7 @@ impl Renderer {
             uniforms: &uniforms,
             variant,
             groups: [
-                &self.frame_bind_group,
+                &self.buffers.frame_bind_group,
                 self.scene.bind_group(active.backend),
             ],
             triangle_count: self.scene.triangle_count,

@@ -37,7 +37,11 @@ impl Renderer {
         let frame = GpuFrame {
             view_proj: view_proj.to_cols_array_2d(),
             inv_view_proj: view_proj.inverse().to_cols_array_2d(),
-            prev_view_proj: self.prev_view_proj.unwrap_or(view_proj).to_cols_array_2d(),
+            prev_view_proj: self
+                .history
+                .prev_view_proj
+                .unwrap_or(view_proj)
+                .to_cols_array_2d(),
             camera_position: camera.position.into(),
             // Frozen noise: every frame seeds its random streams as frame 0 did.
             frame_index: if self.frozen_noise {
@@ -46,6 +50,7 @@ impl Renderer {
                 self.frame_index as u32
             },
             prev_camera_position: self
+                .history
                 .prev_camera
                 .map_or(camera.position, |c| c.position)
                 .into(),
@@ -53,10 +58,10 @@ impl Renderer {
             jitter: jitter.into(),
             size: [width, height],
             scene_scale: self.scene.scale,
-            history_valid: self.history_valid as u32,
+            history_valid: self.history.history_valid as u32,
             light_count: self.scene.sampled_light_count(),
             punctual_count: self.scene.punctual_count,
-            prev_jitter: self.prev_jitter.into(),
+            prev_jitter: self.history.prev_jitter.into(),
             inspect_pixel: self
                 .inspected_pixel
                 .filter(|&(x, y)| x < width && y < height)
@@ -65,7 +70,7 @@ impl Renderer {
         };
         self.gpu
             .queue
-            .write_buffer(&self.frame_uniform, 0, bytemuck::bytes_of(&frame));
+            .write_buffer(&self.buffers.frame_uniform, 0, bytemuck::bytes_of(&frame));
         (view_proj, jitter)
     }
 
@@ -93,9 +98,11 @@ impl Renderer {
             reference_noise: self.reference_noise,
             _pad: [0; 2],
         };
-        self.gpu
-            .queue
-            .write_buffer(&self.display_uniform, 0, bytemuck::bytes_of(&display));
+        self.gpu.queue.write_buffer(
+            &self.buffers.display_uniform,
+            0,
+            bytemuck::bytes_of(&display),
+        );
     }
 }
 

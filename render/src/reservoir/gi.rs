@@ -1,5 +1,5 @@
 //! ReSTIR GI's reservoir math (Ouyang et al. 2021), the plain-Rust mirror of
-//! `shaders/common/gi_reservoir.wgsl`, built on the DI reservoir of `reservoir.rs` (same
+//! `shaders/gi/reservoir.wgsl`, built on the DI reservoir of `reservoir.rs` (same
 //! streaming, finalisation, null-sample and robustness rules; same M convention).
 //!
 //! A pixel's visible point `x_v` (its G-buffer surface: implicit, never stored) receives
@@ -154,7 +154,7 @@ pub fn gi_merge_mis(
 /// Neighbour i's sample y, shifted here with `jacobian_i_to_here` = |J_{i→here}|: its
 /// pairwise MIS weight, with p̂_i(y) brought into this pixel's measure
 /// (p̂_i · |J_{here→i}| = p̂_i / |J_{i→here}|); 0 when the shift failed (jacobian 0).
-pub fn gi_pairwise_noncanonical(
+pub fn shifted_pairwise_noncanonical(
     c_total: f32,
     c_canonical: f32,
     c_i: f32,
@@ -169,7 +169,7 @@ pub fn gi_pairwise_noncanonical(
 
 /// Neighbour j's term of the canonical sample's pairwise weight (`c_c/c_total + Σ_j
 /// terms`), with p̂_j(y_c) · |J_{here→j}| (`jacobian_here_to_j` = 0 when that shift fails).
-pub fn gi_pairwise_canonical_term(
+pub fn shifted_pairwise_canonical_term(
     c_total: f32,
     c_canonical: f32,
     c_j: f32,
@@ -282,7 +282,7 @@ pub(crate) fn resample_with(
                         j = 0.0;
                     }
                     let p_j = n.receiver.target(&y);
-                    gi_pairwise_canonical_term(c_total, c_c, n.confidence, p_c, p_j, j)
+                    shifted_pairwise_canonical_term(c_total, c_c, n.confidence, p_c, p_j, j)
                 })
                 .sum();
             let m_c = clamp_unit(share(c_c, c_total) + terms);
@@ -311,7 +311,8 @@ pub(crate) fn resample_with(
         let target_here = if j > 0.0 { here.target(&y) } else { 0.0 };
         if reuse.pairwise {
             let p_n = n.receiver.target(&y);
-            let m_n = gi_pairwise_noncanonical(c_total, c_c, n.confidence, p_n, target_here, j);
+            let m_n =
+                shifted_pairwise_noncanonical(c_total, c_c, n.confidence, p_n, target_here, j);
             gi_merge_mis(&mut r, n.reservoir, target_here, j, m_n, u());
         } else {
             gi_merge(&mut r, n.reservoir, target_here, j, n.confidence, u());

@@ -18,19 +18,21 @@
 //! surface (the cached radiance left the side q saw; the back face's is unknown). The
 //! conditions are symmetric in q and r, and so is the window `[1/j_max, j_max]`
 //! (`jacobian_in_window`) since `J_{r→q} = 1/J_{q→r}`: pairwise MIS relies on that (a shift
-//! q→r is usable exactly when the shift r→q is). `shaders/common/gi_reservoir.wgsl` mirrors
+//! q→r is usable exactly when the shift r→q is). `shaders/gi/reservoir.wgsl` mirrors
 //! this file with the same thresholds.
 
 use glam::Vec3;
 
-pub use crate::shader_constants::{GI_MAX_DISTANCE_SQ, GI_MIN_COS, GI_MIN_DISTANCE_SQ};
 use crate::shader_constants::{GI_REJECT_JACOBIAN, GI_REJECT_RECONNECTION};
+pub use crate::shader_constants::{
+    RECONNECTION_MAX_DISTANCE_SQ, RECONNECTION_MIN_COS, RECONNECTION_MIN_DISTANCE_SQ,
+};
 
 /// `|J_{from→to}|` of the reconnection of a sample at `sample_position` (surface normal
 /// `sample_normal`, either orientation, need not be unit length) from the receiving point
 /// `seen_from` (where it was found) to the receiving point `reused_at`; `None` where the
-/// shift is undefined (module docs): degenerate or non-finite input, a distance outside [`GI_MIN_DISTANCE_SQ`,
-/// `GI_MAX_DISTANCE_SQ`], |cos φ| below [`GI_MIN_COS`] at either end, or `reused_at` on the
+/// shift is undefined (module docs): degenerate or non-finite input, a distance outside [`RECONNECTION_MIN_DISTANCE_SQ`,
+/// `RECONNECTION_MAX_DISTANCE_SQ`], |cos φ| below [`RECONNECTION_MIN_COS`] at either end, or `reused_at` on the
 /// other side of the sample's surface than `seen_from`. Never NaN or infinite.
 pub fn reconnection_jacobian(
     sample_position: Vec3,
@@ -49,8 +51,8 @@ pub fn reconnection_jacobian(
     let cos_from = n.dot(to_from) / d2_from.sqrt();
     let cos_to = n.dot(to_to) / d2_to.sqrt();
     // Same side (the sign test also fails for NaN), neither grazing.
-    let usable = cos_from.abs() >= GI_MIN_COS
-        && cos_to.abs() >= GI_MIN_COS
+    let usable = cos_from.abs() >= RECONNECTION_MIN_COS
+        && cos_to.abs() >= RECONNECTION_MIN_COS
         && (cos_from > 0.0) == (cos_to > 0.0);
     if !usable {
         return None;
@@ -66,7 +68,7 @@ pub(super) fn normalized(v: Vec3) -> Option<Vec3> {
 }
 
 fn distance_in_range(d2: f32) -> bool {
-    (GI_MIN_DISTANCE_SQ..=GI_MAX_DISTANCE_SQ).contains(&d2)
+    (RECONNECTION_MIN_DISTANCE_SQ..=RECONNECTION_MAX_DISTANCE_SQ).contains(&d2)
 }
 
 /// Whether a Jacobian may be used: `j` in `[1/j_max, j_max]` (Ouyang et al. reject large

@@ -182,20 +182,34 @@ fn nee_and_ris_turn_every_reuse_stage_off() {
         .collect();
     assert_eq!(
         switches,
-        ["temporal", "spatial", "gi_temporal", "gi_spatial", "pt_temporal", "pt_spatial"]
+        [
+            "temporal",
+            "spatial",
+            "gi_temporal",
+            "gi_spatial",
+            "pt_temporal",
+            "pt_spatial"
+        ]
     );
     let on = Settings::default();
     for mode in [crate::Mode::Nee, crate::Mode::Ris] {
         let s = mode.settings(&on);
         for name in &switches {
-            assert_eq!(s.get(name), Some(ParamValue::Bool(false)), "{mode:?} leaves {name} on");
+            assert_eq!(
+                s.get(name),
+                Some(ParamValue::Bool(false)),
+                "{mode:?} leaves {name} on"
+            );
         }
     }
     // restir keeps them; nee draws one light candidate and no BSDF candidate.
     assert_eq!(crate::Mode::Restir.settings(&on), on);
     let nee = crate::Mode::Nee.settings(&on);
     assert_eq!((nee.light_candidates, nee.bsdf_candidates), (1, 0));
-    assert_eq!(crate::Mode::Ris.settings(&on).light_candidates, on.light_candidates);
+    assert_eq!(
+        crate::Mode::Ris.settings(&on).light_candidates,
+        on.light_candidates
+    );
 }
 
 /// The checks that temporal and spatial reuse share are one stage, so turning temporal
@@ -213,7 +227,14 @@ fn the_shared_validation_checks_are_their_own_stage() {
         "check_reservoir",
         "check_target",
     ] {
-        assert_eq!(Settings::def(name).unwrap().stage, Stage::Validation, "{name}");
+        assert_eq!(
+            Settings::def(name).unwrap().stage,
+            Stage::Validation,
+            "{name}"
+        );
     }
-    assert_eq!(Settings::def("check_target_ratio").unwrap().stage, Stage::Temporal);
+    assert_eq!(
+        Settings::def("check_target_ratio").unwrap().stage,
+        Stage::Temporal
+    );
 }

@@ -32,6 +32,17 @@ pub fn accumulate(r: &mut Renderer, frames: u32) -> LinearImage {
     r.read_accumulated()
 }
 
+/// The `--stats` summary of the next `frames` frames.
+pub fn stats_of(r: &mut Renderer, frames: u32) -> restir_render::stats::StatsSummary {
+    let _ = r.collect_reports(true);
+    let mut reports = Vec::new();
+    for _ in 0..frames {
+        r.render_frame().unwrap_or_else(|e| panic!("{e}"));
+        reports.extend(r.collect_reports(true));
+    }
+    restir_render::stats::StatsSummary::from_reports(&reports, 0)
+}
+
 /// A converged reference of the renderer's current scene and camera.
 pub fn reference(r: &mut Renderer, frames: u32, spp: u32) -> LinearImage {
     let mode = r.mode();

@@ -1,6 +1,6 @@
 //! The debug views' colours for the legends: a mirror of the palettes in
-//! shaders/display.wgsl (`source_color`, `reason_color`, `heatmap`), gi_view.wgsl and
-//! pt_view.wgsl (the tests below read them from the WGSL). Those are linear
+//! shaders/display.wgsl (`source_color`, `reason_color`, `heatmap`), gi/view.wgsl and
+//! pt/view.wgsl (the tests below read them from the WGSL). Those are linear
 //! colours that the display pass sRGB-encodes; `egui::Rgba` is linear too, so the legend
 //! swatches match the image exactly.
 
@@ -53,7 +53,7 @@ pub fn reason_color(bit: u32) -> Color32 {
     check_or_own(bit, &[[0.6, 0.3, 0.1], [1.0, 1.0, 1.0], [0.1, 0.9, 0.2]])
 }
 
-/// GI rejection reason `bit` (0..GI_REJECT_REASON_COUNT), as gi_view.wgsl draws it: the
+/// GI rejection reason `bit` (0..GI_REJECT_REASON_COUNT), as gi/view.wgsl draws it: the
 /// shared checks, then reconnection violet, Jacobian white, occluded green.
 pub fn gi_reason_color(bit: u32) -> Color32 {
     check_or_own(bit, &[[0.55, 0.0, 1.0], [1.0, 1.0, 1.0], [0.1, 0.9, 0.2]])
@@ -69,7 +69,7 @@ pub fn jacobian_colors() -> [Color32; 3] {
     ]
 }
 
-/// ReSTIR PT's depth palette (pt_view.wgsl `pt_depth_color`): the path length n of
+/// ReSTIR PT's depth palette (pt/view.wgsl `pt_depth_color`): the path length n of
 /// pt-length and the reconnection vertex's depth k + 1 of pt-reconnection, 2 to 8.
 const PT_DEPTH_COLOURS: [[f32; 3]; 7] = [
     [0.15, 0.35, 1.0],
@@ -111,7 +111,7 @@ pub fn pt_failure_color(failure: u32) -> Color32 {
     linear(PT_FAILURE_COLOURS[(failure as usize).min(PT_FAIL_REASON_COUNT - 1)])
 }
 
-/// |J| at which pt-jacobian saturates: 2^`PT_JACOBIAN_SPAN` of pt_view.wgsl (its low end
+/// |J| at which pt-jacobian saturates: 2^`PT_JACOBIAN_SPAN` of pt/view.wgsl (its low end
 /// is the reciprocal). Its colours are `jacobian_colors`, GI's.
 pub const PT_JACOBIAN_SATURATION: f32 = 16.0;
 
@@ -272,7 +272,7 @@ mod tests {
     #[test]
     fn rejection_palettes_match_the_shaders() {
         let display = include_str!("../../../../shaders/display.wgsl");
-        let gi_view = include_str!("../../../../shaders/gi_view.wgsl");
+        let gi_view = include_str!("../../../../shaders/gi/view.wgsl");
         let di = wgsl_palette(display, "reason_color");
         let gi = wgsl_palette(gi_view, "gi_reason_color");
         assert_eq!(di.len(), REJECT_REASON_COUNT);
@@ -295,11 +295,11 @@ mod tests {
         assert_eq!(bias_color(7.0), linear(BIAS_PALETTE[2]));
     }
 
-    /// The PT legends' colours are pt_view.wgsl's: its depth and failure palettes, the
+    /// The PT legends' colours are pt/view.wgsl's: its depth and failure palettes, the
     /// pure replay's magenta, and a Jacobian ramp with GI's ends saturating at 1/16 and 16.
     #[test]
     fn the_pt_palettes_match_the_shader() {
-        let pt_view = include_str!("../../../../shaders/pt_view.wgsl");
+        let pt_view = include_str!("../../../../shaders/pt/view.wgsl");
         let depths = wgsl_palette(pt_view, "pt_depth_color");
         assert_eq!(depths.len(), PT_DEPTHS.count());
         for (d, colour) in PT_DEPTHS.zip(depths) {

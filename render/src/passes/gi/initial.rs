@@ -2,9 +2,9 @@
 //! secondary hit's outgoing direct light by light RIS + one shadow ray. Declares the GI
 //! resources the other GI passes share.
 
+use crate::gpu_types::{GpuGiPixelDebug, GpuGiReservoir};
 use crate::passes::pass::{Dispatch, PassDef, read, write};
 use crate::passes::resources::{Allocation, Chain, PixelBuffer, Resource::*, Role};
-use crate::gpu_types::{GpuGiPixelDebug, GpuGiReservoir};
 
 /// ReSTIR GI reservoirs (their own ping-pong, history kept for GI temporal reuse).
 pub const GI_RESERVOIRS: Chain = Chain {

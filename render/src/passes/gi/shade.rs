@@ -2,8 +2,8 @@
 //! and keeps it alone for the `indirect` view.
 
 use super::initial::GI_RESERVOIRS;
-use crate::passes::resources::INDIRECT;
 use crate::passes::pass::{Dispatch, PassDef, read, write};
+use crate::passes::resources::INDIRECT;
 use crate::passes::resources::{ACCUMULATION, RADIANCE, Resource::*, Role};
 
 pub const PASS: PassDef = PassDef {

@@ -2,8 +2,8 @@
 //! is selected and GI runs.
 
 use super::initial::{GI_DEBUG, GI_RESERVOIRS};
-use crate::passes::resources::INDIRECT;
 use crate::passes::pass::{Dispatch, PassDef, read, write};
+use crate::passes::resources::INDIRECT;
 use crate::passes::resources::{Resource::*, Role};
 
 pub const PASS: PassDef = PassDef {

@@ -2,9 +2,9 @@
 //! sampling and BSDF ends at every vertex past the first) the candidates of the pixel's
 //! path reservoir. Declares the PT resources the other PT passes share.
 
+use crate::gpu_types::{GpuPtPixelDebug, GpuPtProbeStage, GpuPtReservoir};
 use crate::passes::pass::{Dispatch, PassDef, read, write};
 use crate::passes::resources::{Allocation, Chain, PixelBuffer, Resource::*, Role};
-use crate::gpu_types::{GpuPtPixelDebug, GpuPtProbeStage, GpuPtReservoir};
 use crate::shader_constants::PT_PROBE_STAGES;
 
 /// ReSTIR PT path reservoirs (their own ping-pong, history kept for PT temporal reuse).

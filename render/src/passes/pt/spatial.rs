@@ -1,8 +1,8 @@
 //! ReSTIR PT spatial reuse (pt/spatial.wgsl): neighbours' paths shifted here by the chosen
 //! shift mapping, merged under pairwise MIS.
 
-use crate::passes::pass::{Dispatch, PassDef, read, write};
 use super::initial::{PT_DEBUG, PT_PROBE, PT_RESERVOIRS};
+use crate::passes::pass::{Dispatch, PassDef, read, write};
 use crate::passes::resources::{Resource::*, Role};
 
 pub const PASS: PassDef = PassDef {

@@ -2,8 +2,8 @@
 //! previous pixel's path shifted here and this pixel's path shifted back, merged under
 //! pairwise MIS with the history's confidence capped at `pt_m_cap`.
 
-use crate::passes::pass::{Dispatch, PassDef, read, write};
 use super::initial::{PT_DEBUG, PT_PROBE, PT_RESERVOIRS};
+use crate::passes::pass::{Dispatch, PassDef, read, write};
 use crate::passes::resources::{Resource::*, Role};
 
 pub const PASS: PassDef = PassDef {

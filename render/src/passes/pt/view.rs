@@ -2,9 +2,9 @@
 //! selected and PT runs: path length, reconnection depth, shift outcomes, log |J|, and the
 //! indirect light alone.
 
-use crate::passes::resources::INDIRECT;
-use crate::passes::pass::{Dispatch, PassDef, read, write};
 use super::initial::{PT_DEBUG, PT_RESERVOIRS};
+use crate::passes::pass::{Dispatch, PassDef, read, write};
+use crate::passes::resources::INDIRECT;
 use crate::passes::resources::{Resource::*, Role};
 
 pub const PASS: PassDef = PassDef {

@@ -38,7 +38,7 @@ fn view_panel(view: DebugView, settings: Settings) -> Harness<'static, ViewerSta
     harness(view::ui, s)
 }
 
-/// The PT views' legends name every colour of pt_view.wgsl's palettes (the depths up to
+/// The PT views' legends name every colour of pt/view.wgsl's palettes (the depths up to
 /// max_bounces), and say when PT is off; `indirect` is drawn by whichever of GI and PT runs.
 #[test]
 fn the_pt_legends_name_their_colours_and_say_when_pt_is_off() {

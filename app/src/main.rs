@@ -38,8 +38,9 @@ enum Command {
     Render(cli::render::RenderArgs),
     /// Measure configurations against a cached reference: times, errors, CSV/Markdown/plots.
     Bench(bench::BenchArgs),
-    /// List every pipeline parameter with its stage, default, range and meaning.
-    Params,
+    /// List every pipeline parameter with its stage, default, range and meaning
+    /// (`--markdown`: the book's parameters page).
+    Params(cli::params::ParamsArgs),
     /// List the built-in scenes (one `builtin:...` name per line).
     Scenes,
     /// Time building an environment's sampling distribution (default: a 4096×2048 sky).
@@ -61,8 +62,8 @@ fn main() {
         Some(Command::View(a)) => viewer::run(a),
         Some(Command::Render(a)) => cli::render::run(a),
         Some(Command::Bench(a)) => bench::run(a),
-        Some(Command::Params) => {
-            cli::params::print_params();
+        Some(Command::Params(a)) => {
+            cli::params::run(a);
             Ok(())
         }
         Some(Command::BenchEnv(a)) => bench::env_cost::run(a),

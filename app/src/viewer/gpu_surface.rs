@@ -28,9 +28,12 @@ impl GpuSurface {
     /// Creates the surface and a device on an adapter that can present to it.
     pub fn new(window: Arc<Window>) -> anyhow::Result<(GpuSurface, Gpu)> {
         let instance = restir_render::gpu::context::new_instance();
-        let surface = instance
-            .create_surface(window.clone())
-            .context("cannot create a surface for the window")?;
+        // Without a Vulkan loader and driver (no GPU driver, no lavapipe) wgpu has no
+        // backend to make a surface with; say what to install rather than wgpu's
+        // "Failed to create surface for any enabled backend".
+        let surface = instance.create_surface(window.clone()).map_err(|e| {
+            GpuError::NoAdapter(format!("no graphics backend can draw into a window: {e}"))
+        })?;
         let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
             power_preference: wgpu::PowerPreference::HighPerformance,
             force_fallback_adapter: false,

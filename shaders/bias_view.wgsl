@@ -1,7 +1,7 @@
-// The `bias` debug view (issue 18), drawn over the display pass's output when selected:
-// where the running average differs from the reference by more than its noise, and by how
-// much. Its own pass because the display pass already binds as many storage buffers as a
-// compute stage may have (19 with the frame and scene groups).
+// The `bias` debug view (docs/src/mis-and-bias.md, "The bias view"), drawn over the display pass's
+// output when selected: where the running average differs from the reference by more than its
+// noise, and by how much. Its own pass because the display pass already binds as many storage
+// buffers as a compute stage may have (19 with the frame and scene groups).
 #include "common/frame_bindings.wgsl"
 #include "common/math.wgsl"
 #include "common/display_colors.wgsl"

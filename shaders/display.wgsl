@@ -1,6 +1,6 @@
 // What the user sees: the tonemapped image or one of the debug views, written as
 // sRGB-encoded RGBA8 (the viewer samples it through an sRGB view; PNGs store it as is).
-// Palettes are fixed and documented in README ("Debug views").
+// Palettes are fixed and documented in docs/src/debug-views.md ("The views").
 #include "common/frame_bindings.wgsl"
 #include "common/math.wgsl"
 #include "common/display_colors.wgsl"

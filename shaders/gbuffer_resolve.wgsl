@@ -102,7 +102,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         s.motion = unjittered + frame.prev_jitter;
     }
 #else
-    // Static camera and scene: every point stays where it is (issue "specialisation").
+    // Static camera and scene: every point stays where it is (docs/src/specialisation.md).
     s.motion = vec2<f32>(id.xy) + 0.5;
 #endif
     if !is_finite_vec3(s.position) || !is_finite_f32(s.depth) || !is_finite_vec3(s.emission) {

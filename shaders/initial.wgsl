@@ -1,6 +1,7 @@
-// Initial candidates (restir-notes.md §1): streaming RIS over `light_candidates` power-
-// sampled light points and `bsdf_candidates` BSDF rays that hit an emitter (or escape to
-// the environment: then the sample is that direction, per steradian), combined with
+// Initial candidates (docs/src/ris.md, "Resampled importance sampling"): streaming RIS over
+// `light_candidates` power-sampled light points and `bsdf_candidates` BSDF rays that hit an
+// emitter (or escape to the environment: then the sample is that direction, per steradian),
+// combined with
 // the balance heuristic: w_i = p̂(y_i) / Σ_s N_s p_s(y_i) (area measure), W = w_sum / p̂(y).
 // The result has M = 1: M counts reservoirs' worth of samples, so the M cap counts frames.
 // With `initial_visibility` the survivor's shadow ray is traced here already.

@@ -1,4 +1,5 @@
-// Per-pixel statistics of the running average for the `bias` view (issue 18): how far the
+// Per-pixel statistics of the running average for the `bias` view (docs/src/mis-and-bias.md,
+// "The bias view"): how far the
 // average is from the reference, and how far it could be by noise alone. Frames of a
 // reusing estimator are correlated (a sample lives for about an M cap's worth of frames),
 // so the spread of single frames understates the noise of their average; the spread of

@@ -1,8 +1,8 @@
-// Light tiles (restir-notes.md §6): draw LIGHT_TILE_COUNT × LIGHT_TILE_SIZE lights from the
-// power alias table once per frame, each packed with its point, radiance and source pdf.
-// The initial pass then picks candidates uniformly from one tile per pixel block: still
-// samples of p_src (the tile entries are i.i.d. draws from it), but read from a few KB
-// that a whole block shares instead of from the full light table.
+// Light tiles (docs/src/ris.md, "Light tiles"): draw LIGHT_TILE_COUNT × LIGHT_TILE_SIZE lights from
+// the power alias table once per frame, each packed with its point, radiance and source pdf. The
+// initial pass then picks candidates uniformly from one tile per pixel block: still samples of
+// p_src (the tile entries are i.i.d. draws from it), but read from a few KB that a whole block
+// shares instead of from the full light table.
 #include "common/frame_bindings.wgsl"
 #include "common/lights.wgsl"
 

@@ -84,7 +84,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
                     // error alone (a ray and the rasteriser may disagree on a pixel centre
                     // exactly on an edge). Behind glass the G-buffer's own choice of layer
                     // is taken as well, so this averages over that choice only as far as
-                    // the frames do (see README).
+                    // the frames do (docs/src/transparency.md, "Camera rays").
                     let s = surfaces[index];
                     if !surface_is_valid(s) {
 #ifdef TRANSPARENCY

@@ -1,4 +1,4 @@
-// Spatial reuse (restir-notes.md §3): K neighbours in a disk of radius R pixels, each
+// Spatial reuse (docs/src/spatial-reuse.md): K neighbours in a disk of radius R pixels, each
 // checked for depth / normal / material compatibility (its own rejection bits, apart
 // from the temporal ones), merged with the neighbour's M (1/M) or with pairwise MIS
 // around this pixel's reservoir (unbiased); M is capped after the pass. Under pairwise MIS
@@ -90,8 +90,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         pass_mask |= mask;
     }
 
-    // 2. Boiling filter (notes §6): drop this pixel's own sample when it outshines the
-    //    neighbourhood by more than k times; its M still counts.
+    // 2. Boiling filter (docs/src/spatial-reuse.md, "The boiling filter"): drop this pixel's
+    //    own sample when it outshines the neighbourhood by more than k times; its M still
+    //    counts.
     if params.boiling_filter > 0.0 && n_accepted > 0u {
         let mean = contribution_sum / f32(n_accepted + 1u);
         if canonical.p_hat * canonical.weight > params.boiling_filter * mean {

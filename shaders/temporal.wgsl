@@ -1,4 +1,4 @@
-// Temporal reuse (restir-notes.md §2): reproject the current hit into the previous frame,
+// Temporal reuse (docs/src/temporal-reuse.md): reproject the current hit into the previous frame,
 // validate the previous surface and reservoir (every failed check sets its own bit of the
 // rejection mask), re-evaluate the target here, and merge the previous sample with weight
 // p̂(x, y_prev) · W_prev · min(M_prev, M_cap) (1/M) or a pairwise MIS weight (unbiased).

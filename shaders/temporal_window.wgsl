@@ -1,9 +1,9 @@
-// The temporal window behind the boiling and survivor-change views (README "Debug
-// views"): each pixel's luminance over the last TEMPORAL_WINDOW_FRAMES frames and the
-// frames in which its survivor's light changed, with the two figures the views paint.
-// Runs once the frame's radiance is final (after DI and GI shading, or the reference).
-// `pass_info.pass_index` is 1 on real-time frames, whose reservoirs are this frame's
-// survivors, and 0 on reference frames, which have none (no change is recorded).
+// The temporal window behind the boiling and survivor-change views (docs/src/debug-views.md,
+// "Boiling and survivor change"): each pixel's luminance over the last TEMPORAL_WINDOW_FRAMES
+// frames and the frames in which its survivor's light changed, with the two figures the views
+// paint. Runs once the frame's radiance is final (after DI and GI shading, or the reference).
+// `pass_info.pass_index` is 1 on real-time frames, whose reservoirs are this frame's survivors, and
+// 0 on reference frames, which have none (no change is recorded).
 #include "common/frame_bindings.wgsl"
 #include "common/math.wgsl"
 

@@ -1,8 +1,10 @@
-//! restir-viewer: the ReSTIR lab's viewer and its headless commands.
+//! restir-viewer: the ReSTIR lab's viewer and its headless commands, for ReSTIR DI (direct
+//! light from many lights), ReSTIR GI (one bounce of indirect light with its own reservoirs)
+//! and ReSTIR PT (multi-bounce indirect light by path reuse).
 //!
 //! `restir-viewer` (or `view`) opens the interactive viewer; `render` renders frames
-//! headless to EXR/PNG with statistics; `params` lists every pipeline parameter;
-//! `scenes` lists the built-in scenes.
+//! headless to EXR/PNG with statistics; `bench` and the `bench-*` commands measure;
+//! `params` lists every pipeline parameter; `scenes` lists the built-in scenes.
 
 mod bench;
 mod cli;
@@ -18,7 +20,8 @@ use clap::{Parser, Subcommand};
 #[command(
     name = "restir-viewer",
     version,
-    about = "The ReSTIR lab: watch, tune and measure ReSTIR direct lighting"
+    about = "The ReSTIR lab: watch, tune and measure ReSTIR: direct light (DI), indirect light \
+             (GI) and path reuse (PT)"
 )]
 #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
 struct Args {

@@ -1,7 +1,7 @@
-//! A pixel's history (issue 20): one row per frame of what the pixel inspector captured at
-//! the selected pixel — its luminance, the reference there when one exists for the moment
-//! shown, and the survivor's M, W, source, light and age — plus whether a light event of
-//! the scene fell on that frame. The viewer's inspector charts the last N rows and exports
+//! A pixel's history (docs/src/viewer.md, "Pixel history"): one row per frame of what the pixel
+//! inspector captured at the selected pixel — its luminance, the reference there when one exists
+//! for the moment shown, and the survivor's M, W, source, light and age — plus whether a light
+//! event of the scene fell on that frame. The viewer's inspector charts the last N rows and exports
 //! them; `render --probe X,Y --probe-out FILE.csv` writes the same rows headless.
 
 use std::collections::VecDeque;
@@ -114,7 +114,7 @@ impl PixelHistory {
     }
 }
 
-/// The CSV's columns (README, "Pixel history").
+/// The CSV's columns (docs/src/viewer.md, "Pixel history").
 pub const CSV_HEADER: &str = "frame,time,x,y,r,g,b,luminance,reference,m,w,source,light,age,event";
 
 /// Writes `samples` of pixel `pixel` as CSV (empty cells for what is not known).

@@ -1,7 +1,7 @@
-//! Recordings (issue 20): every frame as a PNG (what the display shows: the tonemapped
-//! image or the debug view) or an EXR (the linear radiance), and an animated GIF of what
-//! the display shows. `render --out-sequence DIR --gif FILE.gif` and the viewer's Record
-//! toggle write the same files: `DIR/frame-00000.png` (or `.exr`), one per frame.
+//! Recordings (docs/src/viewer.md, "Recordings"): every frame as a PNG (what the display shows: the
+//! tonemapped image or the debug view) or an EXR (the linear radiance), and an animated GIF of what
+//! the display shows. `render --out-sequence DIR --gif FILE.gif` and the viewer's Record toggle
+//! write the same files: `DIR/frame-00000.png` (or `.exr`), one per frame.
 
 use std::fs::File;
 use std::io::BufWriter;

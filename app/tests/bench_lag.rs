@@ -1,4 +1,5 @@
-//! `bench`'s lag metrics on `builtin:dynamic:blinking-lights` end to end (issue 10): the
+//! `bench`'s lag metrics on `builtin:dynamic:blinking-lights` end to end (docs/bench.md,
+//! "Lag and ghosting"): the
 //! lag columns of `results.csv` are there and finite for the switch-off at 1 s, `events.csv`,
 //! `lag.png`, `lag_vs_noise.png` and `event_strip.png` are written, and — test power — a configuration that
 //! cannot let go of its history (M cap 10⁶, ratio clamp off) shows far more lag than one

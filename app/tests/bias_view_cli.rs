@@ -50,8 +50,9 @@ fn blue_share(cache: &str, extra: &[&str]) -> (f64, bool) {
 fn the_bias_view_renders_headless_against_a_cached_reference() {
     let cache = temp_dir("bias-cache");
     let cache = cache.to_str().unwrap();
-    // Visibility reuse with unshadowed MIS terms darkens the sun's shadow edges (README
-    // "Measured bias"): blue there. The first run renders the reference into the cache.
+    // Visibility reuse with unshadowed MIS terms darkens the sun's shadow edges
+    // (docs/src/mis-and-bias.md, "Measured bias"): blue there. The first run renders the reference
+    // into the cache.
     let (planted, from_cache) = blue_share(cache, &["--set", "mis_visibility=false"]);
     assert!(!from_cache, "the first run renders the reference");
     // The default estimator, against the same reference (now loaded): nearly all grey.

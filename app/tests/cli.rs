@@ -386,8 +386,8 @@ fn the_split_image_halves_match_single_configuration_renders() {
     assert!(String::from_utf8_lossy(&bad.stderr).contains("--compare 'magic'"));
 }
 
-/// Issue 14: `light_tiles=auto` (the default) presamples tiles only from the measured
-/// break-even light count on; the stats JSON says which and why.
+/// `light_tiles=auto` (the default; docs/src/ris.md, "Light tiles") presamples tiles only from the
+/// measured break-even light count on; the stats JSON says which and why.
 #[test]
 fn light_tiles_auto_drops_tiles_for_few_lights_and_keeps_them_for_many() {
     let dir = temp_dir("tiles");
@@ -609,9 +609,9 @@ fn render_stats_report_the_files_extensions_and_automatic_camera() {
     );
 }
 
-/// Issue 26: `--set ray_backend=ray-query` where the device has no ray queries (here: the
-/// device created without them, `RESTIR_NO_RAY_QUERY=1`) is one line; with them it renders
-/// and the stats name the backend; `bench-rays` measures both backends.
+/// `--set ray_backend=ray-query` (docs/src/ray-tracing.md, "Choosing a backend") where the device
+/// has no ray queries (here: the device created without them, `RESTIR_NO_RAY_QUERY=1`) is one line;
+/// with them it renders and the stats name the backend; `bench-rays` measures both backends.
 #[test]
 fn ray_backends_are_named_refused_clearly_and_measured() {
     let dir = temp_dir("rays");
@@ -655,7 +655,7 @@ fn ray_backends_are_named_refused_clearly_and_measured() {
     );
     assert!(
         res.status.success(),
-        "this test needs ray queries (Mesa 25 lavapipe, README): {}",
+        "this test needs ray queries (Mesa 25 lavapipe, docs/src/getting-started.md): {}",
         String::from_utf8_lossy(&res.stderr)
     );
     let json: serde_json::Value =
@@ -787,8 +787,9 @@ fn load_phases_are_printed_written_and_in_the_stats() {
     }
 }
 
-/// Issue 27: `bench-shifts` prints one row per place and shift (against the place's
-/// reference) and writes the same rows as CSV; a bad count is a one-line error.
+/// `bench-shifts` (docs/src/restir-pt.md, "The CPU model") prints one row per place and shift
+/// (against the place's reference) and writes the same rows as CSV; a bad count is a one-line
+/// error.
 #[test]
 fn bench_shifts_prints_and_writes_a_row_per_place_and_shift() {
     let dir = temp_dir("shifts");

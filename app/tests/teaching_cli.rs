@@ -1,4 +1,5 @@
-//! Issue 20 headless: every step of the shipped tour renders (`render --tour FILE
+//! The teaching tools headless (docs/src/tours.md, docs/src/viewer.md): every step of the
+//! shipped tour renders (`render --tour FILE
 //! --tour-step K`) with its settings, scene and camera, a broken tour gets one line; a
 //! probed pixel's history drops when the lights switch off and recovers when they come
 //! back, and equals that pixel in the per-frame images; a GIF decodes to its frames.

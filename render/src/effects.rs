@@ -1,7 +1,7 @@
 //! Which effects a scene (and the current settings) call for. Each effect is a WGSL
 //! `#ifdef` name: pipelines are compiled with exactly the set in use, so a Lambertian
-//! Cornell box never compiles GGX, punctual-light or texture code (issue
-//! "specialisation"). Chosen over WGSL `override` constants because overrides leave the
+//! Cornell box never compiles GGX, punctual-light or texture code
+//! (docs/src/specialisation.md). Chosen over WGSL `override` constants because overrides leave the
 //! dead code in the module (and in the lavapipe/driver compile), and over naga_oil
 //! because one 100-line preprocessor is easier to read than a composition framework.
 
@@ -37,7 +37,8 @@ pub struct SceneFeatures {
     pub unlit_materials: usize,
     /// False only when occlusion is provably impossible (see `can_occlude`).
     pub can_occlude: bool,
-    /// An environment lights the scene and shows where camera rays miss (issue 13).
+    /// An environment lights the scene and shows where camera rays miss
+    /// (docs/src/environment.md).
     pub environment: bool,
     /// The scene has an animation (moving geometry or changing lights).
     pub animated: bool,

@@ -1,6 +1,6 @@
-//! The bench's temporal-stability figure (issue 20): how much the image changes from one
-//! frame to the next, relative to how bright the true image is. For consecutive frames
-//! t−1, t with references R (one per frame for a moving camera or scene, else the same):
+//! The bench's temporal-stability figure (docs/bench.md, "How it measures"): how much the image
+//! changes from one frame to the next, relative to how bright the true image is. For consecutive
+//! frames t−1, t with references R (one per frame for a moving camera or scene, else the same):
 //!
 //! ```text
 //! flicker_t = Σ_p |e_t(p) − e_{t−1}(p)| / Σ_p luma(R_t(p)),   e = luma(frame) − luma(R)

@@ -1,7 +1,7 @@
 //! Host-side twins of the structs in `shaders/common/types.wgsl`.
 //!
 //! Each struct here is `#[repr(C)]` + `Pod` and has exactly the size and field offsets of
-//! its WGSL namesake; `tests/gpu_layout.rs` checks that with naga's layouter, so a field
+//! its WGSL namesake; `tests/shaders_and_layouts.rs` checks that with naga's layouter, so a field
 //! added on one side only fails the build's tests instead of corrupting a buffer.
 
 use bytemuck::{Pod, Zeroable};
@@ -96,7 +96,7 @@ wgsl_constants! {
     fn light_kinds;
     pub const LIGHT_KIND_TRIANGLE: u32 = 0;
     pub const LIGHT_KIND_PUNCTUAL: u32 = 1;
-    /// The environment's one entry (issue 13); its sample's `uv` is an image coordinate.
+    /// The environment's one entry; its sample's `uv` is an image coordinate.
     pub const LIGHT_KIND_ENVIRONMENT: u32 = 2;
     /// The light kind lives in the top two bits of `GpuLight::kind_prim`.
     pub const LIGHT_KIND_SHIFT: u32 = 30;
@@ -149,7 +149,8 @@ pub struct GpuBvhNode {
     pub count: u32,
 }
 
-/// A streaming reservoir (notes §1): the selected light sample and its weights.
+/// A streaming reservoir (docs/src/ris.md, "The streaming reservoir"): the selected light
+/// sample and its weights.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
 pub struct GpuReservoir {
@@ -187,7 +188,7 @@ pub struct GpuTileSample {
 }
 
 /// Per-pixel surface written by the G-buffer resolve pass and kept one frame for
-/// temporal validation (notes §2.6).
+/// temporal validation (docs/src/temporal-reuse.md, "Validation").
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
 pub struct GpuSurface {
@@ -220,7 +221,8 @@ pub struct GpuSurface {
     pub _pad2: f32,
 }
 
-/// Per-pixel debug record (issue "part 2": selection source, M per stage, masks).
+/// Per-pixel debug record (the debug views and the stats: selection source, M per stage,
+/// masks).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
 pub struct GpuPixelDebug {
@@ -302,11 +304,11 @@ pub struct GpuParams {
     pub gi_jacobian_max: f32,
     /// Path vertices the reference shades, 1..=MAX_BOUNCES (1 = direct light only).
     pub max_bounces: u32,
-    // ReSTIR PT (issue 27).
+    // ReSTIR PT (docs/src/restir-pt.md).
     /// `PT_SHIFT_*`.
     pub pt_shift: u32,
     pub pt_rough_threshold: f32,
-    /// World units.
+    /// A fraction of `scene_scale` (the scene bounds' diagonal), not world units.
     pub pt_min_distance: f32,
     pub pt_spatial_neighbours: u32,
     /// In pixels of this image (scaled from the 1080p value).
@@ -378,8 +380,8 @@ pub struct GpuEnvironment {
     pub _pad: [u32; 2],
 }
 
-/// A ReSTIR GI reservoir (issue 12; the math is reservoir/gi.rs, the WGSL functions
-/// gi/reservoir.wgsl): the sample point, its normal and the radiance cached toward
+/// A ReSTIR GI reservoir (docs/src/restir-gi.md; the math is reservoir/gi.rs, the WGSL
+/// functions gi/reservoir.wgsl): the sample point, its normal and the radiance cached toward
 /// the pixel that drew it, and the reservoir's weights, in 48 bytes. The visible point it
 /// belongs to is the pixel's `GpuSurface`. The sample's source pdf is not stored: after
 /// initial resampling `weight` (W) stands for it.
@@ -500,7 +502,7 @@ impl GpuPtPixelDebug {
     }
 }
 
-/// One PT stage's path at the inspected pixel (pt_probe.wgsl): the reservoir it kept and
+/// One PT stage's path at the inspected pixel (shaders/pt/probe.wgsl): the reservoir it kept and
 /// the path's vertices x_1 … x_n and z, rebuilt on the GPU from the record.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]

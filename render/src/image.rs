@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-/// Rec. 709 luminance weights, the same as `luminance()` in `shaders/common/color.wgsl`.
+/// Rec. 709 luminance weights, the same as `luminance()` in `shaders/common/math.wgsl`.
 pub const LUMINANCE_WEIGHTS: [f32; 3] = [0.2126, 0.7152, 0.0722];
 
 pub fn luminance(rgb: [f32; 3]) -> f32 {

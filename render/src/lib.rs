@@ -1,6 +1,9 @@
-//! The ReSTIR lab renderer: glTF and built-in scenes, a CPU-built BVH, and a wgpu ReSTIR DI
-//! pipeline (G-buffer → initial RIS → temporal → spatial → shade) with a brute-force
-//! reference, debug buffers and metrics. Usable headless; the viewer drives it too.
+//! The ReSTIR lab renderer: glTF and built-in scenes, a CPU-built BVH (or hardware ray
+//! queries), and a wgpu ReSTIR pipeline: direct light by ReSTIR DI (G-buffer → initial RIS →
+//! temporal → spatial → shade), indirect light by ReSTIR GI (one bounce, its own reservoirs)
+//! or by ReSTIR PT (multi-bounce path reuse), with a brute-force (multi-bounce) reference,
+//! debug buffers and metrics (docs/src/frame.md walks the frame pass by pass). Usable
+//! headless; the viewer drives it too.
 
 #[macro_use]
 pub mod wgsl_constants;

@@ -1,4 +1,5 @@
-//! Image metrics against a converged reference (notes §7): per-frame accuracy, frame-to-frame
+//! Image metrics against a converged reference (docs/bench.md, "How it measures"): per-frame
+//! accuracy, frame-to-frame
 //! stability, accumulated accuracy and energy bias (luma ratio), plus an error heatmap.
 //!
 //! Non-finite pixels (NaN or ±∞ in any colour channel of either image) are skipped by every
@@ -59,7 +60,8 @@ pub const BLACK_FRACTION: f64 = 0.05;
 
 /// The fraction of all pixels that are black in `frame` (luminance below
 /// [`BLACK_FRACTION`] of the reference's) where the reference is lit (above [`LIT_FLOOR`] of
-/// its mean): the speckles of a pixel that picked a sample it cannot see (issue 18).
+/// its mean): the speckles of a pixel that picked a sample it cannot see
+/// (docs/src/mis-and-bias.md, "Visibility in every term").
 pub fn black_pixel_fraction(frame: &LinearImage, reference: &LinearImage) -> Result<f64> {
     let lit = LIT_FLOOR * mean_over_pixels(frame, reference, |_, r| luma(r))?;
     mean_over_pixels(frame, reference, |x, r| {
@@ -138,7 +140,8 @@ pub fn error_heatmap_scaled(
     })
 }
 
-/// Feeds frames one at a time against a reference and reports notes §7's numbers.
+/// Feeds frames one at a time against a reference and reports the numbers docs/bench.md
+/// defines ("How it measures").
 pub struct SequenceMetrics {
     reference: LinearImage,
     previous: Option<LinearImage>,

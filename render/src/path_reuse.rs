@@ -1,8 +1,8 @@
-//! Path reuse (ReSTIR PT; GRIS, Lin et al. 2022) in plain Rust: paths, the three shift
-//! mappings that move a path found at one pixel to another, their Jacobians, and one
-//! pairwise-MIS reuse step over them, checked against exact integrals and finite
-//! differences (issue 27). The WGSL passes are to mirror this module the way
-//! `shaders/common/reservoir.wgsl` mirrors `reservoir.rs`.
+//! Path reuse (ReSTIR PT; GRIS, Lin et al. 2022) in plain Rust: paths, the three shift mappings
+//! that move a path found at one pixel to another, their Jacobians, and one pairwise-MIS reuse step
+//! over them, checked against exact integrals and finite differences (docs/src/restir-pt.md, "The
+//! CPU model"). The WGSL passes are to mirror this module the way `shaders/common/reservoir.wgsl`
+//! mirrors `reservoir.rs`.
 //!
 //! # Paths and their measure
 //! A path starts at a pixel's primary surface `x_1` (the G-buffer's point) and bounces

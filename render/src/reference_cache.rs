@@ -1,4 +1,4 @@
-//! Converged reference images (notes §7), cached on disk.
+//! Converged reference images (docs/bench.md, "Reference cache"), cached on disk.
 //!
 //! A reference is the average of many frames of `Mode::Reference` (the unbiased
 //! light + BSDF MIS estimator). Rendering one takes seconds to minutes, so it is stored as

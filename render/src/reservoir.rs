@@ -1,22 +1,24 @@
-//! The plain-Rust mirror of the reservoir math in `shaders/common/reservoir.wgsl` (notes §1,
-//! §2.3, §4). The shader is written to match this file operation for operation (f32 all the
-//! way), so the statistical tests here vouch for the GPU side too.
+//! The plain-Rust mirror of the reservoir math in `shaders/common/reservoir.wgsl` (docs/src/ris.md,
+//! docs/src/temporal-reuse.md, docs/src/mis-and-bias.md). The shader is written to match this file
+//! operation for operation (f32 all the way), so the statistical tests here vouch for the GPU side
+//! too.
 //!
 //! # Conventions
 //! - **M counts reservoirs' worth of samples, not candidates** (RTXDI / Bevy Solari). A fresh
-//!   initial reservoir has `M = 1` after finalisation however many candidates it streamed, so
-//!   the M cap (notes §5) counts frames of history rather than light candidates.
+//!   initial reservoir has `M = 1` after finalisation however many candidates it streamed, so the M
+//!   cap (docs/src/temporal-reuse.md, "The M cap") counts frames of history rather than light
+//!   candidates.
 //! - **Initial RIS weights carry their own normalisation**: with `N_s` candidates drawn from
 //!   each proposal strategy `s` (light sampling, BSDF sampling), candidate `y_i` gets
 //!   `w_i = p̂(y_i) / Σ_s N_s·p_s(y_i)` (balance-heuristic MIS over the strategies) and the
 //!   reservoir is finalised with normalisation 1 ([`Reservoir::finalize_initial`]). That is
-//!   the notes' `W = w_sum / (M·p̂)` with the `1/M` folded into the weights.
-//! - **1/M reuse** (biased mode, notes §4): [`Reservoir::merge`] each neighbour with
-//!   `M_rep` candidates, then [`Reservoir::finalize`] with the summed `m`.
-//! - **Pairwise MIS reuse** (unbiased mode, notes §4): start from [`Reservoir::empty`],
-//!   [`Reservoir::merge_mis`] the canonical reservoir with [`pairwise_mis_canonical`] and each
-//!   neighbour with [`pairwise_mis_noncanonical`], set `m = c_total` (the confidences summed)
-//!   and finalise with normalisation 1.
+//!   the textbook `W = w_sum / (M·p̂)` with the `1/M` folded into the weights.
+//! - **1/M reuse** (biased mode, docs/src/mis-and-bias.md, "1/M weights"): [`Reservoir::merge`]
+//!   each neighbour with `M_rep` candidates, then [`Reservoir::finalize`] with the summed `m`.
+//! - **Pairwise MIS reuse** (unbiased mode, docs/src/mis-and-bias.md, "Pairwise MIS"): start from
+//!   [`Reservoir::empty`], [`Reservoir::merge_mis`] the canonical reservoir with
+//!   [`pairwise_mis_canonical`] and each neighbour with [`pairwise_mis_noncanonical`], set
+//!   `m = c_total` (the confidences summed) and finalise with normalisation 1.
 //! - **The null sample** (`sample == None`, `W = 0`) stays null: finalisation never redraws.
 //!
 //! Robustness: every operation keeps the fields finite and non-negative whatever it is fed
@@ -59,8 +61,9 @@ impl<S: Copy> Reservoir<S> {
         self.sample.is_none()
     }
 
-    /// Streams one candidate of resampling weight `w` and target `p_hat` (notes §1); `u`
-    /// is uniform in [0, 1). Returns whether the candidate replaced the current sample.
+    /// Streams one candidate of resampling weight `w` and target `p_hat` (docs/src/ris.md, "The
+    /// streaming reservoir"); `u` is uniform in [0, 1). Returns whether the candidate replaced the
+    /// current sample.
     ///
     /// A candidate whose weight or target is not finite and positive cannot contribute
     /// (p̂ = 0 means w = 0), so it is ignored and `w_sum` is left alone. `w_sum` saturates at
@@ -107,10 +110,10 @@ impl<S: Copy> Reservoir<S> {
         self.m = 1.0;
     }
 
-    /// Reuses `other` as one candidate representing `m_represented` candidates, for the 1/M
-    /// mode (notes §2.3): `w = target_here · W_other · m_represented`. `target_here` is p̂ of
-    /// `other`'s sample re-evaluated at this pixel, never `other.p_hat`. M grows by
-    /// `m_represented` even when the candidate is rejected or null: those candidates were
+    /// Reuses `other` as one candidate representing `m_represented` candidates, for the 1/M mode
+    /// (docs/src/temporal-reuse.md, "The merge"): `w = target_here · W_other · m_represented`.
+    /// `target_here` is p̂ of `other`'s sample re-evaluated at this pixel, never `other.p_hat`. M
+    /// grows by `m_represented` even when the candidate is rejected or null: those candidates were
     /// seen, and the normalisation must count them.
     pub fn merge(&mut self, other: &Self, target_here: f32, m_represented: f32, u: f32) -> bool {
         self.m = (self.m + sanitize(m_represented)).min(f32::MAX);
@@ -148,9 +151,9 @@ impl<S: Copy> Reservoir<S> {
 }
 
 /// Pairwise MIS weight of neighbour `i`'s sample `y` (defensive pairwise MIS with confidence
-/// weights, notes §4): `(c_i/c_total) · (c_total−c_c)·p̂_i(y) / ((c_total−c_c)·p̂_i(y) +
-/// c_c·p̂_c(y))`, where `c_total` sums the canonical confidence `c_c` and every neighbour's.
-/// Always finite, in [0, 1]; 0/0 gives 0.
+/// weights, docs/src/mis-and-bias.md, "Pairwise MIS"): `(c_i/c_total) · (c_total−c_c)·p̂_i(y) /
+/// ((c_total−c_c)·p̂_i(y) + c_c·p̂_c(y))`, where `c_total` sums the canonical confidence `c_c` and
+/// every neighbour's. Always finite, in [0, 1]; 0/0 gives 0.
 pub fn pairwise_mis_noncanonical(
     c_total: f32,
     c_canonical: f32,
@@ -241,7 +244,8 @@ fn clamp_unit(x: f32) -> f32 {
 mod tests;
 
 /// One pairwise-MIS reuse step of direct light with the rules of the shaders: which
-/// candidates take part, windows and visibility in the targets (issue 18).
+/// candidates take part, windows and visibility in the targets (docs/src/mis-and-bias.md,
+/// "The two rules of unbiased reuse").
 pub mod pairwise_reuse;
 
 /// ReSTIR GI: the GI sample and reservoir, its target, merges and one reuse step.

@@ -1,7 +1,9 @@
 //! Every pipeline parameter in one table: name, stage, label, documentation, range and
 //! default. The viewer's panels, `--set`, presets and `restir-viewer params` all read this
 //! table, and the same name is used in WGSL (`Params` in types.wgsl) and in the UI.
-//! Defaults follow restir-notes.md §5.
+//! Defaults are what the measurements favour; the book gives each one's figures in the
+//! chapter of its stage, and its parameters page (docs/src/parameters.md) is generated
+//! from this table.
 
 use std::fmt;
 use std::path::Path;
@@ -94,7 +96,7 @@ impl ParamDef {
     }
 }
 
-/// How reused samples are weighted (restir-notes.md §4).
+/// How reused samples are weighted (docs/src/mis-and-bias.md).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum BiasCorrection {
     /// 1/M weights with rejection: fast, biased near geometric and lighting discontinuities.
@@ -105,8 +107,8 @@ pub enum BiasCorrection {
 
 pub const BIAS_CORRECTION_NAMES: &[&str] = &["one-over-m", "pairwise"];
 
-/// How ReSTIR PT moves a path found at one pixel to another (issue 27; the CPU model's
-/// `path_reuse::shift::Shift`).
+/// How ReSTIR PT moves a path found at one pixel to another (docs/src/restir-pt.md, "Shift
+/// mappings"; the CPU model's `path_reuse::shift::Shift`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PtShift {
     /// Keep every vertex after the primary; connect the new primary to the second.
@@ -130,7 +132,7 @@ impl PtShift {
     }
 }
 
-/// Whether light candidates come from presampled light tiles (restir-notes.md §6).
+/// Whether light candidates come from presampled light tiles (docs/src/ris.md, "Light tiles").
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LightTiles {
     /// On only where they pay: scenes with at least `effects::LIGHT_TILES_BREAK_EVEN` lights
@@ -289,19 +291,19 @@ macro_rules! parameter_table {
 parameter_table! {
     Initial {
         light_candidates: u32 = 32, ParamKind::Int { min: 0, max: 256 }, "Light candidates",
-            "Light samples per pixel drawn from the power-proportional alias table and streamed through the reservoir (notes §1). 1 light and 0 BSDF candidates is plain NEE.";
+            "Light samples per pixel drawn from the power-proportional alias table and streamed through the reservoir (docs/src/ris.md, \"The streaming reservoir\"). 1 light and 0 BSDF candidates is plain NEE.";
         bsdf_candidates: u32 = 1, ParamKind::Int { min: 0, max: 16 }, "BSDF candidates",
             "BSDF-sampled rays per pixel; those that hit an emitter join the reservoir, combined with the light candidates by the balance heuristic.";
         light_tiles: LightTiles = LightTiles::Auto, ParamKind::Choice(LIGHT_TILES_NAMES), "Light tiles",
-            "Draw light candidates from 128 tiles of 1024 lights presampled by power once per frame (one tile per 16×16 pixel block) instead of from the whole light table: same distribution, a small shared working set, so selection costs the same for a thousand or a million lights (notes §6). auto: on for scenes with at least 16384 lights (emissive triangles + punctual lights), where the measured sweep says they pay (docs/bench.md); on / off force it.";
+            "Draw light candidates from 128 tiles of 1024 lights presampled by power once per frame (one tile per 16×16 pixel block) instead of from the whole light table: same distribution, a small shared working set, so selection costs the same for a thousand or a million lights (docs/src/ris.md, \"Light tiles\"). auto: on for scenes with at least 16384 lights (emissive triangles + punctual lights), where the measured sweep says they pay (docs/bench.md); on / off force it.";
         environment_share: f32 = 0.0, ParamKind::Float { min: 0.0, max: 0.99 }, "Environment share",
-            "Probability that a light sample is an environment direction. 0: by estimated power (π R² ∫L dω against the lights' power; README \"Environment\"). Any value is unbiased; it only moves noise between sky and lights (an enclosed room under a bright sky wants less). Without an environment it does nothing.";
+            "Probability that a light sample is an environment direction. 0: by estimated power (π R² ∫L dω against the lights' power; docs/src/environment.md, \"Split with the other lights\"). Any value is unbiased; it only moves noise between sky and lights (an enclosed room under a bright sky wants less). Without an environment it does nothing.";
         initial_visibility: bool = true, ParamKind::Bool, "Initial visibility",
-            "Trace the survivor's shadow ray right after initial sampling and drop it when occluded (visibility reuse, notes §6), so reuse only spreads samples that were visible. One extra shadow ray per pixel.";
+            "Trace the survivor's shadow ray right after initial sampling and drop it when occluded (visibility reuse: docs/src/ris.md, \"Visibility reuse\"), so reuse only spreads samples that were visible. One extra shadow ray per pixel.";
     }
     Temporal {
         temporal: bool = true, ParamKind::Bool, "Temporal reuse",
-            "Merge the reprojected previous-frame reservoir (notes §2). Off: the temporal pass is not dispatched.", ReuseSwitch;
+            "Merge the reprojected previous-frame reservoir (docs/src/temporal-reuse.md). Off: the temporal pass is not dispatched.", ReuseSwitch;
         target_ratio_clamp: f32 = 10.0, ParamKind::Float { min: 1.0, max: 1e6 }, "Target-ratio clamp",
             "1/M: reject the temporal sample when p̂(x, y_prev) / p̂(x_prev, y_prev) is outside [1/clamp, clamp]; 1 rejects any change of target. Pairwise MIS: a window on that ratio for both samples alike — outside it the history's sample gets weight 0, and where this pixel's own sample is outside it the pixel keeps the history's share — so the weights still sum to one and the clamp stays unbiased (a rejection of the history alone would not).";
         permutation: bool = true, ParamKind::Bool, "Permutation sampling",
@@ -313,7 +315,7 @@ parameter_table! {
     }
     Spatial {
         spatial: bool = true, ParamKind::Bool, "Spatial reuse",
-            "Merge reservoirs of nearby pixels (notes §3). Off: no spatial pass is dispatched.", ReuseSwitch;
+            "Merge reservoirs of nearby pixels (docs/src/spatial-reuse.md). Off: no spatial pass is dispatched.", ReuseSwitch;
         spatial_neighbours: u32 = 5, ParamKind::Int { min: 0, max: MAX_SPATIAL_NEIGHBOURS as i64 }, "Neighbours",
             "Neighbours tried per pixel and pass, uniformly in a disk.";
         spatial_radius: f32 = 30.0, ParamKind::Float { min: 1.0, max: 1024.0 }, "Radius (px at 1080p)",
@@ -321,7 +323,7 @@ parameter_table! {
         spatial_passes: u32 = 1, ParamKind::Int { min: 1, max: MAX_SPATIAL_PASSES as i64 }, "Passes",
             "Spatial passes per frame, each reading the previous pass's output.";
         boiling_filter: f32 = 0.0, ParamKind::Float { min: 0.0, max: 1000.0 }, "Boiling filter",
-            "Drop a pixel's sample when its W·p̂ exceeds this many times the neighbourhood mean (notes §6). 0 = off. Biased: the decision looks at the sample's value, so it darkens (2: −3.5 % on a frozen blinking-lights at M cap 100, −5 % on the concourse) while it lowers flicker (docs/bench.md, \"Boiling\").";
+            "Drop a pixel's sample when its W·p̂ exceeds this many times the neighbourhood mean (docs/src/spatial-reuse.md, \"The boiling filter\"). 0 = off. Biased: the decision looks at the sample's value, so it darkens (2: −3.5 % on a frozen blinking-lights at M cap 100, −5 % on the concourse) while it lowers flicker (docs/bench.md, \"Boiling\").";
     }
     Validation {
         normal_threshold: f32 = 0.906, ParamKind::Float { min: 0.0, max: 1.0 }, "Normal threshold",
@@ -405,7 +407,7 @@ parameter_table! {
         pt_rough_threshold: f32 = 0.3, ParamKind::Float { min: 0.0, max: 1.0 }, "PT roughness threshold",
             "Hybrid shift: a vertex is rough enough to reconnect at when its material roughness is at least this, or it has no specular lobe. 0: every vertex (hybrid = reconnection at the first far-enough pair); 1: only purely rough ones.";
         pt_min_distance: f32 = 0.02, ParamKind::Float { min: 0.0, max: 1.0 }, "PT reconnection distance",
-            "Hybrid shift: the two ends of the reconnected segment must be at least this far apart, as a fraction of the scene's size (a near reconnection has a Jacobian far from 1).";
+            "Hybrid shift: the two ends of the reconnected segment must be at least this far apart, as a fraction of the scene's size (the diagonal of its bounding box, not world units: 0.02 is 2 % of it). A near reconnection has a Jacobian far from 1.";
         pt_jacobian_clamp: f32 = 0.0, ParamKind::Float { min: 0.0, max: 1000.0 }, "PT Jacobian clamp (biased)",
             "Biased, off by default (0): clamp every shift's |J| into [1/c, c] (c ≥ 1). Bounds the fireflies of near or grazing reconnections at the price of a wrong change of measure: the image is no longer the integral (docs/bench.md measures how far off).";
     }

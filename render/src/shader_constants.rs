@@ -8,7 +8,8 @@ use crate::wgsl_constants::WgslValue;
 wgsl_constants! {
     fn rejection_bits;
     /// Validation checks; the same bits form the temporal and spatial rejection masks
-    /// (restir-notes.md §2.2). Bit order is the order of the rejection-view legend.
+    /// (docs/src/temporal-reuse.md, "Validation"). Bit order is the order of the rejection-view
+    /// legend.
     pub const REJECT_OFFSCREEN: u32 = 1 << 0;
     pub const REJECT_SURFACE: u32 = 1 << 1;
     pub const REJECT_MATERIAL: u32 = 1 << 2;
@@ -27,10 +28,11 @@ wgsl_constants! {
 pub const REJECT_TEMPORAL_REASONS: u32 = (1 << REJECT_REASON_COUNT) - 1;
 wgsl_constants! {
     fn surface_checks;
-    /// The checks that read the G-buffer only (the candidate's surface, never its sample).
-    /// Under pairwise MIS only these decide whether a temporal or spatial candidate takes part
-    /// (issue 18); the others (reservoir null, target 0, target ratio, light gone) look at the
-    /// sample and are counted, not acted on: the candidate stays in the MIS as a domain.
+    /// The checks that read the G-buffer only (the candidate's surface, never its sample). Under
+    /// pairwise MIS only these decide whether a temporal or spatial candidate takes part
+    /// (docs/src/mis-and-bias.md, "The two rules of unbiased reuse"); the others (reservoir null,
+    /// target 0, target ratio, light gone) look at the sample and are counted, not acted on: the
+    /// candidate stays in the MIS as a domain.
     pub const REJECT_SURFACE_CHECKS: u32 =
         REJECT_OFFSCREEN | REJECT_SURFACE | REJECT_MATERIAL | REJECT_NORMAL | REJECT_DEPTH;
 }
@@ -89,7 +91,7 @@ wgsl_constants! {
     /// frame's geometry (`previous_geometry`; only compiled in for animated scenes).
     pub const PARAM_FLAG_PREVIOUS_GEOMETRY: u32 = 1 << 12;
 
-    /// Passes that count non-finite values (issue "hard cases": a GPU-side guard).
+    /// Passes that count non-finite values (a GPU-side guard; docs/src/ris.md, "Conventions").
     pub const PASS_GBUFFER: u32 = 0;
     pub const PASS_INITIAL: u32 = 1;
     pub const PASS_TEMPORAL: u32 = 2;
@@ -201,10 +203,10 @@ wgsl_constants! {
     /// built-in scenes.
     pub const MAX_BOUNCES: u32 = 8;
 
-    /// Light tiles (notes §6; RTXDI): every frame LIGHT_TILE_COUNT tiles of LIGHT_TILE_SIZE
-    /// power-sampled lights are drawn once; each LIGHT_TILE_PIXELS² block of pixels draws its
-    /// initial candidates from one tile, so candidate reads hit a small, shared working set
-    /// whatever the number of lights.
+    /// Light tiles (docs/src/ris.md, "Light tiles"; RTXDI): every frame LIGHT_TILE_COUNT tiles of
+    /// LIGHT_TILE_SIZE power-sampled lights are drawn once; each LIGHT_TILE_PIXELS² block of pixels
+    /// draws its initial candidates from one tile, so candidate reads hit a small, shared working
+    /// set whatever the number of lights.
     pub const LIGHT_TILE_COUNT: u32 = 128;
     pub const LIGHT_TILE_SIZE: u32 = 1024;
     pub const LIGHT_TILE_PIXELS: u32 = 16;
@@ -251,11 +253,11 @@ wgsl_constants! {
     pub const TONEMAP_REINHARD: u32 = 1;
     pub const TONEMAP_CLAMP: u32 = 2;
 
-    /// ReSTIR GI validation (issue 12): the GI rejection mask's bits 0..5 are the DI checks
-    /// with the same bits and meaning (`REJECT_OFFSCREEN` .. `REJECT_RESERVOIR`, so a
-    /// `surface_dissimilarity` mask is used as it is); these three are GI's own.
-    /// The reconnection shift is undefined: the sample point is (nearly) on the receiver, seen
-    /// at a grazing angle, or the receiver is behind the sample's surface (gi_jacobian.rs).
+    /// ReSTIR GI validation (docs/src/restir-gi.md, "Rules the shaders follow"): the GI rejection
+    /// mask's bits 0..5 are the DI checks with the same bits and meaning (`REJECT_OFFSCREEN` ..
+    /// `REJECT_RESERVOIR`, so a `surface_dissimilarity` mask is used as it is); these three are
+    /// GI's own. The reconnection shift is undefined: the sample point is (nearly) on the receiver,
+    /// seen at a grazing angle, or the receiver is behind the sample's surface (gi_jacobian.rs).
     pub const GI_REJECT_RECONNECTION: u32 = 1 << 6;
     /// The reconnection Jacobian is outside [1/gi_jacobian_max, gi_jacobian_max].
     pub const GI_REJECT_JACOBIAN: u32 = 1 << 7;
@@ -309,7 +311,7 @@ wgsl_constants! {
     pub const PT_SHIFT_RECONNECTION: u32 = 0;
     pub const PT_SHIFT_RANDOM_REPLAY: u32 = 1;
     pub const PT_SHIFT_HYBRID: u32 = 2;
-    /// A path reservoir's `packed` word (pt_reservoir.wgsl): source | n << 4 | end << 8 |
+    /// A path reservoir's `packed` word (shaders/pt/reservoir.wgsl): source | n << 4 | end << 8 |
     /// k << 9 | lobes << 13. The end technique of x_n → z:
     pub const PT_END_NEE: u32 = 0;
     pub const PT_END_BSDF: u32 = 1;
@@ -317,7 +319,7 @@ wgsl_constants! {
     pub const PT_RC_NONE: u32 = 15;
     pub const PT_LOBE_DIFFUSE: u32 = 0;
     pub const PT_LOBE_SPECULAR: u32 = 1;
-    /// Why a path could not be moved to another pixel (pt_shift in pt_path.wgsl; the CPU
+    /// Why a path could not be moved to another pixel (pt_shift in shaders/pt/path.wgsl; the CPU
     /// model's `path_reuse::shift::Failure`). `PT_FAIL_NONE`: it moved and carries light there.
     pub const PT_FAIL_NONE: u32 = 0;
     /// The replayed prefix left the path (missed, met another lobe's zero, left the scene).

@@ -1,4 +1,5 @@
-//! Issue 10: pairwise MIS evaluates the canonical sample at the previous pixel with the
+//! Pairwise MIS under animation (docs/src/mis-and-bias.md, "Under animation") evaluates the
+//! canonical sample at the previous pixel with the
 //! previous frame's data (previous surface, previous lights). The detector is the frames
 //! right after lights switch *on*: with current lights at the previous pixel, a sample of a
 //! newly lit light gets the weight it would have if the history could have drawn it
@@ -113,9 +114,10 @@ fn switched_on_lights_are_not_dark_with_previous_lights() {
         changed.len()
     );
     assert!(changed.len() > 50, "{} changed pixels", changed.len());
-    // Pairwise MIS with previous-frame data is unbiased; what is left is noise: 2 seeds ×
-    // 4 frames over the changed region, plus initial visibility reuse's own darkening
-    // (README: 0.95–1.0). 10 % holds both; the planted twin is far outside it.
+    // Pairwise MIS with previous-frame data is unbiased; what is left is noise: 2 seeds × 4
+    // frames over the changed region, plus initial visibility reuse's own darkening
+    // (docs/src/mis-and-bias.md, "Measured bias": 0.95–1.0). 10 % holds both; the planted
+    // twin is far outside it.
     assert!(
         (ratio - 1.0).abs() < 0.1,
         "after switch-on / reference {ratio:.3}"

@@ -1,5 +1,5 @@
-//! Issue 10: reuse that stays correct while the scene changes. Each estimator test has a
-//! planted-error twin that runs the same detector on a renderer with one part of the
+//! Reuse that stays correct while the scene changes (docs/src/dynamic-scenes.md). Each estimator
+//! test has a planted-error twin that runs the same detector on a renderer with one part of the
 //! per-frame update left out, and asserts that the detector fires.
 //!
 //! Sizes are tiny (lavapipe on two cores); tolerances are justified where they are set.
@@ -253,9 +253,10 @@ fn switched_off_lights_leave_no_samples_and_the_image_settles() {
     assert!(o.stale.iter().all(|&n| n == 0), "{:?}", o.stale);
     // Those samples are rejected as `light_gone` (its own bit), in the first frame.
     assert!(o.light_gone > 20, "{} light_gone rejections", o.light_gone);
-    // Measured 0.94: the 1/M estimator's own darkening (README: 0.957 on many-lights) plus
-    // the noise of 8 frames over ~1000 pixels; 10 % holds both and still catches a lag
-    // (the changed region differs by more than 10 % per pixel by construction).
+    // Measured 0.94: the 1/M estimator's own darkening (0.96 on many-lights:
+    // docs/src/mis-and-bias.md, "Measured bias") plus the noise of 8 frames over ~1000
+    // pixels; 10 % holds both and still catches a lag (the changed region differs by more
+    // than 10 % per pixel by construction).
     let ratio = o.settled / o.reference;
     assert!((ratio - 1.0).abs() < 0.1, "settled/reference {ratio:.3}");
 }
@@ -327,8 +328,8 @@ fn a_moving_light_keeps_reuse_and_stays_unbiased_enough() {
     );
     // Temporal reuse keeps merging while the light moves (the floor does not move).
     assert!(merged > 0.5, "only {merged:.2} of surface pixels merged");
-    // 1/M darkens by a few % (README); the sweep's time average over 24 frames at 32 spp
-    // for the reference adds noise well under that.
+    // 1/M darkens by a few % (docs/src/mis-and-bias.md, "Measured bias"); the sweep's time
+    // average over 24 frames at 32 spp for the reference adds noise well under that.
     assert!(
         (ratio - 1.0).abs() < 0.08,
         "accumulated mean / reference {ratio:.3}"

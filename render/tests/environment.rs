@@ -1,4 +1,5 @@
-//! Issue 13: an environment lights the scene through the same reservoirs as area lights.
+//! An environment lights the scene through the same reservoirs as area lights
+//! (docs/src/environment.md).
 //! Closed forms first (a white furnace, a band of sky), then the convention end to end,
 //! then `restir` against the reference on a sky-lit box with an area light, and a sky
 //! whose brightest texel is 10⁶ times its mean. Tiny images on lavapipe; every tolerance

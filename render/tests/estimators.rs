@@ -1,4 +1,4 @@
-//! Issue "ReSTIR DI core, part 1": the estimators agree with closed forms and with each other.
+//! The estimators (docs/src/ris.md) agree with closed forms and with each other.
 //! All run on lavapipe at tiny sizes; every threshold is justified next to it.
 
 mod common;
@@ -54,8 +54,8 @@ fn reference_matches_the_closed_form_on_the_plane_light() {
             albedo / std::f32::consts::PI * radiance * polygon_irradiance(p, Vec3::Y, &light);
         let got = img.rgb(x, y)[1];
         let rel = (got - expected).abs() / expected;
-        // 1 %: the issue's bound. 1024 light samples of a 0.2 m square at 1–1.4 m distance
-        // have a relative standard error of ~0.1 %, so a 1 % miss is a real error.
+        // 1 %: the bound this test was set. 1024 light samples of a 0.2 m square at 1–1.4 m
+        // distance have a relative standard error of ~0.1 %, so a 1 % miss is a real error.
         assert!(
             rel < 0.01,
             "pixel ({x},{y}) at {p}: {got} vs closed form {expected} ({:.3} %)",
@@ -83,7 +83,7 @@ fn nee_and_ris_converge_to_the_reference_on_cornell() {
         let short = common::accumulate(&mut r, 16);
         let long = common::accumulate(&mut r, 64);
         let ratio = long.mean_luminance() / reference.mean_luminance();
-        // 1 %: the issue's bound; both estimators are unbiased and 64 frames of this
+        // 1 %: the bound this test was set; both estimators are unbiased and 64 frames of this
         // scene have a mean-luminance standard error far below 0.1 %.
         assert!(
             (ratio - 1.0).abs() < 0.01,

@@ -1,4 +1,4 @@
-//! Issue 19, the Fresnel split of glass (README "Conventions", transparency): of the light
+//! The Fresnel split of glass (docs/src/transparency.md, "The thin-layer model"): of the light
 //! meeting a layer's glass share, F(θ) is reflected by its specular lobe and (1 − F(θ))·tint
 //! passes. Two closed forms, each in every mode that renders the camera's pixels (the
 //! reference, `nee`, `restir`):

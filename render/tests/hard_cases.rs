@@ -1,7 +1,7 @@
-//! Issue "hard cases": every built-in hard scene renders with no NaN/Inf anywhere (the
-//! per-pass guards count nothing), M within its cap, and, where a meaningful comparison
-//! exists, close to the reference or to the same scene at another scale. Tolerances are
-//! justified next to each case.
+//! The hard cases (docs/src/scenes.md, "Built-in scenes"): every built-in hard scene renders with
+//! no NaN/Inf anywhere (the per-pass guards count nothing), M within its cap, and, where a
+//! meaningful comparison exists, close to the reference or to the same scene at another scale.
+//! Tolerances are justified next to each case.
 
 mod common;
 
@@ -133,10 +133,10 @@ fn near_mirror_floor_one_over_m_is_biased_pairwise_is_not() {
     // legitimately biased here: a neighbour's (or the permuted history's) sample lies
     // outside this pixel's narrow lobe, so its p̂ here is tiny but not zero and its M
     // still counts: the estimate darkens. Measured on lavapipe: 1/M −21 %, temporal alone
-    // −12 %, pairwise MIS +2 %, RIS −0.4 % (README, "Measured bias").
+    // −12 %, pairwise MIS +2 %, RIS −0.4 % (docs/src/mis-and-bias.md, "Measured bias").
     let scene = "builtin:hard:mirror";
     let (one_over_m, reference) = restir_and_reference(scene, &["bias_correction=one-over-m"]);
-    // The default settings: pairwise MIS (issue 14).
+    // The default settings: pairwise MIS.
     let (pairwise, _) = restir_and_reference(scene, &[]);
     let (q_m, q_p) = (
         ratio(&one_over_m.image, &reference.image),

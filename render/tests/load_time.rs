@@ -1,4 +1,4 @@
-//! Issue 28: what loading costs per triangle, as ratios measured in one run (never a
+//! What loading costs per triangle (docs/src/load-time.md), as ratios measured in one run (never a
 //! wall-clock limit: lavapipe machines differ by factors, a ratio of two CPU phases of
 //! the same run does not).
 
@@ -73,7 +73,7 @@ fn median_ms(mut f: impl FnMut()) -> f64 {
 /// the BVH over them. Measured here: about 0.1–0.3× (the texture is averaged once per
 /// material, then each emitter is an area and a multiply). A light table that integrates
 /// the texture per triangle at full resolution is 1000× slower and fails by far; the bound
-/// of 1× leaves room for a footprint-matched per-triangle integral (issue 28's suggestion)
+/// of 1× leaves room for a footprint-matched per-triangle integral (a finer alternative)
 /// and for noise between two phases measured on one busy machine (medians of 5).
 #[test]
 fn the_light_table_costs_less_per_triangle_than_the_bvh_build() {

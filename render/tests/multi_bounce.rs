@@ -1,16 +1,15 @@
-//! The multi-bounce reference (`max_bounces`, issue 12 "The reference"): a furnace test
+//! The multi-bounce reference (`max_bounces`, docs/src/frame.md, "The reference"): a furnace test
 //! whose answer is exact, its planted-error twins, and the Cornell box with indirect light.
 //!
-//! **The furnace.** Inside a closed box whose walls are all Lambertian with albedo a and
-//! all emit Le from the inside, the radiance is the same at every point and in every
-//! direction, bounce by bounce: emission Le, direct light ∫ Le·(a/π)·cos dω = a·Le, and each
-//! further bounce multiplies the last term by a. So with max_bounces = N every pixel's
-//! expectation is Le·(1 + a + … + a^N): Le(1 + a) for N = 1 (today's direct-only
-//! reference), Le(1 + a + a²) for N = 2, Le(1 + a + a² + a³) for N = 3. (Issue 12 writes
-//! Le·(1 + a) "for 2 bounces"; with its own definition, 2 = emission + direct light at the
-//! first hit + direct light at the second hit, the sum has three terms.) Every wall is
-//! both a light the light sampler picks and a surface the BSDF ray hits, so an emitter
-//! counted twice or not at all by MIS shows as a wrong level.
+//! **The furnace.** Inside a closed box whose walls are all Lambertian with albedo a and all emit
+//! Le from the inside, the radiance is the same at every point and in every direction, bounce by
+//! bounce: emission Le, direct light ∫ Le·(a/π)·cos dω = a·Le, and each further bounce multiplies
+//! the last term by a. So with max_bounces = N every pixel's expectation is Le·(1 + a + … + a^N):
+//! Le(1 + a) for N = 1 (today's direct-only reference), Le(1 + a + a²) for N = 2, Le(1 + a + a² +
+//! a³) for N = 3. (So "2 bounces" — emission + direct light at the first hit + direct light at the
+//! second hit — is a sum of three terms, not Le·(1 + a).) Every wall is both a light the light
+//! sampler picks and a surface the BSDF ray hits, so an emitter counted twice or not at all by MIS
+//! shows as a wrong level.
 
 mod common;
 

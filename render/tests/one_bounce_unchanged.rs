@@ -40,10 +40,10 @@ fn render(jitter: bool, env: bool, extra: &[&str]) -> LinearImage {
     common::accumulate(&mut r, 2)
 }
 
-/// Recorded with the code before `max_bounces` existed (commit d8e7291), 2 frames × 8 spp:
-/// (jitter, environment, hash of the f32 bits, mean luminance). With jitter off the
-/// reference shades the G-buffer's surfaces, which since issue 19 clamp the rasteriser's
-/// barycentrics onto their triangle (gbuffer_resolve.wgsl); those renders plant the
+/// Recorded with the code before `max_bounces` existed (commit d8e7291), 2 frames × 8 spp: (jitter,
+/// environment, hash of the f32 bits, mean luminance). With jitter off the reference shades the
+/// G-buffer's surfaces, which now clamp the rasteriser's barycentrics onto their triangle
+/// (gbuffer_resolve.wgsl; docs/src/scenes.md, "Surfaces and ray offsets"); those renders plant the
 /// unclamped G-buffer of the recording, so what is compared is the estimator alone.
 const RECORDED: [(bool, bool, u64, f64); 4] = [
     (true, false, 0x536f12f620a5453f, 0.077168477),
@@ -51,9 +51,9 @@ const RECORDED: [(bool, bool, u64, f64); 4] = [
     (true, true, 0x1f114b2f4cb507db, 0.379951183),
     (false, true, 0x9db7eca6f529cca8, 0.392878840),
 ];
-/// The same renders on Mesa 25.0.7's lavapipe (what CI installs since issue 26), recorded
-/// with the code of issue 26, which still reproduces every hash above on Mesa 22.3.6: the
-/// drivers round the environment's rays differently (same means to 9 digits), not the code.
+/// The same renders on Mesa 25.0.7's lavapipe (what CI installs since the ray-query backend),
+/// recorded with the code that added it, which still reproduces every hash above on Mesa 22.3.6:
+/// the drivers round the environment's rays differently (same means to 9 digits), not the code.
 const RECORDED_MESA_25: [(bool, bool, u64, f64); 4] = [
     (true, false, 0x536f12f620a5453f, 0.077168477),
     (false, false, 0x2fad0947d678a818, 0.090204933),

@@ -1,4 +1,4 @@
-//! Issue 26: the temporal MIS term of this pixel's own sample at the previous pixel is
+//! The temporal MIS term of this pixel's own sample at the previous pixel is
 //! traced against last frame's geometry (`previous_geometry`): last frame's TLAS with ray
 //! queries, last frame's BVH boxes and triangles with the software backend. Against this
 //! frame's geometry (the shortcut before, kept as the setting's off state and as the planted
@@ -9,7 +9,8 @@
 //! The detector: the blade turning at 10 frames per second (9° a frame, three times the
 //! 30-fps sweep of docs/bench.md, so the bias is larger than at 30 fps and the test can stay
 //! small), restir's running average over the frames against the average of per-frame
-//! references, for both backends. Needs a device with ray queries (README).
+//! references, for both backends. Needs a device with ray queries
+//! (docs/src/getting-started.md, "A machine without a GPU").
 
 mod common;
 
@@ -37,7 +38,8 @@ fn renderer(scene: &AnimatedScene, settings: Settings) -> Renderer {
     let gpu = common::gpu();
     assert!(
         gpu.ray_query,
-        "this test traces with both backends and needs ray queries (README, \"A machine without a GPU\")"
+        "this test traces with both backends and needs ray queries \
+         (docs/src/getting-started.md, \"A machine without a GPU\")"
     );
     Renderer::new(gpu, scene.scene(), SIZE.0, SIZE.1, settings).unwrap_or_else(|e| panic!("{e:#}"))
 }

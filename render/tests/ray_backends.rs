@@ -1,14 +1,14 @@
-//! Issue 26: one tracing interface, two backends. The software BVH and hardware ray queries
-//! must see the same scene: closed forms through both (a tinted pane's transmittance, an
-//! alpha-masked hole and a masked solid, a single-sided sheet the camera sees from behind),
-//! a statistical comparison over seeds on a scene of glass, layers and emitters behind them
-//! (builtin:lamps), the same shadow-ray counters, the same images while the scene moves, and
-//! the clear error where the device has no ray queries. Each backend has a planted twin that
-//! breaks it alone, and the detectors fire on it.
+//! One tracing interface, two backends (docs/src/ray-tracing.md). The software BVH and hardware ray
+//! queries must see the same scene: closed forms through both (a tinted pane's transmittance, an
+//! alpha-masked hole and a masked solid, a single-sided sheet the camera sees from behind), a
+//! statistical comparison over seeds on a scene of glass, layers and emitters behind them
+//! (builtin:lamps), the same shadow-ray counters, the same images while the scene moves, and the
+//! clear error where the device has no ray queries. Each backend has a planted twin that breaks it
+//! alone, and the detectors fire on it.
 //!
-//! These tests need a device with ray queries (Mesa 25's lavapipe: README, "A machine
-//! without a GPU"); without one they fail saying so. Sizes are tiny (lavapipe on two cores);
-//! every tolerance says where it comes from.
+//! These tests need a device with ray queries (Mesa 25's lavapipe: docs/src/getting-started.md, "A
+//! machine without a GPU"); without one they fail saying so. Sizes are tiny (lavapipe on two
+//! cores); every tolerance says where it comes from.
 
 mod common;
 
@@ -33,7 +33,8 @@ fn ray_query_gpu() -> Gpu {
     assert!(
         gpu.ray_query,
         "these tests need a device with ray queries (VK_KHR_ray_query); '{}' has none. On a \
-         machine without a GPU install Mesa 25's lavapipe (README, \"A machine without a GPU\")",
+         machine without a GPU install Mesa 25's lavapipe (docs/src/getting-started.md, \
+         \"A machine without a GPU\")",
         gpu.adapter_name()
     );
     gpu

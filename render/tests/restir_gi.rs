@@ -1,4 +1,4 @@
-//! ReSTIR GI (issue 12) against exact answers and the 2-bounce reference.
+//! ReSTIR GI (docs/src/restir-gi.md) against exact answers and the 2-bounce reference.
 //!
 //! The indirect part is measured alone: GI's passes draw their own random streams and
 //! never touch DI's buffers, so with the same seed the DI part of a `gi=true` frame is the
@@ -89,7 +89,7 @@ fn restir_gi_converges_to_the_two_bounce_reference_and_its_1_over_m_bias_is_stat
     let one_over_m = c.indirect_ratio(&["gi_bias_correction=one-over-m"], None);
     assert!(
         one_over_m < 0.95,
-        "1/M {one_over_m:.4}: its darkening is what README states"
+        "1/M {one_over_m:.4}: its darkening is what docs/src/restir-gi.md states"
     );
     // Test power: the same check with the shift's Jacobian planted the wrong way round,
     // and with temporal reuse of permuted (other pixels') samples left unshadowed.

@@ -1,4 +1,5 @@
-//! ReSTIR PT (issue 27) against exact answers and the multi-bounce reference, per shift.
+//! ReSTIR PT (docs/src/restir-pt.md) against exact answers and the multi-bounce reference, per
+//! shift.
 //!
 //! As for GI (restir_gi.rs), the indirect part is measured alone: PT's passes draw their
 //! own random streams and never touch DI's buffers, so (pt on − pt off) is the indirect

@@ -1,5 +1,6 @@
-//! What ReSTIR PT shows a person (issue 27): the inspector's rebuilt paths and the debug
-//! records behind the PT views, checked against the path records they describe.
+//! What ReSTIR PT shows a person (docs/src/restir-pt.md, "What a person sees"): the inspector's
+//! rebuilt paths and the debug records behind the PT views, checked against the path records they
+//! describe.
 
 mod common;
 

@@ -1,4 +1,5 @@
-//! Issue "ReSTIR DI core, part 2": temporal and spatial reuse lower the error, stay within
+//! Temporal and spatial reuse (docs/src/temporal-reuse.md, docs/src/spatial-reuse.md) lower
+//! the error, stay within
 //! their documented bias, record their rejections faithfully and keep M within its cap.
 //!
 //! Sizes are tiny (lavapipe on two cores). The figures below were measured with spatial
@@ -57,7 +58,7 @@ fn temporal_then_spatial_lower_per_frame_error_on_many_lights() {
     );
 }
 
-/// 1/M weights, the default until pairwise MIS replaced it (issue 14): the figures below
+/// 1/M weights, the default until pairwise MIS replaced it: the figures below
 /// were measured with it.
 const ONE_OVER_M: &str = "bias_correction=one-over-m";
 
@@ -87,10 +88,10 @@ fn accumulated_restir_stays_within_five_percent_of_the_reference() {
     ] {
         let ratio = restir_luminance_ratio(scene, size, &[ONE_OVER_M]);
         eprintln!("{scene}: restir (1/M) mean luminance / reference = {ratio:.4}");
-        // 5 %: the issue's bound for the biased 1/M estimator. Measured: cornell 0.99,
-        // many-lights 0.957 — darkening where a sample visible at the pixel that found it
-        // (visibility reuse) is occluded at the pixel that reuses it while its M still
-        // counts; without initial visibility it is 0.99 (README, "Measured bias").
+        // 5 %: the bound set for the biased 1/M estimator. Measured: cornell 0.99, many-lights
+        // 0.957 — darkening where a sample visible at the pixel that found it (visibility reuse) is
+        // occluded at the pixel that reuses it while its M still counts; without initial visibility
+        // it is 0.99 (docs/src/mis-and-bias.md, "Measured bias").
         assert!((ratio - 1.0).abs() < 0.05, "{scene}: ratio {ratio}");
     }
 }
@@ -98,7 +99,7 @@ fn accumulated_restir_stays_within_five_percent_of_the_reference() {
 #[test]
 fn pairwise_mis_is_closer_to_unbiased_than_one_over_m() {
     let one_over_m = restir_luminance_ratio("builtin:many-lights", (96, 60), &[ONE_OVER_M]);
-    // The default settings: pairwise MIS (issue 14).
+    // The default settings: pairwise MIS.
     let pairwise = restir_luminance_ratio("builtin:many-lights", (96, 60), &[]);
     eprintln!("luminance ratio: 1/M {one_over_m:.4}, pairwise {pairwise:.4}");
     assert!(
@@ -223,12 +224,12 @@ fn turning_a_check_off_removes_its_bit_everywhere() {
 
 #[test]
 fn target_ratio_clamp_one_rejects_every_changed_target() {
-    // Static camera, no jitter, no permutation: every pixel re-reads its own history at
-    // the same surface point, so the re-evaluated target equals the stored one bit for
-    // bit and clamp 1 accepts. Then an orbit changes every target: clamp 1 stops every
-    // temporal sample. Under 1/M it rejects the history; under pairwise MIS (issue 18) the
-    // history stays a domain whose sample gets weight 0 outside the window, so it is merged,
-    // counted as a ratio failure, and never survives.
+    // Static camera, no jitter, no permutation: every pixel re-reads its own history at the same
+    // surface point, so the re-evaluated target equals the stored one bit for bit and clamp 1
+    // accepts. Then an orbit changes every target: clamp 1 stops every temporal sample. Under 1/M
+    // it rejects the history; under pairwise MIS (docs/src/mis-and-bias.md, "The two rules of
+    // unbiased reuse") the history stays a domain whose sample gets weight 0 outside the window, so
+    // it is merged, counted as a ratio failure, and never survives.
     for bias_correction in ["one-over-m", "pairwise"] {
         let pairwise = bias_correction == "pairwise";
         let base = [
@@ -333,8 +334,9 @@ fn m_never_exceeds_its_cap_and_nothing_is_non_finite() {
     }
 }
 
-/// The rejection view's spatial part (issue 11): where no temporal reason applies, the
-/// grey level is the fraction of spatial neighbours rejected, (K·P − accepted) / (K·P).
+/// The rejection view's spatial part (docs/src/debug-views.md, "The views"): where no temporal
+/// reason applies, the grey level is the fraction of spatial neighbours rejected, (K·P − accepted)
+/// / (K·P).
 #[test]
 fn the_rejection_view_shows_how_many_spatial_neighbours_were_rejected() {
     // Temporal off: no temporal bits, so every surface pixel shows the spatial count.
@@ -385,7 +387,8 @@ fn the_rejection_view_shows_how_many_spatial_neighbours_were_rejected() {
     );
 }
 
-/// Issue 11: the spatial radius follows the image height. At 96×96 with default settings
+/// The spatial radius follows the image height (docs/src/spatial-reuse.md, "The radius follows
+/// the resolution"). At 96×96 with default settings
 /// restir is clearly below ris; left at 30 px (the rule skipped, planted here) the disk
 /// reaches across a third of the image, onto other surfaces, and reuse loses its lead.
 #[test]
@@ -420,9 +423,9 @@ fn with_defaults_restir_beats_ris_at_96_pixels_because_the_radius_scales() {
     );
 }
 
-/// Reservoir age (issue 10): frames since the surviving sample was first drawn, packed
-/// above AGE_SHIFT in `source`. It grows by one per frame a history sample survives, never
-/// beyond the frames rendered, and stays 0 without temporal reuse.
+/// Reservoir age (docs/src/ris.md, "Conventions"): frames since the surviving sample was first
+/// drawn, packed above AGE_SHIFT in `source`. It grows by one per frame a history sample survives,
+/// never beyond the frames rendered, and stays 0 without temporal reuse.
 #[test]
 fn reservoir_age_counts_frames_of_survival() {
     let frames = 6u32;

@@ -1,4 +1,5 @@
-//! Issue "ReSTIR DI core, part 2", test 5: with the camera orbiting a few degrees per
+//! Temporal reuse under a moving camera (docs/src/temporal-reuse.md, "Reprojection"): with the
+//! camera orbiting a few degrees per
 //! frame, temporal reuse still lowers the per-frame error, and its geometric rejections
 //! happen only where the previous camera could not see the point (checked on the CPU with
 //! an independent BVH traversal) or next to an edge.

@@ -176,7 +176,7 @@ fn gi_reservoir_library_validates_in_a_compute_entry_point() {
     for defines in [BTreeSet::new(), EffectSet::all().defines()] {
         let mut source = compose("gi/reservoir.wgsl", &defines).unwrap();
         source.push_str(GI_LIBRARY_ENTRY);
-        let module = validate_source("gi_reservoir.wgsl in a compute entry point", &source);
+        let module = validate_source("gi/reservoir.wgsl in a compute entry point", &source);
         assert_eq!(module.entry_points.len(), 1);
     }
 }

@@ -1,6 +1,6 @@
-//! Issue "specialisation": effect detection gives known answers, the specialised pipeline
-//! renders what the general one does, and a diffuse scene's compiled shaders contain no
-//! code for effects it does not have.
+//! Specialisation (docs/src/specialisation.md): effect detection gives known answers, the
+//! specialised pipeline renders what the general one does, and a diffuse scene's compiled shaders
+//! contain no code for effects it does not have.
 
 mod common;
 
@@ -52,8 +52,9 @@ fn effect_detection_gives_known_answers() {
         detected("builtin:plane-light"),
         set(&[&[AreaLights, BsdfCandidates][..], &tiles(2)].concat())
     );
-    // The Blender exports: textured, one metallic/rough material (the scenes README), the
-    // default specularFactor of 1 (a GGX lobe), one emissive quad.
+    // The Blender exports: textured, one metallic/rough material (docs/src/scenes.md,
+    // "Files in the repository"), the default specularFactor of 1 (a GGX lobe), one
+    // emissive quad.
     let assets = concat!(env!("CARGO_MANIFEST_DIR"), "/../assets");
     for file in [
         "blender-2.79-cornell/cornellBox-2.79-Cycles-gltf.gltf",

@@ -1,9 +1,10 @@
-//! The boiling and survivor-change views (issue 20): the temporal window's σ/mean of each
+//! The boiling and survivor-change views (docs/src/debug-views.md, "Boiling and survivor
+//! change"): the temporal window's σ/mean of each
 //! pixel's luminance and its survivor-change fraction. The detector has two halves: a
 //! frozen scene rendered by the reference with jitter off and the same random numbers
 //! every frame does not boil at all (0 everywhere), and ReSTIR at M cap 100 with
-//! permutation sampling boils more than at M cap 5 (docs/bench.md, "Why a high M cap's
-//! error is larger": a mosaic of long-lived samples passed between neighbours). The
+//! permutation sampling boils more than at M cap 5 (docs/bench.md, "A high M cap on a
+//! static stretch": a mosaic of long-lived samples passed between neighbours). The
 //! planted twin computes "boiling" from the current frame alone (its 3 × 3 neighbourhood)
 //! and must fail the detector; a second guard shows the zero is not the window's doing
 //! (new random numbers per frame do boil).

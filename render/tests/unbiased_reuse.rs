@@ -1,4 +1,5 @@
-//! Issue 18: the default estimator is unbiased where users look. Reuse decisions ignore
+//! The default estimator is unbiased where users look (docs/src/mis-and-bias.md, "The two
+//! rules of unbiased reuse"). Reuse decisions ignore
 //! the sample under pairwise MIS (a null sample, a target of 0 here, a light gone off stay
 //! domains), every MIS term carries visibility (`mis_visibility`), and the `bias` view shows
 //! bias, not noise. Each test has a planted twin that must fire: the old sample-dependent
@@ -230,8 +231,8 @@ fn lights_switching_off_leave_no_ghost_on_average() {
     let (changed, _) = switch_references();
     assert!(changed.len() > 100, "{} changed pixels", changed.len());
     // A history sample on a light that went off is a domain of target 0: the canonical
-    // sample keeps only its own share, the mean is right from the first frame (the issue's
-    // experiment: −0.002 against +0.41). What stays is per-pixel lag: stale weights of
+    // sample keeps only its own share, the mean is right from the first frame (the
+    // switch-off experiment: −0.002 against +0.41). What stays is per-pixel lag: stale weights of
     // histories on lights still on, high and low around the mean. Measured −0.002 over 12
     // seeds; 5 % is > 4 σ of the 8-seed mean (SWITCH_SEEDS); the planted twin is at +64 %.
     let bias = switch_off_bias(&[]);
@@ -272,7 +273,7 @@ fn the_showcase_floor_has_no_black_speckles() {
     // A pixel resamples only among samples it can see (p̂·V here), so it is black only where
     // the light really is hidden. Measured 0.12 % at 225×180; the 256-spp reference's own
     // noise makes a few of its pixels look lit where frames are right to be black. 0.5 % is
-    // the issue's bar; the twin is several times above it.
+    // the bar set for the showcase; the twin is several times above it.
     let fraction = concourse_black_pixels(&[]);
     eprintln!(
         "concourse black pixels, defaults: {:.3} %",

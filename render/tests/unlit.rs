@@ -1,7 +1,7 @@
-//! Issue 19: `KHR_materials_unlit`. The camera sees base colour × base colour texture as
-//! radiance, in every mode, however the surface is lit; the surface lights nothing. The
-//! planted twin (`PLANTED_UNLIT_AS_LIT`) shades it as a lit surface, as the loader did
-//! before the extension was read.
+//! `KHR_materials_unlit` (docs/src/scenes.md, "Emitters and materials"). The camera sees base
+//! colour × base colour texture as radiance, in every mode, however the surface is lit; the surface
+//! lights nothing. The planted twin (`PLANTED_UNLIT_AS_LIT`) shades it as a lit surface, as the
+//! loader did before the extension was read.
 
 mod common;
 

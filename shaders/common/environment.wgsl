@@ -1,4 +1,4 @@
-// The environment as a light (issue 13; README "Environment"): equirectangular, +Y up,
+// The environment as a light (docs/src/environment.md, "Convention"): equirectangular, +Y up,
 // row 0 = zenith, the image centre looking along +X. Directions are drawn in proportion
 // to luminance × solid angle: a row from the marginal alias table, a column from that
 // row's conditional table, then uniform in φ and cos θ inside the texel. Every function

@@ -185,7 +185,7 @@ fn trace_and_walk_layers(ray_origin: vec3<f32>, origin: vec3<f32>, dir: vec3<f32
     return p.walk;
 }
 
-// What a BSDF-sampled ray finds (path_trace.wgsl, pt_path.wgsl): the emitter it meets
+// What a BSDF-sampled ray finds (path_trace.wgsl, pt/path.wgsl): the emitter it meets
 // first through clear layers (the BSDF strategy's sample of direct light, when
 // `find_light`; transparency.wgsl's find_light_through), and where the path goes on (a
 // random walk through the layers, as walk_advance). Both follow the same ray, so they share

@@ -1,6 +1,6 @@
-// Light sampling (restir-notes.md §1): pick a light in proportion to its power with the
-// alias table built on the CPU (render/src/scene/lights.rs), then a uniform point on it.
-// A light sample is (light id, barycentric uv): enough to rebuild the point anywhere.
+// Light sampling (docs/src/ris.md, "Light sampling"): pick a light in proportion to its power with
+// the alias table built on the CPU (render/src/scene/lights.rs), then a uniform point on it. A
+// light sample is (light id, barycentric uv): enough to rebuild the point anywhere.
 #include "common/scene_bindings.wgsl"
 #include "common/material.wgsl"
 #include "common/rng.wgsl"

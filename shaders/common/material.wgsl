@@ -1,5 +1,5 @@
 // Material and texture evaluation at a point of a triangle. Each texture slot sits in its
-// own #ifdef so a scene without textures compiles none of this (issue "specialisation").
+// own #ifdef so a scene without textures compiles none of this (docs/src/specialisation.md).
 #include "common/scene_bindings.wgsl"
 #include "common/math.wgsl"
 #include "common/brdf.wgsl"
@@ -140,9 +140,9 @@ fn material_emission_of(m: Material, uv: vec2<f32>) -> vec3<f32> {
 }
 
 #ifdef UNLIT
-// KHR_materials_unlit: base colour × texture, seen directly as radiance (README
-// "Conventions"). Not a light: no light table entry, so nothing else receives it. Blended,
-// it covers the share alpha (glTF's α·colour + (1 − α)·behind: the layer passes the rest).
+// KHR_materials_unlit: base colour × texture, seen directly as radiance (docs/src/scenes.md,
+// "Emitters and materials"). Not a light: no light table entry, so nothing else receives it.
+// Blended, it covers the share alpha (glTF's α·colour + (1 − α)·behind: the layer passes the rest).
 fn material_unlit_color(material_index: u32, uv: vec2<f32>) -> vec3<f32> {
     let c = base_color_at(material_index, uv);
     var blended = (materials[material_index].flags & MATERIAL_ALPHA_BLEND) != 0u;
@@ -154,9 +154,9 @@ fn material_unlit_color(material_index: u32, uv: vec2<f32>) -> vec3<f32> {
 #endif
 
 #ifdef TRANSPARENCY
-// A transparent surface as a thin layer (README "Conventions", transparency). With coverage a
-// (alpha BLEND, else 1) and transmission t (KHR_materials_transmission × its texture, of the
-// dielectric share: × (1 − metallic)), of the light reaching it
+// A transparent surface as a thin layer (docs/src/transparency.md, "The thin-layer model"). With
+// coverage a (alpha BLEND, else 1) and transmission t (KHR_materials_transmission × its texture, of
+// the dielectric share: × (1 − metallic)), of the light reaching it
 //   * `solid` = a·(1 − t) meets the surface as if it were opaque: shaded with its BRDF, blocked;
 //   * `glass` = a·t meets a smooth dielectric interface (glTF's thin-walled transmission):
 //     the share F(θ) is reflected (the specular lobe of the layer's roughness: layer_walk.wgsl
@@ -265,7 +265,7 @@ fn hit_brdf(hs: HitSurface) -> Brdf {
 }
 
 // Radiance leaving a hit toward the viewer: emitters shine from their front face only,
-// from both faces when double-sided (README, "Conventions").
+// from both faces when double-sided (docs/src/scenes.md, "Emitters and materials").
 fn emission_toward_viewer(hs: HitSurface) -> vec3<f32> {
     let m = materials[hs.material];
     if !hs.front_facing && (m.flags & MATERIAL_DOUBLE_SIDED) == 0u {

@@ -1,4 +1,4 @@
-// The reference's multi-bounce estimator (`max_bounces` ≥ 2; issue 12, "The reference").
+// The reference's multi-bounce estimator (`max_bounces` ≥ 2; docs/src/frame.md, "The reference").
 // A path from the first vertex (camera hit or rasterised surface) is shaded at each of its
 // first max_bounces vertices with next-event estimation (one power-sampled light point and
 // a shadow ray) and continued along one BSDF-sampled direction; the emitter (or the

@@ -11,7 +11,7 @@ fn reservoir_is_null(r: Reservoir) -> bool {
 }
 
 // A weight, sum or M that is negative or not finite cannot be trusted: the reservoir is
-// treated as null (the caller counts it) rather than propagated (issue "hard cases").
+// treated as null (the caller counts it) rather than propagated (docs/src/ris.md, "Conventions").
 fn reservoir_is_corrupt(r: Reservoir) -> bool {
     let ok = is_finite_f32(r.weight) && r.weight >= 0.0 && is_finite_f32(r.w_sum) && r.w_sum >= 0.0
         && is_finite_f32(r.m) && r.m >= 0.0 && is_finite_f32(r.p_hat) && r.p_hat >= 0.0;
@@ -87,7 +87,8 @@ fn reservoir_merge_mis(r: ptr<function, Reservoir>, other: Reservoir, target_her
 }
 
 // Another reservoir's sample as one candidate standing for `m_rep` candidates
-// (notes §2.3): w = p̂_here · W_other · m_rep. M grows even when the candidate loses.
+// (docs/src/temporal-reuse.md, "The merge"): w = p̂_here · W_other · m_rep. M grows even when the
+// candidate loses.
 fn reservoir_merge(r: ptr<function, Reservoir>, other: Reservoir, target_here: f32, m_rep: f32, source: u32, u: f32) -> bool {
     (*r).m = min((*r).m + sanitize(m_rep), FLT_MAX);
     return reservoir_merge_mis(r, other, target_here, m_rep, source, u);
@@ -108,9 +109,9 @@ fn balance(a: f32, b: f32) -> f32 {
     return clamp_unit(sa / (sa + sanitize(b)));
 }
 
-// Defensive pairwise MIS with confidence weights (notes §4; Bitterli 2022): the pair
-// (canonical, neighbour j) at a point y splits the neighbour's share c_j / c_total in
-// proportion (c_total − c_c)·p̂_j(y) : c_c·p̂_c(y). Mirrors render/src/reservoir.rs.
+// Defensive pairwise MIS with confidence weights (docs/src/mis-and-bias.md, "Pairwise MIS";
+// Bitterli 2022): the pair (canonical, neighbour j) at a point y splits the neighbour's share c_j /
+// c_total in proportion (c_total − c_c)·p̂_j(y) : c_c·p̂_c(y). Mirrors render/src/reservoir.rs.
 fn pairwise_mis_noncanonical(c_total: f32, c_canonical: f32, c_i: f32, p_hat_i_at_y: f32, p_hat_c_at_y: f32) -> f32 {
     let neighbour = max(c_total - c_canonical, 0.0) * p_hat_i_at_y;
     return confidence_share(c_i, c_total) * balance(neighbour, c_canonical * p_hat_c_at_y);

@@ -1,4 +1,5 @@
-// Checks shared by temporal and spatial reuse (restir-notes.md §2.2, §3).
+// Checks shared by temporal and spatial reuse (docs/src/temporal-reuse.md, "Validation";
+// docs/src/spatial-reuse.md, "Validation").
 #include "common/frame_bindings.wgsl"
 #include "common/stats_bindings.wgsl"
 #include "common/shading_point.wgsl"
@@ -111,13 +112,13 @@ fn pairwise_mis() -> bool {
     return (params.flags & PARAM_FLAG_PAIRWISE) != 0u;
 }
 
-// The failed checks that drop a temporal or spatial candidate. Under 1/M: every enabled
-// check. Under pairwise MIS: the G-buffer checks only (REJECT_SURFACE_CHECKS). Whether a
-// candidate takes part may not depend on its sample (issue 18; the ReSTIR course notes'
-// rule): the canonical sample's weight assumes the candidate's domain is there, so
-// dropping it for a null sample, a target of 0 here or a light gone made the image too
-// bright by the canonical share it lost (+4.5 % at M cap 100, +41 % after a switch-off).
-// Such a candidate stays in the MIS and contributes what its target says: nothing.
+// The failed checks that drop a temporal or spatial candidate. Under 1/M: every enabled check.
+// Under pairwise MIS: the G-buffer checks only (REJECT_SURFACE_CHECKS). Whether a candidate takes
+// part may not depend on its sample (docs/src/mis-and-bias.md, "The two rules of unbiased reuse";
+// the ReSTIR course notes' rule): the canonical sample's weight assumes the candidate's domain is
+// there, so dropping it for a null sample, a target of 0 here or a light gone made the image too
+// bright by the canonical share it lost (+4.5 % at M cap 100, +41 % after a switch-off). Such a
+// candidate stays in the MIS and contributes what its target says: nothing.
 fn rejecting_checks(mask: u32) -> u32 {
 #ifndef PLANTED_SAMPLE_REJECTION
     if pairwise_mis() {

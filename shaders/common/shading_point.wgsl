@@ -1,7 +1,7 @@
-// The target function p̂ = luminance(Le · fr · G) (restir-notes.md §1) and the shadow test,
-// evaluated at a shading point rebuilt from a Surface record. Temporal and spatial reuse
-// call the same functions at the current pixel, so a reused sample is always rescored
-// where it is used (notes §2.3).
+// The target function p̂ = luminance(Le · fr · G) (docs/src/ris.md, "The target function") and the
+// shadow test, evaluated at a shading point rebuilt from a Surface record. Temporal and spatial
+// reuse call the same functions at the current pixel, so a reused sample is always rescored where
+// it is used (docs/src/temporal-reuse.md, "Re-evaluating the target").
 #include "common/lights.wgsl"
 #include "common/brdf.wgsl"
 #include "common/transparency.wgsl"

@@ -1,5 +1,5 @@
 // GPU structs shared by every pass. Each one has a `#[repr(C)]` twin in
-// render/src/gpu_types.rs; tests/gpu_layout.rs checks sizes and offsets match.
+// render/src/gpu_types.rs; render/tests/shaders_and_layouts.rs checks sizes and offsets match.
 
 struct Triangle {
     p0: vec3<f32>,
@@ -71,8 +71,8 @@ struct BvhNode {
     count: u32,  // triangles in a leaf, 0 for an interior node
 }
 
-// A streaming reservoir (restir-notes.md §1). `m` is the confidence M: 1 for a fresh
-// initial reservoir, summed by reuse and capped by `m_cap`.
+// A streaming reservoir (docs/src/ris.md, "The streaming reservoir"). `m` is the confidence M: 1
+// for a fresh initial reservoir, summed by reuse and capped by `m_cap`.
 struct Reservoir {
     light: u32,    // light table index, NO_LIGHT for the null sample
     p_hat: f32,   // p̂ (× V with mis_visibility) at the pixel that finalised it: the ratio test, pairwise weights
@@ -94,7 +94,8 @@ struct TileSample {
     flags: u32,    // kind | double_sided << 2 | punctual index << 8
 }
 
-// One pixel's primary surface (restir-notes.md §2.6), kept for one frame for temporal validation.
+// One pixel's primary surface (docs/src/frame.md, "The G-buffer"), kept for one frame for
+// temporal validation.
 struct Surface {
     position: vec3<f32>,
     depth: f32,               // distance to the camera; 0 = no surface
@@ -165,10 +166,10 @@ struct Params {
     gi_spatial_radius: f32,       // pixels of this image
     gi_jacobian_max: f32,         // window [1/max, max]
     max_bounces: u32,             // path vertices the reference shades (1 = direct only)
-    // ReSTIR PT (issue 27; pt on): the shift mapping and the hybrid's thresholds
+    // ReSTIR PT (docs/src/restir-pt.md; pt on): the shift mapping and the hybrid's thresholds
     pt_shift: u32,                // PT_SHIFT_*
     pt_rough_threshold: f32,
-    pt_min_distance: f32,         // world units
+    pt_min_distance: f32,         // fraction of frame.scene_scale (bounds diagonal)
     pt_spatial_neighbours: u32,
     pt_spatial_radius: f32,       // pixels of this image
     pt_m_cap: f32,
@@ -213,7 +214,7 @@ struct Environment {
     _pad1: u32,
 }
 
-// A ReSTIR GI reservoir (issue 12; functions in gi/reservoir.wgsl, math in
+// A ReSTIR GI reservoir (docs/src/restir-gi.md; functions in gi/reservoir.wgsl, math in
 // render/src/reservoir/gi.rs). The pixel's Surface is its visible point.
 struct GiReservoir {
     position: vec3<f32>,  // x_s, the secondary hit
@@ -226,7 +227,7 @@ struct GiReservoir {
     packed: u32,          // SOURCE_* | GI flags << GI_FLAGS_SHIFT | age << GI_AGE_SHIFT
 }
 
-// A ReSTIR PT path reservoir (issue 27; functions in pt/reservoir.wgsl and
+// A ReSTIR PT path reservoir (docs/src/restir-pt.md; functions in pt/reservoir.wgsl and
 // pt/path.wgsl, the CPU model in render/src/path_reuse). The pixel's Surface is the
 // path's first vertex x_1; the path x_1 → … → x_n → z (a light point) is stored as what
 // its shifts need: its random seed (replay), its reconnection vertex x_{k+1} and what lies
@@ -238,7 +239,7 @@ struct PtReservoir {
     weight: f32,          // W; 0 for the null sample
     m: f32,
     seed: u32,            // the path's random numbers (pt_rng)
-    packed: u32,          // source | n | end | k | lobes (pt_reservoir.wgsl)
+    packed: u32,          // source | n | end | k | lobes (pt/reservoir.wgsl)
     rc_triangle: u32,     // x_{k+1}: triangle and barycentrics (unused when k is PT_RC_NONE)
     rc_u: f32,
     rc_v: f32,
@@ -267,7 +268,7 @@ struct PtPixelDebug {
 }
 
 // One PT stage's path at the inspected pixel (GpuPtProbeStage): the reservoir the stage
-// kept and its vertices x_1 … x_n, z rebuilt from the record (pt_probe.wgsl).
+// kept and its vertices x_1 … x_n, z rebuilt from the record (pt/probe.wgsl).
 struct PtProbeStage {
     written: u32,           // 1 when the stage ran this frame
     vertex_count: u32,

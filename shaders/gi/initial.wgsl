@@ -1,10 +1,9 @@
-// ReSTIR GI initial sample (Ouyang et al. 2021 §3.1): one BSDF-sampled ray from the
-// primary hit x_v; at the secondary hit x_s its outgoing direct radiance toward x_v,
-// estimated with DI's machinery: RIS over `light_candidates` power-sampled lights with the
-// unshadowed target, one shadow ray for the survivor. Emission of x_s itself is not part
-// of L_o: seen from x_v it is direct light, which ReSTIR DI already counts (README "Indirect").
-// The sample (x_s, n_s, L_o) has source pdf p_ω (solid angle at x_v); one candidate, so
-// W = 1 / p_ω, M = 1.
+// ReSTIR GI initial sample (Ouyang et al. 2021 §3.1): one BSDF-sampled ray from the primary hit
+// x_v; at the secondary hit x_s its outgoing direct radiance toward x_v, estimated with DI's
+// machinery: RIS over `light_candidates` power-sampled lights with the unshadowed target, one
+// shadow ray for the survivor. Emission of x_s itself is not part of L_o: seen from x_v it is
+// direct light, which ReSTIR DI already counts (docs/src/restir-gi.md, "The sample"). The sample
+// (x_s, n_s, L_o) has source pdf p_ω (solid angle at x_v); one candidate, so W = 1 / p_ω, M = 1.
 #include "gi/reuse.wgsl"
 #include "common/layer_walk.wgsl"
 

@@ -1,4 +1,4 @@
-// ReSTIR GI reservoir math (Ouyang et al. 2021; issue 12), mirrored line by line in
+// ReSTIR GI reservoir math (Ouyang et al. 2021; docs/src/restir-gi.md), mirrored line by line in
 // render/src/reservoir/gi.rs and gi_jacobian.rs, where it is tested against an exactly
 // integrated scene. Same streaming, finalisation and null-sample rules as reservoir.wgsl.
 // A GI sample lives in solid angle at its pixel's visible point: reuse at another pixel

@@ -1,5 +1,5 @@
-// What every ReSTIR GI pass shares (issue 12): a GI sample's target at a shading point,
-// the guard against corrupt reservoirs, and the per-pixel GI debug record. The reservoir
+// What every ReSTIR GI pass shares (docs/src/restir-gi.md): a GI sample's target at a shading
+// point, the guard against corrupt reservoirs, and the per-pixel GI debug record. The reservoir
 // math itself is gi/reservoir.wgsl (mirrored and tested in reservoir/gi.rs).
 #include "common/frame_bindings.wgsl"
 #include "common/stats_bindings.wgsl"
@@ -82,7 +82,8 @@ fn gi_reconnection_visible(sp: ShadingPoint, r: GiReservoir) -> bool {
     let n_s = oct_decode(r.normal);
     let toward = select(-n_s, n_s, dot(n_s, sp.position - r.position) > 0.0);
     // Through glass: free when light gets through. The sample's radiance keeps the tint of
-    // the glass its own path crossed (a documented GI approximation, README "Indirect").
+    // the glass its own path crossed (a documented GI approximation, docs/src/restir-gi.md,
+    // "Through glass").
     let tr = trace_transmittance(segment_ray(sp.position, sp.geo_normal, r.position, toward));
     return any(tr.value > vec3<f32>(0.0));
 }

@@ -2,7 +2,7 @@
 // sample, added to the frame DI shaded (radiance and running sum) and kept alone for the
 // `indirect` view. No visibility ray here: an initial sample is visible by construction,
 // spatial reuse traces the reconnection (gi_spatial_visibility), and a temporal sample
-// was visible from the previous visible point (README "Indirect" lists what that leaves).
+// was visible from the previous visible point (docs/src/restir-gi.md, "The passes").
 #include "gi/reuse.wgsl"
 
 @group(2) @binding(0) var<storage, read> surfaces: array<Surface>;

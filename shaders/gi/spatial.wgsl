@@ -100,7 +100,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
                 var j_back = select(0.0, back.jacobian, back.reject == 0u);
                 // Whether the neighbour could have produced this pixel's sample: its point must
                 // be visible from there too (gi_mis_visibility; off leaves the canonical weight
-                // too small where neighbours are shadowed, see README "Indirect").
+                // too small where neighbours are shadowed, see docs/src/restir-gi.md, "Rules
+                // the shaders follow").
                 if j_back > 0.0 && gi_mis_visibility() && !gi_reconnection_visible(neighbour_sp, canonical) {
                     j_back = 0.0;
                 }

@@ -1,10 +1,10 @@
-// ReSTIR PT initial path (issue 27; pt/path.wgsl defines the path space): one path
-// per pixel from its visible point, up to max_bounces bounces, with light sampling and the
-// BSDF's found emitter weighted by the balance heuristic at every vertex past the first;
-// each of those sub-paths is a candidate of the pixel's path reservoir (RIS, weight
-// p̂ / density, p̂ = luminance of the path's integrand, visibility included). One path, so
-// M = 1. Draws the GI initial pass's random stream (ReSTIR GI is off while PT is on).
-// Starts the pixel's PT debug record and probes the inspected pixel's path.
+// ReSTIR PT initial path (docs/src/restir-pt.md, "The path space"; pt/path.wgsl defines it): one
+// path per pixel from its visible point, up to max_bounces bounces, with light sampling and the
+// BSDF's found emitter weighted by the balance heuristic at every vertex past the first; each of
+// those sub-paths is a candidate of the pixel's path reservoir (RIS, weight p̂ / density, p̂ =
+// luminance of the path's integrand, visibility included). One path, so M = 1. Draws the GI initial
+// pass's random stream (ReSTIR GI is off while PT is on). Starts the pixel's PT debug record and
+// probes the inspected pixel's path.
 #include "pt/path.wgsl"
 #include "pt/probe.wgsl"
 

@@ -1,4 +1,4 @@
-// ReSTIR PT paths (issue 27; the CPU model is render/src/path_reuse, whose module docs
+// ReSTIR PT paths (docs/src/restir-pt.md; the CPU model is render/src/path_reuse, whose module docs
 // define the shifts): tracing a pixel's path with its sub-paths as candidates, and moving
 // a path found at one pixel to another by reconnection, random replay or the hybrid.
 //
@@ -25,7 +25,8 @@
 //
 // Transparent layers: the walk's choices come from the bounce's numbers, so replay repeats
 // them; their stop/pass probabilities are treated as part of the integrand, exact for clear
-// glass and fully solid layers, an approximation for partly solid ones (README "Indirect").
+// glass and fully solid layers, an approximation for partly solid ones (docs/src/restir-pt.md,
+// "Paths through glass").
 #include "pt/reservoir.wgsl"
 #include "common/layer_walk.wgsl"
 

@@ -1,5 +1,5 @@
-// ReSTIR PT path reservoirs (issue 27): packing, streaming and finalisation, with the same
-// rules as the GI reservoir (gi_reservoir.wgsl: null samples, finite guards) and its
+// ReSTIR PT path reservoirs (docs/src/restir-pt.md): packing, streaming and finalisation, with
+// the same rules as the GI reservoir (gi/reservoir.wgsl: null samples, finite guards) and its
 // pairwise weights (shifted_pairwise_*). A path is one sample; its record (PtReservoir in
 // types.wgsl) is copied whole when it is picked.
 #include "common/frame_bindings.wgsl"

@@ -1,10 +1,10 @@
-// ReSTIR PT spatial reuse (issue 27): k neighbours in a disk of pt_spatial_radius pixels,
-// chosen and validated by G-buffer checks alone (never by their paths). Each neighbour's
-// path is shifted here (pt_shift: reconnection, random replay or hybrid, its Jacobian, its
-// visibility traced), and this pixel's path is shifted to each neighbour for its pairwise
-// MIS weight (Bitterli et al. 2020's defensive pairwise MIS, the targets in this pixel's
-// measure through |J|, as gi/spatial.wgsl). A path that cannot be shifted is a zero in its
-// domain: the neighbour keeps its confidence in the sum and its term in the weights.
+// ReSTIR PT spatial reuse (docs/src/restir-pt.md, "The passes"): k neighbours in a disk of
+// pt_spatial_radius pixels, chosen and validated by G-buffer checks alone (never by their paths).
+// Each neighbour's path is shifted here (pt_shift: reconnection, random replay or hybrid, its
+// Jacobian, its visibility traced), and this pixel's path is shifted to each neighbour for its
+// pairwise MIS weight (Bitterli et al. 2020's defensive pairwise MIS, the targets in this pixel's
+// measure through |J|, as gi/spatial.wgsl). A path that cannot be shifted is a zero in its domain:
+// the neighbour keeps its confidence in the sum and its term in the weights.
 #include "pt/path.wgsl"
 #include "pt/probe.wgsl"
 #include "common/reuse.wgsl"

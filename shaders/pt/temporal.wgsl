@@ -1,11 +1,11 @@
-// ReSTIR PT temporal reuse (issue 27): reproject into the previous frame, validate the
-// previous surface by G-buffer checks alone (DI's checks and bits; never by its path),
-// shift the previous pixel's path from last frame's visible point to this one (pt_shift:
-// the chosen mapping, its Jacobian and visibility), shift this pixel's path back to the
-// previous visible point for its pairwise weight, and merge the two under defensive
-// pairwise MIS with confidences M and min(M_prev, pt_m_cap). A previous path that cannot
-// be moved here is a zero-target domain: its confidence stays in the sum and its term in
-// the weights (dropping it is the planted error of render/tests/restir_pt.rs).
+// ReSTIR PT temporal reuse (docs/src/restir-pt.md, "The passes"): reproject into the previous
+// frame, validate the previous surface by G-buffer checks alone (DI's checks and bits; never by its
+// path), shift the previous pixel's path from last frame's visible point to this one (pt_shift: the
+// chosen mapping, its Jacobian and visibility), shift this pixel's path back to the previous
+// visible point for its pairwise weight, and merge the two under defensive pairwise MIS with
+// confidences M and min(M_prev, pt_m_cap). A previous path that cannot be moved here is a
+// zero-target domain: its confidence stays in the sum and its term in the weights (dropping it is
+// the planted error of render/tests/restir_pt.rs).
 //
 // Both shifts are evaluated in this frame's scene: for a static scene that is last
 // frame's too; under animation the previous side sees moving geometry where it is now

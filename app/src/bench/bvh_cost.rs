@@ -1,11 +1,11 @@
 //! `bench-bvh`: the per-frame ray-tracing structure of an animated scene, three ways
-//! (issue 10): the renderer's refit (tree built at the first time, boxes refitted), a
-//! full rebuild every frame, and a two-level BVH (`scene::bvh::two_level`: BLAS per
-//! instance built once, TLAS rebuilt every frame). For each scene time: the CPU time of
-//! the per-frame work, the SAH cost, and the nodes visited and triangles tested by a fixed
-//! set of rays — primary rays from the scene camera and one shadow ray per hit to a point
-//! on an emitter — which measures traversal cost independently of the machine. Prints a
-//! Markdown table; never a timing assertion.
+//! (docs/bench.md, "BVH: refit, rebuild or two levels"): the renderer's refit (tree built at the
+//! first time, boxes refitted), a full rebuild every frame, and a two-level BVH
+//! (`scene::bvh::two_level`: BLAS per instance built once, TLAS rebuilt every frame). For each
+//! scene time: the CPU time of the per-frame work, the SAH cost, and the nodes visited and
+//! triangles tested by a fixed set of rays — primary rays from the scene camera and one shadow ray
+//! per hit to a point on an emitter — which measures traversal cost independently of the machine.
+//! Prints a Markdown table; never a timing assertion.
 
 use std::time::Instant;
 

@@ -245,7 +245,8 @@ mod tests {
         assert!(parse_configs("restir,nope", &Settings::default()).is_err());
         assert!(parse_configs("ris,ris", &Settings::default()).is_err());
         // `restir` keeps the 1/M weights its published figures were measured with;
-        // `restir-pairwise` is the default estimator (issue 14).
+        // `restir-pairwise` is the default estimator (docs/src/mis-and-bias.md, "The cost
+        // and the choice").
         use restir_render::settings::BiasCorrection;
         assert_eq!(
             configs[4].settings.bias_correction,

@@ -1,4 +1,5 @@
-//! `bench-env`: what building an environment's sampling distribution costs (issue 13),
+//! `bench-env`: what building an environment's sampling distribution costs
+//! (docs/src/environment.md, "As a light"),
 //! by default for a 4K (4096×2048) HDRI: the built-in sky rendered at that size, or the
 //! image `--env` names. Prints one Markdown table row; never a timing assertion.
 

@@ -1,4 +1,5 @@
-//! Lag and ghosting around a dynamic scene's light events (issue 10): from a configuration's
+//! Lag and ghosting around a dynamic scene's light events (docs/src/dynamic-scenes.md, "Lag
+//! and ghosting"): from a configuration's
 //! per-frame error curve (luma RMSE of each frame against that frame's own reference) and
 //! the frames right after the event, the numbers `results.csv` carries per event.
 //!
@@ -30,10 +31,10 @@ use restir_render::image::luminance;
 
 /// Frames of the steady window, of the recovery window and of the signed-bias window.
 pub const STEADY_FRAMES: usize = 5;
-/// Recovered = within 10 % of the steady level (the issue's definition).
+/// Recovered = within 10 % of the steady level (docs/bench.md, "Lag and ghosting").
 pub const RECOVERY_TOLERANCE: f64 = 0.10;
 /// A pixel "changed" when its reference luminance moved by more than 10 % of its value
-/// before the event (the issue's definition).
+/// before the event (docs/bench.md, "Lag and ghosting").
 pub const CHANGE_THRESHOLD: f32 = 0.10;
 
 /// Numbers from one event's error curve.
@@ -183,8 +184,8 @@ pub fn detected_event_frames(references: &[LinearImage]) -> Vec<usize> {
         .collect()
 }
 
-/// 5 % of the mean luminance: half the issue's per-pixel 10 %, since block means of a
-/// partly changed block dilute the change.
+/// 5 % of the mean luminance: half the per-pixel 10 % of [`CHANGE_THRESHOLD`], since block means of
+/// a partly changed block dilute the change.
 pub const DETECT_THRESHOLD: f64 = 0.05;
 
 fn block_change(a: &LinearImage, b: &LinearImage) -> f64 {

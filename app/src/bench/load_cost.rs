@@ -1,4 +1,5 @@
-//! `bench-load FILE`: how long each phase from file to first frame takes (issue 28): the
+//! `bench-load FILE`: how long each phase from file to first frame takes
+//! (docs/src/load-time.md, "The phases"): the
 //! loader's (read, buffers, images, geometry), the upload's (BVH, light table, GPU
 //! buffers, acceleration structures) and the first frame's pipelines. Prints the phases as
 //! they finish, then a Markdown table; `--csv` writes them; `--prepare` loads as the

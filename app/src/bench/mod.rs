@@ -1,10 +1,11 @@
-//! `bench`: what accuracy costs in time (issue 7). Runs named configurations from a clean
+//! `bench`: what accuracy costs in time. Runs named configurations from a clean
 //! history with the same seed against a cached reference and writes `results.csv`,
 //! `frames.csv`, `results.md` and PNG plots; `--budget-ms` compares them at equal time and
 //! `--sweep-lights` times light selection against the light count. See docs/bench.md.
 //!
 //! `configs` names what runs, `references` finds the images to compare with, `run_loop`
-//! measures one configuration, `scoring` turns frames into notes §7's numbers,
+//! measures one configuration, `scoring` turns frames into the numbers docs/bench.md defines
+//! ("How it measures"),
 //! `equal_time` holds the budget rule, `csv`, `markdown` and `plots` write the results and
 //! `sweep` is the light-count benchmark.
 

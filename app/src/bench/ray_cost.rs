@@ -1,8 +1,8 @@
-//! `bench-rays`: rays per second of each tracing backend the device has (issue 26), shadow
-//! and closest-hit rays apart, on one scene and view. One renderer per backend, both on
-//! the same G-buffer; their dispatches alternate round by round, so a machine's changing
-//! load falls on both alike and the ratio stays meaningful. Prints a Markdown table and
-//! writes `rays.csv`; never a timing assertion.
+//! `bench-rays`: rays per second of each tracing backend the device has (docs/src/ray-tracing.md,
+//! "Measured"), shadow and closest-hit rays apart, on one scene and view. One renderer per backend,
+//! both on the same G-buffer; their dispatches alternate round by round, so a machine's changing
+//! load falls on both alike and the ratio stays meaningful. Prints a Markdown table and writes
+//! `rays.csv`; never a timing assertion.
 
 use std::path::PathBuf;
 

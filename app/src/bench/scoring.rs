@@ -1,9 +1,9 @@
-//! Frames in, notes §7's numbers out, using the renderer's metrics (`SequenceMetrics` for a
-//! still camera). With a moving camera each frame has its own reference: per-frame accuracy
-//! is measured against it, stability is the luma RMSE between consecutive *error* images
-//! (frame − its reference; for a still camera that is exactly the frame-to-frame RMSE, and
-//! with motion it leaves out the true change of the image), the luma ratio is averaged over
-//! frames, and the running average is not defined (n/a).
+//! Frames in, the numbers of docs/bench.md ("How it measures") out, using the renderer's metrics
+//! (`SequenceMetrics` for a still camera). With a moving camera each frame has its own reference:
+//! per-frame accuracy is measured against it, stability is the luma RMSE between consecutive
+//! *error* images (frame − its reference; for a still camera that is exactly the frame-to-frame
+//! RMSE, and with motion it leaves out the true change of the image), the luma ratio is averaged
+//! over frames, and the running average is not defined (n/a).
 
 use restir_render::LinearImage;
 use restir_render::metrics::{
@@ -30,7 +30,7 @@ pub struct FrameRecord {
     pub scores: FrameScores,
 }
 
-/// A run's numbers (notes §7).
+/// A run's numbers (docs/bench.md, "How it measures").
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ScoreSummary {
     /// Per-frame accuracy: luma RMSE vs the reference, mean over frames.

@@ -1,4 +1,5 @@
-//! `bench-shifts`: the path shifts of ReSTIR PT (issue 27) on the CPU toy scene of
+//! `bench-shifts`: the path shifts of ReSTIR PT (docs/src/restir-pt.md, "The CPU model") on
+//! the CPU toy scene of
 //! `restir_render::path_reuse`: for each place and shift, the mean of one pairwise spatial
 //! step against the place's path-traced reference, its standard error (and variance
 //! against reconnection's), and how the neighbours' paths fared when shifted (moved, moved

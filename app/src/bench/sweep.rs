@@ -1,4 +1,5 @@
-//! `--sweep-lights N,N,...`: the light-count benchmark of issue 2. For each N it times the
+//! `--sweep-lights N,N,...`: the light-count benchmark (docs/bench.md, "Light count"). For
+//! each N it times the
 //! generation of `builtin:many-lights:N`, its upload (BVH build, light table) and the
 //! per-frame and per-pass times of every configuration. Light selection draws from an
 //! alias table, so the cost of selection should not grow with N; the table reports the

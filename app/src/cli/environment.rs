@@ -11,7 +11,8 @@ use restir_render::{Environment, Scene, load_environment};
 #[derive(Args, Debug, Clone, Default)]
 pub struct EnvArgs {
     /// Light the scene with an environment: an equirectangular .hdr or .exr (+Y up, top row
-    /// = zenith, image centre toward +X; README "Environment") or `builtin:sky`.
+    /// = zenith, image centre toward +X; docs/src/environment.md, "Convention") or
+    /// `builtin:sky`.
     #[arg(long, value_name = "FILE|builtin:sky")]
     pub env: Option<String>,
     /// Multiplies the environment's radiance (default 1).

@@ -1,10 +1,10 @@
-//! Guided tours (issue 20): a TOML file of steps, each a preset plus what to look at. A
+//! Guided tours (docs/src/tours.md): a TOML file of steps, each a preset plus what to look at. A
 //! step sets the scene (and its time and clip), the camera, the mode and parameters, an
 //! optional split-screen B, the debug view and the exposure, and carries a caption and the
 //! live numbers that prove it. The viewer walks through the steps (`--tour`, the Tour
 //! section); `render --tour FILE --tour-step K` renders one headless. The file format is
-//! in README ("Guided tours"); `parse.rs` reads it, with one-line errors naming the file,
-//! the step and the problem.
+//! in docs/src/tours.md ("The file format"); `parse.rs` reads it, with one-line errors
+//! naming the file, the step and the problem.
 
 mod parse;
 

@@ -57,7 +57,8 @@ pub struct ViewArgs {
     #[arg(long)]
     pub size: Option<String>,
     /// final | source | m | rejection | w | ... | gi-jacobian | pt-length | pt-reconnection |
-    /// pt-failure | pt-jacobian | boiling | survivor-change (README "Debug views") [default: final].
+    /// pt-failure | pt-jacobian | boiling | survivor-change (docs/src/debug-views.md)
+    /// [default: final].
     #[arg(long)]
     pub debug_view: Option<String>,
     /// After N rendered frames, write a PNG of the whole window (image and panels) to FILE.
@@ -67,7 +68,7 @@ pub struct ViewArgs {
     /// preset .toml file; the Compare section changes it).
     #[arg(long, value_name = "B")]
     pub compare: Option<String>,
-    /// Start a guided tour (README "Guided tours"): its first step's scene, camera, mode,
+    /// Start a guided tour (docs/src/tours.md): its first step's scene, camera, mode,
     /// parameters, split screen and view; PageDown / PageUp or the Tour section walk on.
     #[arg(long, value_name = "FILE.toml")]
     pub tour: Option<PathBuf>,

@@ -1,6 +1,6 @@
 //! Everything the panels edit, as plain data. The UI never touches the GPU: it edits
 //! these structs and queues `Action`s; `apply.rs` hands them to the renderer each frame.
-//! That keeps every panel testable without a device (see `panels/tests.rs`).
+//! That keeps every panel testable without a device (see `panels/tests/`).
 
 use std::collections::VecDeque;
 

@@ -1,12 +1,12 @@
-//! The environment (issue 13): an equirectangular HDR image of the radiance arriving from
-//! every direction, or the procedural `builtin:sky`. It is shown where camera rays miss
-//! the scene and is one more light of the light table, sampled in proportion to
-//! luminance × solid angle (`distribution.rs`).
+//! The environment (docs/src/environment.md): an equirectangular HDR image of the radiance arriving
+//! from every direction, or the procedural `builtin:sky`. It is shown where camera rays miss the
+//! scene and is one more light of the light table, sampled in proportion to luminance × solid angle
+//! (`distribution.rs`).
 //!
-//! Convention (README "Environment"): +Y up; the top row is the zenith; the image centre
-//! (u = 0.5) looks along +X and u grows toward +Z, as Blender's world texture does once
-//! the glTF exporter turns Blender's Z-up into glTF's Y-up. `rotation_deg` turns the
-//! environment about +Y (right-handed: +X toward −Z for +90°).
+//! Convention (docs/src/environment.md, "Convention"): +Y up; the top row is the zenith; the image
+//! centre (u = 0.5) looks along +X and u grows toward +Z, as Blender's world texture does once the
+//! glTF exporter turns Blender's Z-up into glTF's Y-up. `rotation_deg` turns the environment about
+//! +Y (right-handed: +X toward −Z for +90°).
 //!
 //! `direction_to_uv` and `uv_to_direction` mirror `shaders/common/environment.wgsl` line
 //! by line.

@@ -5,7 +5,7 @@
 //! rebuilt when something moves. Rigid motion — all the animation glTF and the built-ins
 //! have: skins and morph targets load at rest — moves instances only, so no BLAS is
 //! rebuilt or refitted after load; wgpu 30 could not refit one anyway (its
-//! `PreferUpdate` rebuilds, wgpu-core command/ray_tracing.rs). The software BVH's refit
+//! `PreferUpdate` rebuilds, in wgpu-core's ray-tracing commands). The software BVH's refit
 //! and rebuild policy (`rebuild.rs`) answers a question this structure does not have.
 //!
 //! Last frame's geometry for temporal visibility is last frame's TLAS: two TLASes take

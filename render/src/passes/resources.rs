@@ -25,7 +25,8 @@ pub struct PixelBuffer {
     pub allocation: Allocation,
 }
 
-/// Per-pixel buffers handed from stage to stage (notes §2.6: ping-pong). A stage reads
+/// Per-pixel buffers handed from stage to stage (docs/src/frame.md, "History between frames":
+/// ping-pong). A stage reads
 /// the chain's current buffer (`Role::In`), last frame's final one (`Role::History`),
 /// and writes a buffer neither occupies (`Role::Out`), which becomes the current one.
 #[derive(Debug)]

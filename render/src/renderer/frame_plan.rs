@@ -1,11 +1,9 @@
 //! The frame as an ordered list of passes, read top to bottom like the pipeline diagram
-//! (README): G-buffer → (light tiles) → DI initial → temporal → spatial × P → shade →
-//! (GI initial → temporal → spatial → shade, or PT initial → temporal → spatial → shade) →
-//! moments → (temporal window) → display (→ GI or PT view) (→ bias view) (→ window view),
-//! or G-buffer
-//! (jitter off) → reference → moments
-//! → (temporal window) → display. A stage the settings switch off is not in the list, hence
-//! never dispatched or compiled.
+//! (docs/src/introduction.md, "The pipeline at a glance"): G-buffer → (light tiles) → DI initial →
+//! temporal → spatial × P → shade → (GI initial → temporal → spatial → shade, or PT initial →
+//! temporal → spatial → shade) → moments → (temporal window) → display (→ GI or PT view) (→ bias
+//! view) (→ window view), or G-buffer (jitter off) → reference → moments → (temporal window) →
+//! display. A stage the settings switch off is not in the list, hence never dispatched or compiled.
 
 use std::ops::Range;
 

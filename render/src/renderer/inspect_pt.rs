@@ -1,5 +1,5 @@
 //! The pixel inspector's ReSTIR PT part: the pixel's PT debug record and, per PT stage,
-//! the path reservoir it kept with the path's vertices (the probe pt_probe.wgsl writes),
+//! the path reservoir it kept with the path's vertices (the probe shaders/pt/probe.wgsl writes),
 //! decoded into names a person reads: path length, end technique, the reconnection
 //! vertex, lobes, |J|.
 

@@ -1,17 +1,18 @@
 //! One pairwise-MIS reuse step of direct light as `temporal.wgsl` and `spatial.wgsl` make it
-//! (issue 18): which candidates take part, what each contributes, and the weights, in plain
-//! Rust so that the rules can be checked against exact integrals (`pairwise_reuse_tests.rs`).
+//! (docs/src/mis-and-bias.md, "The two rules of unbiased reuse"): which candidates take part, what
+//! each contributes, and the weights, in plain Rust so that the rules can be checked against exact
+//! integrals (`pairwise_reuse_tests.rs`).
 //!
 //! # The rules
 //! - **Whether a candidate takes part depends on its pixel only.** The G-buffer checks
 //!   (off-screen, surface, material, normal, depth) are made by the caller, which passes only
 //!   the candidates that passed them. Every candidate passed here is a *domain* of the MIS:
 //!   its confidence counts in `c_total`, and the canonical sample's weight has a term for it.
-//! - **A candidate's sample decides only what it contributes.** A null reservoir, a sample
-//!   whose target here is 0 (below the horizon, a light that went off) contributes nothing;
-//!   it is not dropped. Dropping it ([`SampleRule::Reject`], the behaviour before issue 18,
-//!   kept as the tests' planted error) leaves the canonical sample with the weight it would
-//!   have had without that domain, which biases the estimate up.
+//! - **A candidate's sample decides only what it contributes.** A null reservoir, a sample whose
+//!   target here is 0 (below the horizon, a light that went off) contributes nothing; it is not
+//!   dropped. Dropping it ([`SampleRule::Reject`], the estimator's behaviour before these rules,
+//!   kept as the tests' planted error) leaves the canonical sample with the weight it would have
+//!   had without that domain, which biases the estimate up.
 //! - **One target per domain in every term.** Each domain's `target` is what its samples are
 //!   distributed by: p̂·V when its reservoirs were visibility-tested (initial visibility),
 //!   and then the pixel's own target must be p̂·V too (`mis_visibility`). Mixing an unshadowed

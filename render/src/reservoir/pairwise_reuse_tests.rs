@@ -1,4 +1,5 @@
-//! The pairwise reuse rules of issue 18 against exact integrals. The toy problem: a pixel
+//! The pairwise reuse rules (docs/src/mis-and-bias.md, "The two rules of unbiased reuse")
+//! against exact integrals. The toy problem: a pixel
 //! estimates ∫₀¹ f(y) dy for a target f on the sample space [0, 1) (a light's points), from
 //! its own RIS reservoir and one or two reused ones whose targets differ from its own. Each
 //! case has a closed form, and each has a planted twin (the rule it replaces) that must be
@@ -152,7 +153,7 @@ fn a_history_sample_on_a_light_gone_off_stays_a_domain() {
         light_gone(rng, SampleRule::KeepDomain)
     });
     assert_unbiased(kept, exact, "gone sample kept as a domain of target 0");
-    // Rejecting it (`light_gone` before issue 18) is the switch-off ghost: the history's
+    // Rejecting it (`light_gone` before the rules above) is the switch-off ghost: the history's
     // 20/21 share of the remaining light is never compensated where it was dropped.
     let rejected = estimate(2, TRIALS, &now, |rng| light_gone(rng, SampleRule::Reject));
     assert_biased(rejected, exact, "gone sample rejected");

@@ -1,6 +1,7 @@
-//! The power-proportional light table (notes §1): one entry per emissive triangle and per
-//! punctual light (and one for the environment), picked with probability power / total through an alias table (Vose's
-//! method) so the shader samples a light in O(1) with two random numbers.
+//! The power-proportional light table (docs/src/ris.md, "Light sampling"): one entry per emissive
+//! triangle and per punctual light (and one for the environment), picked with probability power /
+//! total through an alias table (Vose's method) so the shader samples a light in O(1) with two
+//! random numbers.
 //!
 //! Entries with zero, negative or non-finite (in f32) power or area never enter the table: a light that can
 //! be picked but contributes nothing only wastes candidates, and a degenerate triangle has
@@ -98,9 +99,9 @@ impl LightTable {
                 entries.push((LIGHT_KIND_PUNCTUAL << LIGHT_KIND_SHIFT | i as u32, power));
             }
         }
-        // The environment's share (README "Environment"): its power is π R² ∫ L dω, what
-        // crosses a disc the size of the scene from every direction (PBRT-v4's
-        // ImageInfiniteLight::Phi), the same measure as a directional light's.
+        // The environment's share (docs/src/environment.md, "Split with the other lights"): its
+        // power is π R² ∫ L dω, what crosses a disc the size of the scene from every direction
+        // (PBRT-v4's ImageInfiniteLight::Phi), the same measure as a directional light's.
         let mut environment_light = NO_LIGHT;
         if let Some(env) = &scene.environment {
             let power =
@@ -179,7 +180,8 @@ fn mean_linear_colour(texture: &Texture) -> Vec3 {
         return Vec3::ZERO;
     }
     // A 256-entry table: `powf` per channel of a 2048² texture was most of a model's
-    // light-table time (issue 28); the table holds the same f64 values.
+    // light-table time (docs/src/load-time.md, "What was slow, and what changed"); the table
+    // holds the same f64 values.
     let linear: [f64; 256] = std::array::from_fn(|c| srgb_to_linear(c as u8));
     let sum = texture.texels.iter().fold(DVec3::ZERO, |acc, t| {
         acc + DVec3::new(

@@ -1,5 +1,6 @@
 //! Scenes on the CPU: what a glTF file or a built-in generator produces, before anything
-//! is uploaded. Everything is in world space and linear units; see README "Conventions".
+//! is uploaded. Everything is in world space and linear units; see docs/src/scenes.md,
+//! "Units and images".
 
 pub mod alias;
 pub mod animation;
@@ -52,8 +53,8 @@ pub struct Vertex {
     pub uv: Vec2,
 }
 
-/// Three vertex indices in counter-clockwise order (the front face, see README) and a
-/// material index.
+/// Three vertex indices in counter-clockwise order (the front face, see docs/src/scenes.md,
+/// "Emitters and materials") and a material index.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Triangle {
     pub indices: [u32; 3],
@@ -81,7 +82,7 @@ pub struct Material {
     pub alpha_mode: AlphaMode,
     /// KHR_materials_transmission `transmissionFactor` (0 when absent): the share of the
     /// covered surface that is thin glass, passing light straight through tinted by the
-    /// base colour (README "Conventions", transparency).
+    /// base colour (docs/src/transparency.md, "The thin-layer model").
     pub transmission: f32,
     /// KHR_materials_transmission `transmissionTexture` (R channel, linear).
     pub transmission_texture: Option<TextureRef>,
@@ -173,7 +174,7 @@ pub enum AlphaMode {
     /// Texels with alpha below the cutoff are holes (for camera and shadow rays).
     Mask(f32),
     /// Coverage by alpha: a fraction 1 − alpha of the light passes untouched (camera,
-    /// path and shadow rays alike; README "Conventions", transparency).
+    /// path and shadow rays alike; docs/src/transparency.md, "The thin-layer model").
     Blend,
 }
 

@@ -2,7 +2,8 @@
 //! renderer, for every entry point (viewer at any render scale, `render`, `bench`): a
 //! 30 px disk spans similar surfaces at 1080p, but on a 180-pixel-high image it reaches
 //! across a sixth of the frame, over edges and onto other objects, and reuse gets *worse*
-//! than none (issue 11: at 225×180, 2.8 of 5 neighbours rejected for depth). One rule,
+//! than none (at 225×180, 2.8 of 5 neighbours rejected for depth; docs/src/spatial-reuse.md,
+//! "The radius follows the resolution"). One rule,
 //! here: value × height / 1080, never below a floor of a few pixels, under which
 //! neighbours are (nearly) the same pixel and stop decorrelating anything.
 

@@ -19,7 +19,7 @@ fn defaults_follow_the_notes() {
 
 #[test]
 fn defaults_are_what_the_measurements_favour() {
-    // Issue 14: pairwise MIS measured as accurate as 1/M per frame and unbiased for ~3 %
+    // Pairwise MIS measured as accurate as 1/M per frame and unbiased for ~3 %
     // more time; light tiles only where the sweep says they pay.
     let s = Settings::default();
     assert_eq!(s.bias_correction, BiasCorrection::Pairwise);

@@ -1,6 +1,6 @@
-//! Issue 19's loader half, end to end: KHR_texture_transform through the real GPU path,
-//! KHR_mesh_quantization's dequantized vertices, the compression extensions accepted (and an
-//! unknown required one refused), and the per-scene extension report.
+//! The glTF extensions (docs/src/scenes.md, "glTF extensions"), end to end: KHR_texture_transform
+//! through the real GPU path, KHR_mesh_quantization's dequantized vertices, the compression
+//! extensions accepted (and an unknown required one refused), and the per-scene extension report.
 
 use glam::{Quat, Vec2, Vec3};
 use restir_render::scene::gltf_loader::load_gltf;

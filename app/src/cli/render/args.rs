@@ -43,7 +43,7 @@ pub struct RenderArgs {
     #[arg(long)]
     pub stats: Option<PathBuf>,
     /// final | source | m | rejection | w | ... | boiling | survivor-change (PNG only; see
-    /// README "Debug views") [default: final].
+    /// docs/src/debug-views.md) [default: final].
     #[arg(long)]
     pub debug_view: Option<String>,
     /// Samples per pixel of the reference the error and bias views compare with.
@@ -81,10 +81,10 @@ pub struct RenderArgs {
     /// Record this pixel's history (X,Y from the top left) into --probe-out.
     #[arg(long, value_name = "X,Y", requires = "probe_out")]
     pub probe: Option<String>,
-    /// The pixel history as CSV: one row per frame (README "Pixel history").
+    /// The pixel history as CSV: one row per frame (docs/src/viewer.md, "Pixel history").
     #[arg(long, value_name = "FILE.csv", requires = "probe")]
     pub probe_out: Option<PathBuf>,
-    /// Render a step of a guided tour (README "Guided tours"): its scene, camera, time,
+    /// Render a step of a guided tour (docs/src/tours.md): its scene, camera, time,
     /// mode, parameters, B, view and exposure; flags given here win over the step's.
     #[arg(long, value_name = "FILE.toml")]
     pub tour: Option<PathBuf>,

@@ -98,7 +98,7 @@ struct StatsFile<'a> {
     /// Whether the device could run the ray-query backend.
     ray_query_available: bool,
     /// From file to first frame: each phase (loader, upload, the first frame's pipelines),
-    /// their total and every pipeline compiled (README "Load time").
+    /// their total and every pipeline compiled (docs/src/load-time.md, "The phases").
     load: LoadStats,
     mode: Mode,
     size: [u32; 2],
@@ -141,7 +141,7 @@ struct CameraStats {
 }
 
 /// The temporal window of the boiling views at the last frame, over the pixels that see
-/// a surface (README "Debug views").
+/// a surface (docs/src/debug-views.md, "Boiling and survivor change").
 #[derive(Clone, Serialize)]
 struct WindowStats {
     frames: u32,

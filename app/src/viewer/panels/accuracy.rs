@@ -145,7 +145,7 @@ fn current_numbers(ui: &mut Ui, curve: &Curve) {
                         number(Some(last.luma_rmse)),
                         number(curve.mean_luma_rmse())
                     ),
-                    "This frame against the reference (notes §7: per-frame accuracy)",
+                    "This frame against the reference (per-frame accuracy)",
                 ),
                 (
                     "Stability",

@@ -91,7 +91,7 @@ pub fn inspection(ui: &mut Ui, i: &PixelInspection) {
     }
 }
 
-/// Behind transparent layers (README "Conventions", transparency): what this surface's
+/// Behind transparent layers (docs/src/transparency.md, "Camera rays"): what this surface's
 /// shading is worth, and the light added to it (emission seen, through the layers too,
 /// their glass reflection and the share of a layer this surface leaves out).
 fn layers(ui: &mut Ui, s: &GpuSurface) {
@@ -245,9 +245,10 @@ fn reservoir_grid(ui: &mut Ui, i: &PixelInspection) {
         });
 }
 
-/// DI's checks: the surface checks reject; the sample checks (reservoir null, target 0,
-/// ratio, light gone) reject under 1/M and are counted, not rejected, under pairwise MIS
-/// (README, "Unbiased reuse"). A temporal candidate that merged despite them was pairwise.
+/// DI's checks: the surface checks reject; the sample checks (reservoir null, target 0, ratio,
+/// light gone) reject under 1/M and are counted, not rejected, under pairwise MIS
+/// (docs/src/mis-and-bias.md, "The two rules of unbiased reuse"). A temporal candidate that merged
+/// despite them was pairwise.
 fn di_rejections(ui: &mut Ui, stage: &str, mask: u32, merged: bool) {
     let surface = mask & REJECT_SURFACE_CHECKS;
     let sample = mask & !REJECT_SURFACE_CHECKS;

@@ -26,7 +26,7 @@ pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
     ui.horizontal(|ui| {
         if ui
             .button("Reset to defaults")
-            .on_hover_text("Every parameter back to its default (restir-notes.md §5)")
+            .on_hover_text("Every parameter back to its default (docs/src/parameters.md)")
             .clicked()
         {
             state.settings = Settings::default();

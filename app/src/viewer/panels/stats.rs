@@ -199,9 +199,10 @@ fn reuse(ui: &mut Ui, s: &StatsSummary) {
         });
 }
 
-/// The guard's counters (issue 5): NaN/Inf values each pass produced or read and
-/// replaced. Any count is a bug to chase, so non-zero ones stand out; the "since load"
-/// column keeps a single bad frame visible after it leaves the summary window.
+/// The guard's counters (docs/src/ris.md, "Conventions": nothing poisoned spreads): NaN/Inf values
+/// each pass produced or read and replaced. Any count is a bug to chase, so non-zero ones stand
+/// out; the "since load" column keeps a single bad frame visible after it leaves the summary
+/// window.
 fn non_finite(ui: &mut Ui, window: &StatsSummary, since_load: &FrameCounters) {
     ui.label("Non-finite values replaced, per pass");
     let alarm = ui.visuals().error_fg_color;

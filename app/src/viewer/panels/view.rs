@@ -223,7 +223,7 @@ fn jacobian_legend(ui: &mut Ui, w: f32) {
 }
 
 /// The PT depth palette from 2 to the deepest vertex a path can have now (max_bounces,
-/// at least 2, as pt_path.wgsl clamps it), each swatch named by `label(d)`. Four to a row
+/// at least 2, as shaders/pt/path.wgsl clamps it), each swatch named by `label(d)`. Four to a row
 /// so it fits the panel.
 fn pt_depth_legend(ui: &mut Ui, settings: &Settings, label: fn(u32) -> String) {
     let deepest = settings.max_bounces.clamp(2, MAX_BOUNCES);

@@ -18,7 +18,7 @@ pub const PT_DEBUG: PixelBuffer = PixelBuffer {
     stride: std::mem::size_of::<GpuPtPixelDebug>(),
     allocation: Allocation::Full,
 };
-/// The inspected pixel's path after each PT stage (pt_probe.wgsl): one record per stage,
+/// The inspected pixel's path after each PT stage (shaders/pt/probe.wgsl): one record per stage,
 /// whatever the image size.
 pub const PT_PROBE: PixelBuffer = PixelBuffer {
     name: "pt probe",

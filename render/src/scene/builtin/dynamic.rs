@@ -1,6 +1,6 @@
-//! `dynamic:*`: scenes that change with time, for ghosting and lag (issue 10). Their motion
-//! is expressed in the same `SceneAnimation` model glTF animations load into: moving shapes
-//! are built in their node's space and posed at t = 0 before the scene is returned.
+//! `dynamic:*`: scenes that change with time, for ghosting and lag (docs/src/dynamic-scenes.md).
+//! Their motion is expressed in the same `SceneAnimation` model glTF animations load into: moving
+//! shapes are built in their node's space and posed at t = 0 before the scene is returned.
 
 use std::f32::consts::TAU;
 

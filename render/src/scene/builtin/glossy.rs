@@ -1,9 +1,9 @@
 //! `builtin:glossy`: a room lit only indirectly, where the choice of a path shift matters
-//! (issue 27; in the spirit of the papers' glossy Cornell box and Veach Ajar). A cove light
-//! above a shelf shines up onto the ceiling, so every lit point sees it through at least
-//! one bounce; a rough-glossy floor reflects the ceiling and two near-mirror panels, whose
-//! images of the lit ceiling reach the floor as glossy chains (reconnecting at a mirror
-//! fails there, replaying through it works).
+//! (docs/src/restir-pt.md; in the spirit of the papers' glossy Cornell box and Veach Ajar). A cove
+//! light above a shelf shines up onto the ceiling, so every lit point sees it through at least one
+//! bounce; a rough-glossy floor reflects the ceiling and two near-mirror panels, whose images of
+//! the lit ceiling reach the floor as glossy chains (reconnecting at a mirror fails there,
+//! replaying through it works).
 
 use glam::{Quat, Vec3, Vec4};
 

@@ -1,4 +1,5 @@
-//! The hard cases of issue 5: scenes built to break light sampling in one specific way each.
+//! The hard cases (docs/src/scenes.md, "Built-in scenes"): scenes built to break light
+//! sampling in one specific way each.
 //! They must load; what they render is for the renderer's tests to judge.
 
 use glam::{Quat, Vec3};

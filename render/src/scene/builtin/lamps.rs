@@ -1,4 +1,4 @@
-//! `lamps`: lights behind glass, the scene issue 19 was about. Bulbs in clear and frosted
+//! `lamps`: lights behind glass, the scene of docs/src/transparency.md. Bulbs in clear and frosted
 //! globes on two shelves, neon tubes in tinted glass, and a paper shade whose transmission
 //! comes from a striped texture, in a small room. Every emitter is seen (and lights the
 //! room) only through a transparent layer, so an estimator that treats glass as opaque
@@ -139,7 +139,8 @@ pub(super) fn lamps(name: &str) -> Scene {
     b.finish(Some(camera))
 }
 
-/// Thin clear glass: everything covered transmits, tinted by `tint` (README "Conventions").
+/// Thin clear glass: everything covered transmits, tinted by `tint` (docs/src/transparency.md,
+/// "The thin-layer model").
 fn glass(name: &str, tint: Vec3, transmission_texture: Option<TextureRef>) -> Material {
     Material {
         name: name.into(),

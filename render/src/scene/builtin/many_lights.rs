@@ -1,6 +1,6 @@
-//! `many-lights:N`: a 12 × 4 × 12 m room with occluders and N small coloured ceiling-facing
-//! quads, the stress test for light selection (ReSTIR's reason to exist; notes §1, §6 "light
-//! tiles"). Total emitted power is the same for every N so images compare across N.
+//! `many-lights:N`: a 12 × 4 × 12 m room with occluders and N small coloured ceiling-facing quads,
+//! the stress test for light selection (ReSTIR's reason to exist; docs/src/ris.md, "Light sampling"
+//! and "Light tiles"). Total emitted power is the same for every N so images compare across N.
 
 use glam::{Quat, Vec3, Vec4};
 

@@ -63,7 +63,8 @@ fn image_fill(c: &Camera, b: Aabb, aspect: f32) -> f32 {
 
 use glam::Vec2;
 
-/// The framing before issue 19 (+Z side, slightly above, bounding sphere): the planted twin.
+/// The framing before the automatic camera (docs/src/scenes.md, "Cameras") took the larger
+/// side (+Z side, slightly above, bounding sphere): the planted twin.
 fn old_framing(bounds: Aabb) -> Camera {
     let yfov = 45f32.to_radians();
     let center = bounds.center();

@@ -47,7 +47,8 @@ enum Support {
 }
 
 /// The extensions this loader knows. Everything else is ignored when optional and refused
-/// when required. Transmission is the thin-layer model of README's conventions.
+/// when required. Transmission is the thin-layer model (docs/src/transparency.md, "The
+/// thin-layer model").
 const TABLE: &[(&str, Support)] = &[
     (
         "KHR_animation_pointer",

@@ -212,7 +212,7 @@ fn the_inspector_shows_the_gi_stages() {
     }
 }
 
-/// A path reservoir's `packed` word (pt_reservoir.wgsl): source | n << 4 | end << 8 |
+/// A path reservoir's `packed` word (shaders/pt/reservoir.wgsl): source | n << 4 | end << 8 |
 /// k << 9 | lobes << 13.
 fn pt_packed(source: u32, n: u32, end: u32, k: u32, lobes: u32) -> u32 {
     source | n << 4 | end << 8 | k << 9 | lobes << 13

@@ -242,7 +242,8 @@ fn the_scene_panel_lists_the_files_extensions() {
     assert!(!shows(&harness(scene::ui, s), "glTF extensions"));
 }
 
-/// Issue 28: the phases from file to first frame, and a load's phase on its progress bar.
+/// The phases from file to first frame (docs/src/load-time.md, "Loading in the viewer"), and
+/// a load's phase on its progress bar.
 #[test]
 fn the_scene_panel_lists_load_phases_and_shows_a_loads_progress() {
     use restir_render::load_phases::{LoadPhases, Phase};

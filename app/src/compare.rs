@@ -19,15 +19,27 @@ pub struct CompareTarget {
 }
 
 impl CompareTarget {
-    /// `reference`, `nee`, `ris` or `restir` (A's settings in that mode), or a preset file
-    /// (defaults plus the preset, `restir` mode: the preset *is* the configuration).
+    /// `reference`, `nee`, `ris` or `restir` (A's settings in that mode), optionally with
+    /// `+denoise` or `+raw` (the denoiser on or off: `restir+raw` beside a denoised A is
+    /// raw | denoised; `ris+denoise` beside it is two configurations, both denoised), or a
+    /// preset file (defaults plus the preset, `restir` mode: the preset *is* the
+    /// configuration).
     pub fn parse(spec: &str, a_settings: &Settings) -> anyhow::Result<CompareTarget> {
         let spec = spec.trim();
-        if let Some(mode) = Mode::from_name(spec) {
+        let (mode_name, denoise) = match spec.split_once('+') {
+            Some((mode, "denoise")) => (mode, Some(true)),
+            Some((mode, "raw")) => (mode, Some(false)),
+            _ => (spec, None),
+        };
+        if let Some(mode) = Mode::from_name(mode_name) {
+            let mut settings = a_settings.clone();
+            if let Some(on) = denoise {
+                settings.denoise = on;
+            }
             return Ok(CompareTarget {
                 label: spec.to_string(),
                 mode,
-                settings: a_settings.clone(),
+                settings,
             });
         }
         let path = Path::new(spec);
@@ -48,7 +60,8 @@ impl CompareTarget {
             });
         }
         anyhow::bail!(
-            "--compare '{spec}': expected reference, nee, ris, restir or a preset .toml file"
+            "--compare '{spec}': expected reference, nee, ris or restir (each optionally \
+             +denoise or +raw) or a preset .toml file"
         )
     }
 }
@@ -105,6 +118,21 @@ mod tests {
             (p.label.as_str(), p.mode, p.settings.m_cap),
             ("short-history.toml", Mode::Restir, 3.0)
         );
+        let raw = CompareTarget::parse(
+            "restir+raw",
+            &Settings {
+                denoise: true,
+                ..a.clone()
+            },
+        );
+        let raw = raw.unwrap();
+        assert_eq!(
+            (raw.mode, raw.settings.denoise, raw.settings.m_cap),
+            (Mode::Restir, false, 7.0)
+        );
+        let ris = CompareTarget::parse("ris+denoise", &a).unwrap();
+        assert!(ris.mode == Mode::Ris && ris.settings.denoise && ris.label == "ris+denoise");
+        assert!(CompareTarget::parse("ris+loud", &a).is_err());
         let e = CompareTarget::parse("magic", &a).unwrap_err().to_string();
         assert!(e.contains("'magic'"), "{e}");
         assert!(CompareTarget::parse("missing.toml", &a).is_err());

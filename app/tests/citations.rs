@@ -27,7 +27,13 @@ fn root() -> PathBuf {
 
 fn listed_files(root: &Path) -> Vec<String> {
     let out = Command::new("git")
-        .args(["ls-files", "-z", "--cached", "--others", "--exclude-standard"])
+        .args([
+            "ls-files",
+            "-z",
+            "--cached",
+            "--others",
+            "--exclude-standard",
+        ])
         .current_dir(root)
         .output()
         .expect("run git ls-files (the check needs a git checkout)");
@@ -60,7 +66,11 @@ fn page_anchors(text: &str) -> Vec<String> {
         } else if !in_code && line.starts_with('#') {
             let id = anchor(line.trim_start_matches('#').trim());
             let repeats: &mut usize = seen.entry(id.clone()).or_default();
-            out.push(if *repeats == 0 { id } else { format!("{id}-{repeats}") });
+            out.push(if *repeats == 0 {
+                id
+            } else {
+                format!("{id}-{repeats}")
+            });
             *repeats += 1;
         }
     }
@@ -82,7 +92,11 @@ impl Repo {
             .filter(|(f, _)| f.ends_with(".md"))
             .map(|(f, text)| (f.clone(), page_anchors(text)))
             .collect();
-        Repo { files: files.into_iter().map(|(f, _)| f).collect(), dirs, anchors }
+        Repo {
+            files: files.into_iter().map(|(f, _)| f).collect(),
+            dirs,
+            anchors,
+        }
     }
 
     /// The files a path written in `from` can mean: relative to `from`'s folder, to the
@@ -90,7 +104,10 @@ impl Repo {
     fn resolve(&self, from: &str, path: &str) -> Vec<String> {
         let dir = from.rfind('/').map_or("", |i| &from[..i]);
         let beside = normalise(&format!("{dir}/{path}"));
-        let rooted = path.trim_start_matches(['.', '/']).trim_end_matches('/').to_string();
+        let rooted = path
+            .trim_start_matches(['.', '/'])
+            .trim_end_matches('/')
+            .to_string();
         for p in [beside, rooted.clone()] {
             if self.files.contains(&p) || self.dirs.contains(&p) {
                 return vec![p];
@@ -100,7 +117,11 @@ impl Repo {
             return Vec::new();
         }
         let tail = format!("/{rooted}");
-        self.files.iter().filter(|f| f.ends_with(&tail)).cloned().collect()
+        self.files
+            .iter()
+            .filter(|f| f.ends_with(&tail))
+            .cloned()
+            .collect()
     }
 }
 
@@ -126,13 +147,21 @@ fn check_line(repo: &Repo, file: &str, line: &str, out: &mut Vec<String>) {
     let lower = line.to_lowercase();
     for (i, _) in lower.match_indices("issue") {
         let rest = lower[i + 5..].trim_start_matches([' ', '#']);
-        if rest.starts_with(|c: char| c.is_ascii_digit()) || rest.starts_with("\"") || rest.starts_with("\\\"") {
-            out.push(format!("cites an issue: \"{}\"", &line[i..(i + 9).min(line.len())]));
+        if rest.starts_with(|c: char| c.is_ascii_digit())
+            || rest.starts_with("\"")
+            || rest.starts_with("\\\"")
+        {
+            out.push(format!(
+                "cites an issue: \"{}\"",
+                &line[i..(i + 9).min(line.len())]
+            ));
         }
     }
     for cited in ["restir-notes", "notes §"] {
         if lower.contains(cited) {
-            out.push(format!("cites the notes file (\"{cited}\"): cite the book's chapter"));
+            out.push(format!(
+                "cites the notes file (\"{cited}\"): cite the book's chapter"
+            ));
         }
     }
     if file.ends_with(".md") {
@@ -164,10 +193,19 @@ fn check_line(repo: &Repo, file: &str, line: &str, out: &mut Vec<String>) {
         let rooted = ROOTS.iter().any(|r| stripped.starts_with(r));
         // Partial paths (`reservoir/gi.rs`), source files by name, Markdown link targets.
         let linked = file.ends_with(".md") && line[..chars[start].0].ends_with("](");
-        let named = (token.contains('/') || token.ends_with(".rs") || token.ends_with(".wgsl") || linked)
-            && [".rs", ".wgsl", ".md"].iter().any(|e| token.ends_with(e) && token.len() > e.len());
+        let named =
+            (token.contains('/') || token.ends_with(".rs") || token.ends_with(".wgsl") || linked)
+                && [".rs", ".wgsl", ".md"]
+                    .iter()
+                    .any(|e| token.ends_with(e) && token.len() > e.len());
         if token == "README" {
-            check_quoted(repo, "README.md", &["README.md".to_string()], &line[end..], out);
+            check_quoted(
+                repo,
+                "README.md",
+                &["README.md".to_string()],
+                &line[end..],
+                out,
+            );
         }
         if templated || data || !(rooted || named) {
             continue;
@@ -205,14 +243,29 @@ fn check_quoted(repo: &Repo, page: &str, found: &[String], rest: &str, out: &mut
 }
 
 /// A section exists: `#anchor` exactly, a quoted title as the start of a heading.
-fn check_section(repo: &Repo, page: &str, found: &[String], id: &str, exact: bool, out: &mut Vec<String>) {
+fn check_section(
+    repo: &Repo,
+    page: &str,
+    found: &[String],
+    id: &str,
+    exact: bool,
+    out: &mut Vec<String>,
+) {
     let known = |f: &String| {
         repo.anchors.get(f).is_some_and(|all| {
-            all.iter().any(|a| if exact { a == id } else { !id.is_empty() && a.starts_with(id) })
+            all.iter().any(|a| {
+                if exact {
+                    a == id
+                } else {
+                    !id.is_empty() && a.starts_with(id)
+                }
+            })
         })
     };
     if !found.iter().any(known) {
-        out.push(format!("names section `{id}` of {page}, which has no such heading"));
+        out.push(format!(
+            "names section `{id}` of {page}, which has no such heading"
+        ));
     }
 }
 
@@ -251,9 +304,15 @@ fn read_repo() -> (Repo, Vec<(String, String)>) {
 #[test]
 fn every_path_and_section_a_comment_or_page_names_exists() {
     let (repo, checked) = read_repo();
-    assert!(checked.len() > 100, "found only {} files to check", checked.len());
-    let findings: Vec<String> =
-        checked.iter().flat_map(|(f, text)| check_file(&repo, f, text)).collect();
+    assert!(
+        checked.len() > 100,
+        "found only {} files to check",
+        checked.len()
+    );
+    let findings: Vec<String> = checked
+        .iter()
+        .flat_map(|(f, text)| check_file(&repo, f, text))
+        .collect();
     assert!(
         findings.is_empty(),
         "{} pointers a reader cannot follow (cite the book's section instead; \
@@ -274,7 +333,14 @@ fn the_checker_finds_a_planted_twin() {
     let findings = check_file(&repo, "render/src/twin.rs", twin);
     assert_eq!(findings.len(), 3, "{findings:#?}");
     assert!(findings[0].starts_with("render/src/twin.rs:2: names `render/src/reservoir_typo.rs`"));
-    assert!(findings[1].starts_with("render/src/twin.rs:3: cites an issue"), "{}", findings[1]);
+    assert!(
+        findings[1].starts_with("render/src/twin.rs:3: cites an issue"),
+        "{}",
+        findings[1]
+    );
     assert!(findings[2].contains("section `the-streamed-reservoir` of docs/src/ris.md"));
-    assert_eq!(anchor("Unbiased reuse: what `M` costs (1/M)"), "unbiased-reuse-what-m-costs-1m");
+    assert_eq!(
+        anchor("Unbiased reuse: what `M` costs (1/M)"),
+        "unbiased-reuse-what-m-costs-1m"
+    );
 }

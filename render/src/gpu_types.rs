@@ -316,6 +316,14 @@ pub struct GpuParams {
     pub pt_m_cap: f32,
     /// The biased Jacobian clamp [1/c, c] (0 = off).
     pub pt_jacobian_clamp: f32,
+    /// The denoiser (settings `denoise_*`; docs/src/denoiser.md).
+    pub denoise_alpha: f32,
+    pub denoise_moments_alpha: f32,
+    pub denoise_phi_luminance: f32,
+    pub denoise_phi_normal: f32,
+    pub denoise_phi_depth: f32,
+    pub denoise_history_cap: f32,
+    pub _denoise_pad: [u32; 2],
 }
 
 /// What the display pass shows and how (view settings, not pipeline parameters).
@@ -537,4 +545,18 @@ pub struct GpuWindowPixel {
     /// Changes of the survivor's light / transitions inside the window.
     pub change_fraction: f32,
     pub _pad: [u32; 3],
+}
+
+/// One pixel of the denoiser's temporal history (shaders/denoise/temporal.wgsl writes it,
+/// `denoise::model::temporal` mirrors it): the accumulated demodulated illumination, how
+/// many frames it holds, and the first two moments of its luminance.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuDenoiseHistory {
+    pub illumination: [f32; 3],
+    /// Frames accumulated (0: no surface), capped at `denoise_history_cap`.
+    pub length: f32,
+    /// (E[l], E[l²]) of the luminance, exponentially averaged.
+    pub moments: [f32; 2],
+    pub _pad: [f32; 2],
 }

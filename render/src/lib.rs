@@ -7,6 +7,7 @@
 
 #[macro_use]
 pub mod wgsl_constants;
+pub mod denoise;
 pub mod effects;
 pub mod environment;
 pub mod flicker;

@@ -24,6 +24,7 @@ pub enum Stage {
     Shading,
     Tracing,
     Indirect,
+    Denoise,
 }
 
 impl Stage {
@@ -37,6 +38,7 @@ impl Stage {
             Stage::Shading => "Shading and reference",
             Stage::Tracing => "Ray tracing",
             Stage::Indirect => "Indirect",
+            Stage::Denoise => "Denoiser",
         }
     }
 }
@@ -411,6 +413,24 @@ parameter_table! {
         pt_jacobian_clamp: f32 = 0.0, ParamKind::Float { min: 0.0, max: 1000.0 }, "PT Jacobian clamp (biased)",
             "Biased, off by default (0): clamp every shift's |J| into [1/c, c] (c ≥ 1). Bounds the fireflies of near or grazing reconnections at the price of a wrong change of measure: the image is no longer the integral (docs/bench.md measures how far off).";
     }
+    Denoise {
+        denoise: bool = false, ParamKind::Bool, "Denoiser (SVGF)",
+            "A spatiotemporal variance-guided filter after shading (Schied et al. 2017; docs/src/denoiser.md): the frame's light (direct + indirect, one signal) is divided by the surface colour, accumulated over time through the motion vectors, and blurred by à-trous passes that stop at depth, normal and luminance edges scaled by the estimated variance, then multiplied back. Every figure (error, flicker, boiling, lag) is then measured on the denoised image. Off: no denoiser code is compiled or run.";
+        denoise_iterations: u32 = 4, ParamKind::Int { min: 1, max: MAX_DENOISE_ITERATIONS as i64 }, "À-trous iterations",
+            "À-trous passes, taps 1, 2, 4, … pixels apart: 4 reach 2 × (1 + 2 + 4 + 8) = 30 px each way, about the spatial reuse radius at 1080p.";
+        denoise_alpha: f32 = 0.2, ParamKind::Float { min: 0.01, max: 1.0 }, "History blend α",
+            "Smallest weight of this frame in the temporal blend (1/length while the history is shorter than 1/α): 0.2 keeps ~5 frames; lower is smoother and lags more; 1 turns temporal accumulation off.";
+        denoise_moments_alpha: f32 = 0.2, ParamKind::Float { min: 0.01, max: 1.0 }, "Moments blend α",
+            "The same for the luminance moments the variance is estimated from.";
+        denoise_history_cap: u32 = 32, ParamKind::Int { min: 1, max: 255 }, "History cap (frames)",
+            "Longest history a pixel counts (the history-length view's top); with α it sets how long 1/length keeps decreasing.";
+        denoise_phi_luminance: f32 = 4.0, ParamKind::Float { min: 0.01, max: 1000.0 }, "φ luminance",
+            "Luminance edge-stopping: a neighbour's weight falls as e^(−|Δl| / (φ σ)), σ the standard deviation of the luminance difference (both pixels' variances). Larger blurs more.";
+        denoise_phi_normal: f32 = 128.0, ParamKind::Float { min: 1.0, max: 1024.0 }, "φ normal",
+            "Normal edge-stopping exponent: weight max(0, n·n')^φ (128: 10° halves it). Larger keeps creases sharper.";
+        denoise_phi_depth: f32 = 1.0, ParamKind::Float { min: 0.01, max: 1000.0 }, "φ depth",
+            "Depth edge-stopping: weight e^(−d / (φ · depth · pixel angle · taps apart)), d the neighbour's distance from this pixel's tangent plane; zero on one plane however steep. Larger blurs across silhouettes.";
+    }
 }
 
 /// A problem with a parameter name or value (one line, names the parameter).
@@ -627,6 +647,13 @@ impl Settings {
             } else {
                 0.0
             },
+            denoise_alpha: self.denoise_alpha,
+            denoise_moments_alpha: self.denoise_moments_alpha,
+            denoise_phi_luminance: self.denoise_phi_luminance,
+            denoise_phi_normal: self.denoise_phi_normal,
+            denoise_phi_depth: self.denoise_phi_depth,
+            denoise_history_cap: self.denoise_history_cap as f32,
+            _denoise_pad: [0; 2],
         }
     }
 

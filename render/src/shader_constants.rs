@@ -360,11 +360,32 @@ wgsl_constants! {
     pub const NO_INSPECT_PIXEL: u32 = 0xffff_ffff;
 }
 
+wgsl_constants! {
+    fn denoiser;
+    /// The denoiser's fixed choices (docs/src/denoiser.md). Demodulation never divides by
+    /// less than this: a black surface's lighting is multiplied back by the same floor.
+    pub const DENOISE_ALBEDO_FLOOR: f32 = 0.01;
+    /// A reprojected history tap is this pixel's surface seen again when the normals agree
+    /// to this cosine (25°, as the reuse validation's default) …
+    pub const DENOISE_NORMAL_COS: f32 = 0.906;
+    /// … and the points are closer than this fraction of the view depth (jitter moves the
+    /// point within a pixel, ~0.003 of the depth at 480 lines; a bilinear tap is ≤ 1.5 px away).
+    pub const DENOISE_POSITION_TOLERANCE: f32 = 0.05;
+    /// Below this many frames of history the variance comes from the neighbourhood.
+    pub const DENOISE_MIN_HISTORY: u32 = 4;
+    /// The neighbourhood's radius (7 × 7, as SVGF).
+    pub const DENOISE_VARIANCE_RADIUS: u32 = 3;
+    /// À-trous iterations at most (taps 2^4 = 16 px apart in the last).
+    pub const MAX_DENOISE_ITERATIONS: u32 = 5;
+    /// The temporal pass's `PassInfo` slot when last frame left a valid history (0: none).
+    pub const DENOISE_HISTORY_SLOT: u32 = 1;
+}
+
 /// The WGSL prelude: every constant declared in a `wgsl_constants!` block, here and in
 /// gpu_types.rs, as a WGSL `const` (one row emits the Rust constant and its WGSL line).
 pub fn wgsl_prelude() -> String {
     let mut out = String::from("// Generated from render/src/shader_constants.rs: edit there.\n");
-    let blocks: [fn() -> Vec<(&'static str, WgslValue)>; 17] = [
+    let blocks: [fn() -> Vec<(&'static str, WgslValue)>; 18] = [
         gpu_types::absent_markers,
         gpu_types::material_flags,
         gpu_types::texture_packing,
@@ -382,6 +403,7 @@ pub fn wgsl_prelude() -> String {
         tonemappers_and_gi_rejections,
         gi_packing_and_flags,
         pt_probe,
+        denoiser,
     ];
     for block in blocks {
         for (name, value) in block() {

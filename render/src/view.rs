@@ -63,6 +63,8 @@ pub enum DrawnBy {
     BiasView,
     /// window_view.wgsl, from the temporal window (kept only while such a view is shown).
     WindowView,
+    /// The denoiser's view pass (denoise/view.wgsl), only while the denoiser runs.
+    DenoiseView,
 }
 
 /// One row per debug view: its variant, its name on the command line
@@ -138,6 +140,11 @@ debug_views! {
     PtReconnection, "pt-reconnection", VIEW_PT_RECONNECTION = 21, PtView, false;
     PtFailure, "pt-failure", VIEW_PT_FAILURE = 22, PtView, false;
     PtJacobian, "pt-jacobian", VIEW_PT_JACOBIAN = 23, PtView, false;
+    /// The denoiser: the frame before it, each pixel's history length, the relative
+    /// standard deviation its luminance gate is scaled by.
+    DenoiseInput, "denoise-input", VIEW_DENOISE_INPUT = 24, DenoiseView, false;
+    HistoryLength, "history-length", VIEW_HISTORY_LENGTH = 25, DenoiseView, false;
+    DenoiseVariance, "denoise-variance", VIEW_DENOISE_VARIANCE = 26, DenoiseView, false;
     /// σ/mean of each pixel's luminance over the temporal window: where the image flickers.
     Boiling, "boiling", VIEW_BOILING = 18, WindowView, false;
     /// How often the survivor's light changed within the temporal window.
@@ -158,6 +165,11 @@ impl DebugView {
     /// when PT runs; `Indirect` is drawn there too while PT is on).
     pub fn is_path_view(self) -> bool {
         self.drawn_by() == DrawnBy::PtView
+    }
+
+    /// Whether the view shows the denoiser's buffers (drawn only while it runs).
+    pub fn is_denoise_view(self) -> bool {
+        self.drawn_by() == DrawnBy::DenoiseView
     }
 
     /// Whether the view reads the temporal window (kept only while such a view is shown).

@@ -375,7 +375,13 @@ fn host_structs_match_wgsl_layouts() {
             pt_spatial_neighbours,
             pt_spatial_radius,
             pt_m_cap,
-            pt_jacobian_clamp
+            pt_jacobian_clamp,
+            denoise_alpha,
+            denoise_moments_alpha,
+            denoise_phi_luminance,
+            denoise_phi_normal,
+            denoise_phi_depth,
+            denoise_history_cap
         ]
     );
     check_struct!(
@@ -474,6 +480,12 @@ fn host_structs_match_wgsl_layouts() {
             m_temporal,
             m_spatial
         ]
+    );
+    check_struct!(
+        m,
+        "DenoiseHistory",
+        GpuDenoiseHistory,
+        [illumination, length, moments]
     );
     check_struct!(
         m,

@@ -174,6 +174,15 @@ struct Params {
     pt_spatial_radius: f32,       // pixels of this image
     pt_m_cap: f32,
     pt_jacobian_clamp: f32,       // biased: |J| clamped into [1/c, c]; 0 = off
+    // The denoiser (docs/src/denoiser.md)
+    denoise_alpha: f32,           // smallest weight of this frame in the history blend
+    denoise_moments_alpha: f32,
+    denoise_phi_luminance: f32,
+    denoise_phi_normal: f32,
+    denoise_phi_depth: f32,
+    denoise_history_cap: f32,     // frames
+    _denoise_pad0: u32,
+    _denoise_pad1: u32,
 }
 
 struct Display {
@@ -303,4 +312,13 @@ struct WindowPixel {
     _pad0: u32,
     _pad1: u32,
     _pad2: u32,
+}
+
+// One pixel of the denoiser's temporal history (GpuDenoiseHistory; denoise/temporal.wgsl).
+struct DenoiseHistory {
+    illumination: vec3<f32>,  // accumulated, divided by the pixel's demodulation
+    length: f32,              // frames accumulated (0: no surface)
+    moments: vec2<f32>,       // (E[l], E[l²]) of the luminance
+    _pad0: f32,
+    _pad1: f32,
 }

@@ -150,11 +150,23 @@ fn split_backend(item: &str) -> (&str, Option<&str>) {
     match item.rsplit_once(':') {
         Some((name, backend))
             if restir_render::settings::RAY_BACKEND_NAMES.contains(&backend)
-                && BUILTIN.iter().any(|(n, ..)| *n == name) =>
+                && BUILTIN.iter().any(|(n, ..)| *n == split_denoise(name).0) =>
         {
             (name, Some(backend))
         }
         _ => (item, None),
+    }
+}
+
+/// The suffix that runs a configuration through the denoiser (docs/src/denoiser.md).
+pub const DENOISE_SUFFIX: &str = "+denoise";
+
+/// `restir+denoise`: the configuration `restir`, denoised; every figure the bench computes
+/// is then the denoised image's, the denoiser's passes counted in its frame time.
+fn split_denoise(name: &str) -> (&str, bool) {
+    match name.strip_suffix(DENOISE_SUFFIX) {
+        Some(base) if !base.is_empty() => (base, true),
+        _ => (name, false),
     }
 }
 
@@ -164,8 +176,9 @@ fn split_backend(item: &str) -> (&str, Option<&str>) {
 pub fn parse_configs(list: &str, base: &Settings) -> anyhow::Result<Vec<Config>> {
     let mut configs: Vec<Config> = Vec::new();
     for item in list.split(',').map(str::trim).filter(|s| !s.is_empty()) {
-        let (builtin, backend) = split_backend(item);
-        let config = match BUILTIN.iter().find(|(name, ..)| *name == builtin) {
+        let (named, backend) = split_backend(item);
+        let (builtin, denoise) = split_denoise(named);
+        let mut config = match BUILTIN.iter().find(|(name, ..)| *name == builtin) {
             Some(&(_, mode, sets, description)) => {
                 let mut settings = base.clone();
                 settings
@@ -185,17 +198,25 @@ pub fn parse_configs(list: &str, base: &Settings) -> anyhow::Result<Vec<Config>>
                     description,
                 }
             }
-            None if item.ends_with(".toml") || Path::new(item).is_file() => {
-                preset_config(item, base)?
+            None if builtin.ends_with(".toml") || Path::new(builtin).is_file() => {
+                preset_config(builtin, base)?
             }
             None => {
                 let known: Vec<_> = BUILTIN.iter().map(|(n, ..)| *n).collect();
                 bail!(
-                    "--configs: '{item}' is neither a configuration ({}) nor a preset file",
+                    "--configs: '{item}' is neither a configuration ({}, each optionally \
+                     {DENOISE_SUFFIX}) nor a preset file",
                     known.join(", ")
                 )
             }
         };
+        if denoise {
+            config.settings.denoise = true;
+            if !config.name.contains(DENOISE_SUFFIX) {
+                config.name.push_str(DENOISE_SUFFIX); // a preset, named after its file
+            }
+            config.description.push_str(", denoised (SVGF)");
+        }
         if configs.iter().any(|c| c.name == config.name) {
             bail!("--configs: '{}' is listed twice", config.name);
         }
@@ -243,6 +264,18 @@ mod tests {
         assert!(configs[2].settings.temporal && !configs[2].settings.spatial);
         assert!(!configs[3].settings.temporal && configs[3].settings.spatial);
         assert!(parse_configs("restir,nope", &Settings::default()).is_err());
+        // Any configuration can be denoised, with or without a backend after it.
+        let denoised = parse_configs(
+            "ris+denoise,restir-pairwise+denoise:software,ris+temporal+denoise",
+            &Settings::default(),
+        )
+        .unwrap();
+        assert!(denoised.iter().all(|c| c.settings.denoise));
+        assert_eq!(denoised[0].mode, Mode::Ris);
+        assert_eq!(denoised[1].name, "restir-pairwise+denoise:software");
+        assert!(denoised[2].settings.temporal && !denoised[2].settings.spatial);
+        assert!(!configs.iter().any(|c| c.settings.denoise));
+        assert!(parse_configs("+denoise", &Settings::default()).is_err());
         assert!(parse_configs("ris,ris", &Settings::default()).is_err());
         // `restir` keeps the 1/M weights its published figures were measured with;
         // `restir-pairwise` is the default estimator (docs/src/mis-and-bias.md, "The cost

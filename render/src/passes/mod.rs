@@ -9,6 +9,7 @@ pub mod pass;
 pub mod resources;
 
 pub mod bias_view;
+pub mod denoise;
 pub mod display;
 pub mod gbuffer;
 pub mod gi;
@@ -31,7 +32,7 @@ pub use compile::{
 pub use pass::PassDef;
 
 /// Every pass, in pipeline order (a layout is created for each; tests validate each).
-pub const ALL: [&PassDef; 24] = [
+pub const ALL: [&PassDef; 29] = [
     &gbuffer::RASTER,
     &gbuffer::RESOLVE,
     &presample::PASS,
@@ -47,12 +48,17 @@ pub const ALL: [&PassDef; 24] = [
     &pt::temporal::PASS,
     &pt::spatial::PASS,
     &pt::shade::PASS,
+    &denoise::temporal::PASS,
+    &denoise::variance::PASS,
+    &denoise::atrous::PASS,
+    &denoise::modulate::PASS,
     &reference::PASS,
     &moments::PASS,
     &temporal_window::PASS,
     &display::PASS,
     &gi::view::PASS,
     &pt::view::PASS,
+    &denoise::view::PASS,
     &bias_view::PASS,
     &window_view::PASS,
     &ray_bench::PASS,

@@ -1,16 +1,17 @@
 //! The frame as an ordered list of passes, read top to bottom like the pipeline diagram
-//! (docs/src/introduction.md, "The pipeline at a glance"): G-buffer → (light tiles) → DI initial →
-//! temporal → spatial × P → shade → (GI initial → temporal → spatial → shade, or PT initial →
-//! temporal → spatial → shade) → moments → (temporal window) → display (→ GI or PT view) (→ bias
-//! view) (→ window view), or G-buffer (jitter off) → reference → moments → (temporal window) →
-//! display. A stage the settings switch off is not in the list, hence never dispatched or compiled.
+//! (docs/src/frame.md): G-buffer → (light tiles) → DI initial → temporal → spatial × P →
+//! shade → (GI initial → temporal → spatial → shade, or PT initial → temporal → spatial →
+//! shade) → (denoise temporal → variance → à-trous × N → modulate) → moments → (temporal
+//! window) → display (→ GI or PT view) (→ denoiser view) (→ bias view) (→ window view), or
+//! G-buffer (jitter off) → reference → moments → (temporal window) → display. A stage the
+//! settings switch off is not in the list, hence never dispatched or compiled.
 
 use std::ops::Range;
 
 use crate::passes::resources::{Chain, RESERVOIRS};
 use crate::passes::{
-    PassDef, bias_view, display, gbuffer, gi, initial, moments, presample, pt, reference, shade,
-    spatial, temporal, temporal_window, window_view,
+    PassDef, bias_view, denoise, display, gbuffer, gi, initial, moments, presample, pt, reference,
+    shade, spatial, temporal, temporal_window, window_view,
 };
 
 /// One pass of the frame.
@@ -92,6 +93,13 @@ pub struct FrameSwitches {
     /// The boiling or survivor-change view is shown: the temporal window is kept and the
     /// view drawn over the display's output.
     pub temporal_window: bool,
+    /// The denoiser runs after shading (real-time frames), with this many à-trous passes.
+    pub denoise: bool,
+    pub denoise_iterations: u32,
+    /// Last frame left the denoiser a valid history.
+    pub denoise_history: bool,
+    /// A denoiser view is shown (drawn over the display's output).
+    pub denoise_view: bool,
 }
 
 pub fn frame_plan(f: &FrameSwitches) -> Vec<Step> {
@@ -132,6 +140,20 @@ pub fn frame_plan(f: &FrameSwitches) -> Vec<Step> {
             }
             steps.push(Step::new(&pt::shade::PASS));
         }
+        if f.denoise {
+            // The frame's radiance is final here: the denoiser replaces it.
+            let slot = if f.denoise_history {
+                denoise::temporal::WITH_HISTORY_SLOT
+            } else {
+                0
+            };
+            steps.push(Step::new(&denoise::temporal::PASS).slots(slot..slot + 1));
+            steps.push(Step::new(&denoise::variance::PASS));
+            for i in 0..f.denoise_iterations.max(1) {
+                steps.push(Step::new(&denoise::atrous::PASS).slots(i..i + 1));
+            }
+            steps.push(Step::new(&denoise::modulate::PASS));
+        }
     } else {
         steps.push(Step::new(&reference::PASS).slots(0..f.reference_chunks.max(1)));
     }
@@ -153,6 +175,9 @@ pub fn frame_plan(f: &FrameSwitches) -> Vec<Step> {
     if f.realtime && f.pt && f.pt_view {
         steps.push(Step::new(&pt::view::PASS));
     }
+    if f.realtime && f.denoise && f.denoise_view {
+        steps.push(Step::new(&denoise::view::PASS));
+    }
     if f.bias_view {
         steps.push(Step::new(&bias_view::PASS));
     }
@@ -164,13 +189,22 @@ pub fn frame_plan(f: &FrameSwitches) -> Vec<Step> {
 
 /// Only the display (and GI, PT, bias or window view) passes, on the last frame's buffers
 /// (`Renderer::redisplay`).
-pub fn display_only(gi_view: bool, pt_view: bool, bias_view: bool, window_view: bool) -> Vec<Step> {
+pub fn display_only(
+    gi_view: bool,
+    pt_view: bool,
+    denoise_view: bool,
+    bias_view: bool,
+    window_view: bool,
+) -> Vec<Step> {
     let mut steps = vec![Step::new(&display::PASS)];
     if gi_view {
         steps.push(Step::new(&gi::view::PASS));
     }
     if pt_view {
         steps.push(Step::new(&pt::view::PASS));
+    }
+    if denoise_view {
+        steps.push(Step::new(&denoise::view::PASS));
     }
     if bias_view {
         steps.push(Step::new(&bias_view::PASS));
@@ -179,4 +213,50 @@ pub fn display_only(gi_view: bool, pt_view: bool, bias_view: bool, window_view: 
         steps.push(Step::new(&window_view::PASS));
     }
     steps
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The denoiser runs after every shading pass, its à-trous passes one per iteration
+    /// with taps 2^slot apart, its temporal pass told by its slot whether a history exists.
+    #[test]
+    fn the_denoiser_follows_shading_one_atrous_step_per_iteration() {
+        let switches = FrameSwitches {
+            realtime: true,
+            gbuffer: true,
+            pt: true,
+            denoise: true,
+            denoise_iterations: 3,
+            denoise_history: true,
+            ..Default::default()
+        };
+        let plan = frame_plan(&switches);
+        let names: Vec<&str> = plan.iter().map(|s| s.pass.name).collect();
+        let at = |name: &str| names.iter().position(|n| *n == name).unwrap();
+        assert!(at("pt shade") < at("denoise temporal"), "{names:?}");
+        assert!(at("denoise modulate") < at("moments"), "{names:?}");
+        let slots: Vec<_> = plan
+            .iter()
+            .filter(|s| s.pass.name == "denoise atrous")
+            .map(|s| s.slots.clone())
+            .collect();
+        assert_eq!(slots, vec![0..1, 1..2, 2..3]);
+        assert_eq!(plan[at("denoise temporal")].slots, 1..2);
+        let fresh = frame_plan(&FrameSwitches {
+            denoise_history: false,
+            ..switches
+        });
+        assert!(
+            fresh
+                .iter()
+                .any(|s| s.pass.name == "denoise temporal" && s.slots == (0..1))
+        );
+        let off = frame_plan(&FrameSwitches {
+            denoise: false,
+            ..switches
+        });
+        assert!(!off.iter().any(|s| s.pass.name.starts_with("denoise")));
+    }
 }

@@ -97,3 +97,23 @@ impl Renderer {
         self.pixel_records(&self.targets.surfaces[self.history.carried.surfaces])
     }
 }
+
+impl Renderer {
+    /// The last frame's radiance before the denoiser (its `denoise-input` view); meaningful
+    /// only after a frame that denoised.
+    pub fn read_denoise_input(&self) -> LinearImage {
+        self.read_image(self.targets.pixels(&crate::passes::denoise::INPUT), 1.0)
+    }
+
+    /// The denoiser's temporal history after the last frame (empty unless it denoised).
+    pub fn read_denoise_history(&self) -> Vec<crate::gpu_types::GpuDenoiseHistory> {
+        use crate::passes::denoise::HISTORY;
+        if !self.history.carried.has_history(&HISTORY) {
+            return Vec::new();
+        }
+        self.pixel_records(
+            self.targets
+                .chain(&HISTORY, self.history.carried.history(&HISTORY)),
+        )
+    }
+}

@@ -14,6 +14,7 @@ use super::{PipelineVariant, Renderer};
 use crate::effects::{Effect, EffectSet};
 use crate::gpu::timing::FrameRecorder;
 use crate::gpu::{Gpu, GpuError};
+use crate::passes::denoise;
 use crate::passes::gbuffer::RasterPass;
 use crate::passes::gi::initial::GI_RESERVOIRS;
 use crate::passes::pass::Dispatch;
@@ -21,7 +22,9 @@ use crate::passes::pt::initial::{PT_PROBE, PT_RESERVOIRS};
 use crate::passes::resources::RESERVOIRS;
 use crate::passes::{ComputePass, PASS_INFO_SLOTS, PASS_INFO_STRIDE, PassDef, PassLayouts};
 use crate::settings::Settings;
-use crate::shader_constants::{MAX_SPATIAL_PASSES, REFERENCE_SAMPLES_PER_DISPATCH};
+use crate::shader_constants::{
+    MAX_DENOISE_ITERATIONS, MAX_SPATIAL_PASSES, REFERENCE_SAMPLES_PER_DISPATCH,
+};
 use crate::tracing::RayBackend;
 use crate::view::{DebugView, Mode};
 
@@ -204,6 +207,12 @@ impl Renderer {
             gi_view: self.view.view.is_indirect(),
             bias_view: self.view.view == DebugView::Bias,
             temporal_window: self.view.view.uses_temporal_window(),
+            denoise: realtime && settings.denoise,
+            denoise_iterations: settings.denoise_iterations.clamp(1, MAX_DENOISE_ITERATIONS),
+            // A history only if last frame denoised, and nothing since invalidated it.
+            denoise_history: self.history.history_valid
+                && self.history.carried.has_history(&denoise::HISTORY),
+            denoise_view: self.view.view.is_denoise_view(),
         }
     }
 
@@ -475,9 +484,14 @@ impl Renderer {
         let pt_view = settings.pt
             && self.mode != Mode::Reference
             && (self.view.view.is_path_view() || self.view.view == DebugView::Indirect);
+        let denoise_view = settings.denoise
+            && self.mode != Mode::Reference
+            && self.view.view.is_denoise_view()
+            && self.history.carried.has_history(&denoise::HISTORY);
         let plan = frame_plan::display_only(
             gi_view,
             pt_view,
+            denoise_view,
             self.view.view == DebugView::Bias,
             self.view.view.uses_temporal_window(),
         );

@@ -196,6 +196,10 @@ mod tests {
                             gi_view: gi,
                             bias_view: !gi,
                             temporal_window: gi,
+                            denoise: spatial_passes != 1,
+                            denoise_iterations: spatial_passes + 1,
+                            denoise_history: temporal,
+                            denoise_view: pt,
                         });
                     }
                 }
@@ -217,6 +221,8 @@ mod tests {
                         ("reservoirs", history),
                         ("gi reservoirs", history),
                         ("pt reservoirs", history),
+                        ("denoise history", history),
+                        ("denoise filtered", history),
                     ]
                     .into_iter()
                     .collect(),
@@ -224,7 +230,13 @@ mod tests {
                     surface_buffers: 2,
                 };
                 let resolved = resolve(&plan, &carried, true, false);
-                for chain in ["reservoirs", "gi reservoirs", "pt reservoirs"] {
+                for chain in [
+                    "reservoirs",
+                    "gi reservoirs",
+                    "pt reservoirs",
+                    "denoise history",
+                    "denoise filtered",
+                ] {
                     let reads_history = |step: &Step| {
                         step.pass.group.iter().any(|b| {
                             matches!(b.resource, Resource::Chain(c, Role::History) if c.name == chain)

@@ -63,7 +63,8 @@ pub struct RenderArgs {
     #[arg(long)]
     pub exposure: Option<String>,
     /// Split screen: this configuration left, B right of the middle. B is a mode
-    /// (reference, nee, ris, restir: these settings in that mode) or a preset .toml file.
+    /// (reference, nee, ris, restir: these settings in that mode), optionally +denoise or
+    /// +raw (the denoiser on or off on B's side), or a preset .toml file.
     #[arg(long, value_name = "B")]
     pub compare: Option<String>,
     /// Scene time (`--time`, `--fps`).

@@ -124,6 +124,13 @@ fn describe(v: DebugView) -> &'static str {
         DebugView::PtJacobian => {
             "ReSTIR PT: |J| of the surviving path's last shift on a log scale: blue below 1, white at 1 (found here), red above, saturating at 1/16 and 16"
         }
+        DebugView::DenoiseInput => "Denoiser: the frame before it (raw), tonemapped like the image",
+        DebugView::HistoryLength => {
+            "Denoiser: frames in each pixel's temporal history, 0 to the history cap (dark where it restarted: disocclusions, a cut)"
+        }
+        DebugView::DenoiseVariance => {
+            "Denoiser: σ / mean of each pixel's luminance from its temporal moments, 0 to 1 (where the luminance gate blurs most)"
+        }
         DebugView::Boiling => {
             "Where the image flickers: each pixel's σ/mean of luminance over the last 16 frames"
         }
@@ -177,6 +184,12 @@ fn legend(ui: &mut Ui, state: &mut ViewerState) {
             ui.weak("black: no path (null reservoir)");
         }
         DebugView::PtFailure => pt_failure_legend(ui),
+        DebugView::HistoryLength => ramp(
+            ui,
+            "1 frame",
+            &format!("history cap ({})", state.settings.denoise_history_cap),
+        ),
+        DebugView::DenoiseVariance => ramp(ui, "σ/mean 0", "1"),
         DebugView::PtJacobian => {
             jacobian_legend(ui, PT_JACOBIAN_SATURATION);
             ui.weak("white: the pixel's own path (|J| = 1); black: no path");
@@ -188,7 +201,7 @@ fn legend(ui: &mut Ui, state: &mut ViewerState) {
     }
 }
 
-/// Why an indirect view has nothing of this frame to show: the technique it draws is off.
+/// Why a technique's view has nothing of this frame to show: the technique it draws is off.
 /// `indirect` is drawn by whichever of GI and PT runs (PT replaces GI while on).
 fn technique_off(view: DebugView, settings: &Settings) -> Option<&'static str> {
     let (gi, pt) = (settings.gi && !settings.pt, settings.pt);
@@ -203,6 +216,11 @@ fn technique_off(view: DebugView, settings: &Settings) -> Option<&'static str> {
         } else {
             "ReSTIR GI is off (Indirect section): this view has nothing to show until it runs."
         });
+    }
+    if view.is_denoise_view() && !settings.denoise {
+        return Some(
+            "The denoiser is off (Denoiser section): this view has nothing to show until it runs.",
+        );
     }
     (view.is_path_view() && !pt).then_some(
         "ReSTIR PT is off (Indirect section): this view has nothing to show until it runs.",

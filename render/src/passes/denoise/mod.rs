@@ -1,0 +1,36 @@
+//! The denoiser's passes, an SVGF-class filter after shading (docs/src/denoiser.md):
+//! temporal accumulation → variance estimate → à-trous × N → remodulation, and its debug
+//! views. Each module owns its shader (shaders/denoise/) and the declaration of its
+//! bindings; the buffers the family shares are declared here. `denoise::model` is the same
+//! computation in plain Rust.
+
+use crate::gpu_types::GpuDenoiseHistory;
+use crate::passes::resources::{Allocation, Chain, PixelBuffer};
+
+pub mod atrous;
+pub mod modulate;
+pub mod temporal;
+pub mod variance;
+pub mod view;
+
+/// The temporal history: accumulated demodulated illumination, its length and luminance
+/// moments. Last frame's final buffer is this frame's history.
+pub const HISTORY: Chain = Chain {
+    name: "denoise history",
+    stride: std::mem::size_of::<GpuDenoiseHistory>(),
+};
+
+/// Illumination and variance (w) handed from the variance estimate through each à-trous
+/// pass to the remodulation.
+pub const FILTERED: Chain = Chain {
+    name: "denoise filtered",
+    stride: 16,
+};
+
+/// The frame's radiance before denoising (the `denoise-input` view; the remodulation
+/// copies it here before it writes the denoised radiance in its place).
+pub const INPUT: PixelBuffer = PixelBuffer {
+    name: "denoise input",
+    stride: 16,
+    allocation: Allocation::Full,
+};

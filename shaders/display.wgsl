@@ -16,20 +16,18 @@
 
 const NO_SURFACE_COLOR: vec3<f32> = vec3<f32>(0.08, 0.08, 0.08);
 
-// One colour per temporal rejection reason (bit index 0..REJECT_REASON_COUNT).
+// One colour per temporal rejection reason (bit index 0..REJECT_REASON_COUNT): the shared
+// checks (check_color), then DI's own.
 fn reason_color(bit: u32) -> vec3<f32> {
-    var palette = array<vec3<f32>, REJECT_REASON_COUNT>(
-        vec3<f32>(1.0, 0.0, 0.0),   // off-screen: red
-        vec3<f32>(1.0, 0.5, 0.0),   // previous surface invalid: orange
-        vec3<f32>(1.0, 0.0, 1.0),   // material: magenta
-        vec3<f32>(0.0, 0.6, 1.0),   // normal: blue
-        vec3<f32>(0.0, 1.0, 1.0),   // depth / position: cyan
-        vec3<f32>(1.0, 1.0, 0.0),   // reservoir null: yellow
+    if bit < SHARED_REJECT_CHECKS {
+        return check_color(bit);
+    }
+    var palette = array<vec3<f32>, REJECT_REASON_COUNT - SHARED_REJECT_CHECKS>(
         vec3<f32>(0.6, 0.3, 0.1),   // target ≤ 0: brown
         vec3<f32>(1.0, 1.0, 1.0),   // target ratio: white
         vec3<f32>(0.1, 0.9, 0.2),   // light gone (off or removed): green
     );
-    return palette[min(bit, REJECT_REASON_COUNT - 1u)];
+    return palette[min(bit - SHARED_REJECT_CHECKS, REJECT_REASON_COUNT - SHARED_REJECT_CHECKS - 1u)];
 }
 
 // Fraction of spatial neighbours rejected: black (none) to a mid grey (all), darker than

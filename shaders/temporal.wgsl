@@ -125,7 +125,8 @@ fn window_target_here(sp: ShadingPoint, current: Reservoir) -> f32 {
 // (unshadowed, window_target_previous) applied to both samples alike: outside it the
 // history's weight is 0 and the canonical keeps its share, so the weights still sum to one
 // (unbiased; a rejection of the history sample alone is not). `rays` counts the shadow rays.
-fn merge_pairwise(sp: ShadingPoint, current: Reservoir, cand: TemporalCandidate, m_prev: f32, temporal_source: u32, u_current: f32, u_prev: f32, rays: ptr<function, u32>) -> Reservoir {
+// `visibility_here` receives V of the history's sample here where it is traced.
+fn merge_pairwise(sp: ShadingPoint, current: Reservoir, cand: TemporalCandidate, m_prev: f32, temporal_source: u32, u_current: f32, u_prev: f32, rays: ptr<function, u32>, visibility_here: ptr<function, f32>) -> Reservoir {
     let prev = cand.reservoir;
     let c_total = current.m + m_prev;
     let prev_sp = shading_point_from_surface(cand.prev_surface, frame.prev_camera_position);
@@ -174,6 +175,7 @@ fn merge_pairwise(sp: ShadingPoint, current: Reservoir, cand: TemporalCandidate,
             prev_at_current *= v;
         } else {
             target_here *= v;
+            *visibility_here = v;
         }
     }
     let m_temporal = pairwise_mis_noncanonical(c_total, current.m, m_prev, prev.p_hat, target_here);
@@ -204,56 +206,73 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let sp = shading_point_from_surface(s, frame.camera_position);
     var rng = rng_seed(id.xy, STREAM_TEMPORAL);
 
-    let reprojected = vec2<i32>(floor(s.motion));
-    // Permuted reads fail at object edges; retry the plain reprojection (Solari #21722).
-    // Under pairwise MIS only the G-buffer decides which pixel is read. One call site of
-    // validate_previous for both tries: the driver compiles a copy of it per call
-    // (docs/src/compile-time.md).
-    var permuted = (params.flags & PARAM_FLAG_PERMUTATION) != 0u;
-    var pixel = reprojected;
-    if permuted {
-        pixel = permute_pixel(reprojected);
-    }
+    // One call site of the validation for both tries: the driver compiles a copy per
+    // call (docs/src/compile-time.md).
+    let first = temporal_first_read(s);
+    var permuted = first.permuted;
+    var pixel = first.pixel;
+    // Gradient only: temporal reuse is off, but the denoiser's temporal gradients want
+    // the history's sample shaded here (docs/src/denoiser.md, "Temporal gradients"). The
+    // candidate is validated and merged as usual, so its visibility is traced alike, and
+    // the merge is dropped; nothing is counted as reuse.
+    let merging = (params.flags & PARAM_FLAG_GRADIENT_ONLY) == 0u;
     var cand: TemporalCandidate;
     loop {
         cand = validate_previous(pixel, s, sp);
         if !permuted || rejecting_checks(cand.mask) == 0u {
             break;
         }
-        count_stat(STAT_FALLBACK_TRIED);
+        if merging {
+            count_stat(STAT_FALLBACK_TRIED);
+        }
         d.flags |= DEBUG_FLAG_FALLBACK_TRIED;
         permuted = false;
-        pixel = reprojected;
+        pixel = first.reprojected;
     }
-    if (d.flags & DEBUG_FLAG_FALLBACK_TRIED) != 0u && rejecting_checks(cand.mask) == 0u {
-        count_stat(STAT_FALLBACK_USED);
-        d.flags |= DEBUG_FLAG_FALLBACK_USED;
+    if merging {
+        if (d.flags & DEBUG_FLAG_FALLBACK_TRIED) != 0u && rejecting_checks(cand.mask) == 0u {
+            count_stat(STAT_FALLBACK_USED);
+            d.flags |= DEBUG_FLAG_FALLBACK_USED;
+        }
+        count_rejections(cand.mask, STAT_TEMPORAL_REJECT);
+        d.temporal_mask = cand.mask;
     }
-    count_rejections(cand.mask, STAT_TEMPORAL_REJECT);
-    d.temporal_mask = cand.mask;
 
     var r = current;
     var rays = 0u;
+    var visibility_here = 1.0;
     if rejecting_checks(cand.mask) == 0u {
-        count_stat(STAT_TEMPORAL_ACCEPTED);
-        d.flags |= DEBUG_FLAG_TEMPORAL_MERGED;
         let m_prev = min(cand.reservoir.m, params.m_cap);
-        if cand.reservoir.m > params.m_cap {
-            d.flags |= DEBUG_FLAG_TEMPORAL_CAP;
-            count_stat(STAT_TEMPORAL_CAP);
+        if merging {
+            count_stat(STAT_TEMPORAL_ACCEPTED);
+            d.flags |= DEBUG_FLAG_TEMPORAL_MERGED;
+            if cand.reservoir.m > params.m_cap {
+                d.flags |= DEBUG_FLAG_TEMPORAL_CAP;
+                count_stat(STAT_TEMPORAL_CAP);
+            }
         }
         let u_current = rand_f32(&rng);
         let u_prev = rand_f32(&rng);
         // A history sample that survives is one frame older.
         let temporal_source = source_with_age(SOURCE_TEMPORAL, reservoir_age(cand.reservoir) + 1u);
         if pairwise_mis() {
-            r = merge_pairwise(sp, current, cand, m_prev, temporal_source, u_current, u_prev, &rays);
+            r = merge_pairwise(sp, current, cand, m_prev, temporal_source, u_current, u_prev, &rays, &visibility_here);
         } else {
             r = reservoir_empty();
             reservoir_merge(&r, current, current.p_hat, current.m, current.source, u_current);
             reservoir_merge(&r, cand.reservoir, cand.target_here, m_prev, temporal_source, u_prev);
             reservoir_finalize(&r, r.m);
         }
+    }
+    // The gradient sample: the history's sample as last frame shaded it (p̂·V there, its
+    // W) and as it shades here now, with this frame's lights and occluders. A light gone
+    // leaves its target here 0.
+    if (cand.mask & REJECT_SURFACE_CHECKS) == 0u && !reservoir_is_null(cand.reservoir) {
+        let w = cand.reservoir.weight;
+        d.gradient = vec2<f32>(cand.reservoir.p_hat * w, cand.target_here * visibility_here * w);
+    }
+    if !merging {
+        r = current;
     }
     if r.m > params.m_cap {
         r.m = params.m_cap;

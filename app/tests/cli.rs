@@ -829,3 +829,56 @@ fn bench_shifts_prints_and_writes_a_row_per_place_and_shift() {
     }
     assert_one_line_error(&viewer(&["bench-shifts", "--trials", "1"]), &["--trials"]);
 }
+
+/// The denoiser from the command line: its views render, and a split screen against
+/// `restir+raw` is raw | denoised (the difference view is not zero there, and is against
+/// `restir+denoise`, the same configuration).
+#[test]
+fn denoised_renders_draw_their_views_and_split_against_raw() {
+    let dir = temp_dir("denoise");
+    let frames = [
+        "--frames",
+        "4",
+        "--set",
+        "jitter=false",
+        "--set",
+        "denoise=true",
+    ];
+    for view in [
+        "denoise-input",
+        "history-length",
+        "denoise-variance",
+        "temporal-gradient",
+    ] {
+        let png = dir.join(format!("{view}.png"));
+        let extra = [&frames[..], &["--debug-view", view]].concat();
+        let res = render("builtin:cornell", &extra, &png);
+        assert!(
+            res.status.success(),
+            "{view}: {}",
+            String::from_utf8_lossy(&res.stderr)
+        );
+        assert_eq!(image::open(&png).unwrap().to_rgba8().dimensions(), (16, 12));
+    }
+    let difference = |b: &str| {
+        let out = dir.join(format!("difference-{b}.png"));
+        let extra = [&frames[..], &["--compare", b, "--debug-view", "difference"]].concat();
+        let res = render("builtin:cornell", &extra, &out);
+        assert!(
+            res.status.success(),
+            "{}",
+            String::from_utf8_lossy(&res.stderr)
+        );
+        image::open(&out).unwrap().to_rgb8()
+    };
+    let zero = [141u8, 16, 155]; // heatmap(0), sRGB-encoded
+    let near = |p: &image::Rgb<u8>| p.0.iter().zip(zero).all(|(a, b)| a.abs_diff(b) <= 2);
+    assert!(
+        difference("restir+denoise").pixels().all(near),
+        "|A − A| is not 0"
+    );
+    assert!(
+        !difference("restir+raw").pixels().all(near),
+        "denoised = raw everywhere"
+    );
+}

@@ -240,7 +240,10 @@ pub struct GpuPixelDebug {
     pub weight: f32,
     pub p_hat: f32,
     pub spatial_accepted: u32,
-    pub _pad: [u32; 2],
+    /// The temporal pass's gradient sample for the denoiser: the history's sample shaded
+    /// last frame (p̂·W at the previous pixel) and now (p̂·V·W here); 0, 0 where it had none
+    /// (docs/src/denoiser.md, "Temporal gradients").
+    pub gradient: [f32; 2],
 }
 
 /// Uniforms that change every frame.

@@ -26,6 +26,57 @@ pub fn luma_rmse(a: &LinearImage, b: &LinearImage) -> Result<f64> {
     Ok(mean_over_pixels(a, b, |x, y| (luma(x) - luma(y)).powi(2))?.sqrt())
 }
 
+/// Side of the tiles [`low_frequency_rmse`] averages the error over.
+pub const LOW_FREQUENCY_TILE: u32 = 8;
+
+/// The error's energy at low spatial frequencies: the luminance error (a − b) averaged over
+/// 8 × 8 tiles, then its root mean square over the tiles (partial tiles at the borders and
+/// non-finite pixels left out). Per-frame RMSE cannot tell blotches from grain (Sawhney et
+/// al. 2024: decorrelating ReSTIR leaves MSE unchanged while the blotches go); this can.
+/// Independent per-pixel errors of RMS σ leave σ / 8 (a tile averages 64 of them); error
+/// that is constant over a tile (a blotch, a bias) keeps its full size. Hence
+/// [`error_correlation`].
+pub fn low_frequency_rmse(a: &LinearImage, b: &LinearImage) -> Result<f64> {
+    check_sizes(a, b)?;
+    let t = LOW_FREQUENCY_TILE;
+    let (mut sum, mut tiles) = (0.0f64, 0usize);
+    for ty in 0..a.height / t {
+        for tx in 0..a.width / t {
+            let (mut e, mut n) = (0.0f64, 0usize);
+            for y in ty * t..(ty + 1) * t {
+                for x in tx * t..(tx + 1) * t {
+                    let i = (y * a.width + x) as usize;
+                    let (p, q) = (&a.pixels[i], &b.pixels[i]);
+                    if finite(p) && finite(q) {
+                        e += luma(p) - luma(q);
+                        n += 1;
+                    }
+                }
+            }
+            if n > 0 {
+                sum += (e / n as f64).powi(2);
+                tiles += 1;
+            }
+        }
+    }
+    Ok(if tiles == 0 {
+        0.0
+    } else {
+        (sum / tiles as f64).sqrt()
+    })
+}
+
+/// How correlated an error is at the scale of a tile: 8 × low-frequency RMSE / RMSE, 1 for
+/// independent per-pixel errors, 8 for error constant over each tile (0 without error).
+pub fn error_correlation(a: &LinearImage, b: &LinearImage) -> Result<f64> {
+    let rmse = luma_rmse(a, b)?;
+    Ok(if rmse > 0.0 {
+        LOW_FREQUENCY_TILE as f64 * low_frequency_rmse(a, b)? / rmse
+    } else {
+        0.0
+    })
+}
+
 /// Root mean square over all pixels and the three colour channels.
 pub fn rgb_rmse(a: &LinearImage, b: &LinearImage) -> Result<f64> {
     Ok(mean_over_pixels(a, b, |x, y| {

@@ -416,8 +416,10 @@ parameter_table! {
     Denoise {
         denoise: bool = false, ParamKind::Bool, "Denoiser (SVGF)",
             "A spatiotemporal variance-guided filter after shading (Schied et al. 2017; docs/src/denoiser.md): the frame's light (direct + indirect, one signal) is divided by the surface colour, accumulated over time through the motion vectors, and blurred by à-trous passes that stop at depth, normal and luminance edges scaled by the estimated variance, then multiplied back. Every figure (error, flicker, boiling, lag) is then measured on the denoised image. Off: no denoiser code is compiled or run.";
-        denoise_iterations: u32 = 4, ParamKind::Int { min: 1, max: MAX_DENOISE_ITERATIONS as i64 }, "À-trous iterations",
-            "À-trous passes, taps 1, 2, 4, … pixels apart: 4 reach 2 × (1 + 2 + 4 + 8) = 30 px each way, about the spatial reuse radius at 1080p.";
+        denoise_gradients: bool = true, ParamKind::Bool, "Temporal gradients",
+            "A-SVGF (Schied et al. 2018): DI's temporal pass shades last frame's sample at this frame's surface with this frame's lights and occluders; where the neighbourhood's shading changed by a share λ of its value, this frame weighs α + (1 − α) λ in the history blend, so a light switched off or a moving shadow is followed within a frame or two instead of ~1/α. With DI temporal reuse off the temporal pass runs for the gradients alone (its cost is counted). Off: plain SVGF.";
+        denoise_iterations: u32 = 3, ParamKind::Int { min: 1, max: MAX_DENOISE_ITERATIONS as i64 }, "À-trous iterations",
+            "À-trous passes, taps 1, 2, 4, … pixels apart: 3 reach 2 × (1 + 2 + 4) = 14 px each way. Measured on builtin:concourse at 96×64 (docs/bench.md, \"Through a denoiser\"): 3 gave the lowest per-frame error (ris + denoiser: 0.0184 luma RMSE; 4: 0.0197; 5: 0.0207) and each iteration costs ~6 % of a restir frame; a larger image wants more.";
         denoise_alpha: f32 = 0.2, ParamKind::Float { min: 0.01, max: 1.0 }, "History blend α",
             "Smallest weight of this frame in the temporal blend (1/length while the history is shorter than 1/α): 0.2 keeps ~5 frames; lower is smoother and lags more; 1 turns temporal accumulation off.";
         denoise_moments_alpha: f32 = 0.2, ParamKind::Float { min: 0.01, max: 1.0 }, "Moments blend α",
@@ -608,6 +610,12 @@ impl Settings {
         if self.previous_geometry {
             flags |= PARAM_FLAG_PREVIOUS_GEOMETRY;
         }
+        if self.denoise_gradients_on() {
+            flags |= PARAM_FLAG_DENOISE_GRADIENTS;
+            if !self.temporal {
+                flags |= PARAM_FLAG_GRADIENT_ONLY;
+            }
+        }
         GpuParams {
             light_candidates: self.light_candidates,
             bsdf_candidates: self.bsdf_candidates,
@@ -655,6 +663,12 @@ impl Settings {
             denoise_history_cap: self.denoise_history_cap as f32,
             _denoise_pad: [0; 2],
         }
+    }
+
+    /// Whether the denoiser runs with temporal gradients (which need DI's temporal pass,
+    /// for its gradient samples alone where temporal reuse is off).
+    pub fn denoise_gradients_on(&self) -> bool {
+        self.denoise && self.denoise_gradients
     }
 
     /// Whether the pairwise target includes visibility (`mis_visibility`; 1/M has no MIS

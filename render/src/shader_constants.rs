@@ -22,6 +22,9 @@ wgsl_constants! {
     /// is not a switchable check.
     pub const REJECT_LIGHT_GONE: u32 = 1 << 8;
     pub const REJECT_REASON_COUNT: usize = 9;
+    /// The first six bits (the surface checks and reservoir null) mean the same in DI's and
+    /// GI's rejection masks, and are painted alike (`check_color`).
+    pub const SHARED_REJECT_CHECKS: u32 = 6;
 }
 /// Every temporal rejection reason (the rejection view's default reason mask; its
 /// spatial part is a count of rejected neighbours, not a mask).
@@ -90,6 +93,11 @@ wgsl_constants! {
     /// Pairwise MIS traces the canonical sample's visibility at the previous pixel against last
     /// frame's geometry (`previous_geometry`; only compiled in for animated scenes).
     pub const PARAM_FLAG_PREVIOUS_GEOMETRY: u32 = 1 << 12;
+    /// The temporal pass runs for the denoiser's gradients only (temporal reuse off): it
+    /// shades the history's sample here and drops the merge (docs/src/denoiser.md).
+    pub const PARAM_FLAG_GRADIENT_ONLY: u32 = 1 << 13;
+    /// The denoiser's temporal pass shortens the history by the temporal gradient.
+    pub const PARAM_FLAG_DENOISE_GRADIENTS: u32 = 1 << 14;
 
     /// Passes that count non-finite values (a GPU-side guard; docs/src/ris.md, "Conventions").
     pub const PASS_GBUFFER: u32 = 0;
@@ -377,6 +385,9 @@ wgsl_constants! {
     pub const DENOISE_VARIANCE_RADIUS: u32 = 3;
     /// À-trous iterations at most (taps 2^4 = 16 px apart in the last).
     pub const MAX_DENOISE_ITERATIONS: u32 = 5;
+    /// The gradient's neighbourhood: (2 × taps + 1)² taps, this many pixels apart.
+    pub const DENOISE_GRADIENT_TAPS: u32 = 2;
+    pub const DENOISE_GRADIENT_STRIDE: u32 = 3;
     /// The temporal pass's `PassInfo` slot when last frame left a valid history (0: none).
     pub const DENOISE_HISTORY_SLOT: u32 = 1;
 }
@@ -491,6 +502,8 @@ mod stream_tests {
             PARAM_FLAG_PREVIOUS_LIGHTS,
             PARAM_FLAG_MIS_VISIBILITY,
             PARAM_FLAG_PREVIOUS_GEOMETRY,
+            PARAM_FLAG_GRADIENT_ONLY,
+            PARAM_FLAG_DENOISE_GRADIENTS,
             PARAM_FLAG_GI,
             PARAM_FLAG_GI_TEMPORAL,
             PARAM_FLAG_GI_SPATIAL,

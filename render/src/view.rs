@@ -145,6 +145,8 @@ debug_views! {
     DenoiseInput, "denoise-input", VIEW_DENOISE_INPUT = 24, DenoiseView, false;
     HistoryLength, "history-length", VIEW_HISTORY_LENGTH = 25, DenoiseView, false;
     DenoiseVariance, "denoise-variance", VIEW_DENOISE_VARIANCE = 26, DenoiseView, false;
+    /// λ, the share of the lighting that changed since last frame (temporal gradients).
+    TemporalGradient, "temporal-gradient", VIEW_TEMPORAL_GRADIENT = 27, DenoiseView, false;
     /// σ/mean of each pixel's luminance over the temporal window: where the image flickers.
     Boiling, "boiling", VIEW_BOILING = 18, WindowView, false;
     /// How often the survivor's light changed within the temporal window.

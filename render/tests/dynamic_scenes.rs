@@ -187,14 +187,7 @@ fn blink(plant: Plant) -> BlinkOutcome {
     let mut scene = animated("builtin:dynamic:blinking-lights", 0.5);
     let mut r = renderer_for(&scene, BLINK_SIZE.0, BLINK_SIZE.1, blink_settings());
     let (before, after) = blink_references();
-    // The changed region: pixels whose reference changed by more than 10 %.
-    let luma = |p: [f32; 4]| 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
-    let changed: Vec<usize> = (0..before.pixels.len())
-        .filter(|&i| {
-            let (a, b) = (luma(before.pixels[i]), luma(after.pixels[i]));
-            (a - b).abs() > 0.1 * a.max(b) && a.max(b) > 0.0
-        })
-        .collect();
+    let changed = common::changed_pixels(before, after);
     // 15 frames of history with every light on (0.5 s → 0.97 s), then across the switch.
     r.set_mode(Mode::Restir);
     r.request_cut();

@@ -322,7 +322,8 @@ fn host_structs_match_wgsl_layouts() {
             m_spatial,
             weight,
             p_hat,
-            spatial_accepted
+            spatial_accepted,
+            gradient
         ]
     );
     check_struct!(

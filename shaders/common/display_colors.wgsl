@@ -36,6 +36,20 @@ fn heatmap(t_in: f32) -> vec3<f32> {
     return mix(c3, c4, t - 3.0);
 }
 
+// The six surface and reservoir checks DI's and GI's rejection masks share (bits
+// 0..SHARED_REJECT_CHECKS), in both rejection palettes.
+fn check_color(bit: u32) -> vec3<f32> {
+    var palette = array<vec3<f32>, SHARED_REJECT_CHECKS>(
+        vec3<f32>(1.0, 0.0, 0.0),   // off-screen: red
+        vec3<f32>(1.0, 0.5, 0.0),   // previous surface invalid: orange
+        vec3<f32>(1.0, 0.0, 1.0),   // material: magenta
+        vec3<f32>(0.0, 0.6, 1.0),   // normal: blue
+        vec3<f32>(0.0, 1.0, 1.0),   // depth / position: cyan
+        vec3<f32>(1.0, 1.0, 0.0),   // reservoir null: yellow
+    );
+    return palette[min(bit, SHARED_REJECT_CHECKS - 1u)];
+}
+
 fn source_color(source: u32) -> vec3<f32> {
     switch source {
         case SOURCE_INITIAL: { return vec3<f32>(0.15, 0.35, 1.0); }

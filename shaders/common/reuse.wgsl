@@ -51,6 +51,22 @@ fn count_rejections(mask: u32, base: u32) {
 // Solari-style permutation: mirror the pixel inside a 4×4 block shifted by a per-frame
 // offset, so neighbouring pixels do not inherit correlated histories.
 // Temporal reuse of DI and GI use the same permutation.
+// The previous pixel temporal reuse reads first: the reprojected one, through this frame's
+// 4×4 permutation when it is on (a read that then fails validation retries the plain
+// reprojection: permuted reads fail at object edges, Solari #21722). Under pairwise MIS
+// only the G-buffer decides which pixel is read.
+struct TemporalRead {
+    reprojected: vec2<i32>,
+    pixel: vec2<i32>,
+    permuted: bool,
+}
+
+fn temporal_first_read(s: Surface) -> TemporalRead {
+    let reprojected = vec2<i32>(floor(s.motion));
+    let permuted = (params.flags & PARAM_FLAG_PERMUTATION) != 0u;
+    return TemporalRead(reprojected, select(reprojected, permute_pixel(reprojected), permuted), permuted);
+}
+
 fn permute_pixel(p: vec2<i32>) -> vec2<i32> {
     let r = pcg_hash(frame.frame_index ^ frame.seed);
     let offset = vec2<i32>(i32(r & 3u), i32((r >> 2u) & 3u));

@@ -124,8 +124,7 @@ struct PixelDebug {
     weight: f32,       // W of the survivor at shading
     p_hat: f32,       // p̂ of the survivor at shading
     spatial_accepted: u32,
-    _pad0: u32,
-    _pad1: u32,
+    gradient: vec2<f32>, // the history sample's shading last frame and now (denoiser gradients)
 }
 
 struct Frame {

@@ -44,15 +44,16 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let index = pixel_index(id.xy);
     let s = surfaces[index];
-    let centre = input[index];
+    let own = input[index];
     if !denoise_has_surface(s) {
-        output[index] = centre;
+        output[index] = own;
         return;
     }
     let kernel = array<f32, 5>(1.0 / 16.0, 1.0 / 4.0, 3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0);
     let step = i32(1u << pass_info.pass_index);
     let pixel_angle = denoise_pixel_angle();
-    let l = luminance(centre.rgb);
+    let centre = denoise_centre(s);
+    let l = luminance(own.rgb);
     let centre_variance = prefiltered_variance(vec2<i32>(id.xy));
     var illum = vec3<f32>(0.0);
     var variance = 0.0;
@@ -71,7 +72,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             }
             let q = input[j];
             var w = kernel[kx] * kernel[ky];
-            w *= denoise_geometry_weight(s, qs, length(vec2<f32>(offset)), pixel_angle);
+            w *= denoise_geometry_weight(centre, qs, length(vec2<f32>(offset)), pixel_angle);
 #ifndef PLANTED_NO_EDGE_STOPPING
 #ifdef PLANTED_CENTRE_VARIANCE_GATE
             let spread = centre_variance;  // test only: the gate the energy test must catch

@@ -29,15 +29,27 @@ fn denoise_pixel_angle() -> f32 {
     return asin(min(length(cross(a, b)), 1.0));
 }
 
+// The centre pixel of a filter, its normals decoded once for all its taps.
+struct DenoiseCentre {
+    position: vec3<f32>,
+    depth: f32,
+    normal: vec3<f32>,
+    geo_normal: vec3<f32>,
+}
+
+fn denoise_centre(s: Surface) -> DenoiseCentre {
+    return DenoiseCentre(s.position, s.depth, oct_decode(s.normal), oct_decode(s.geo_normal));
+}
+
 // Depth and normal edge-stopping between the centre `a` and `b`, `distance` pixels apart:
 // b's distance from a's tangent plane against how far a pixel reaches at a's depth (zero
 // on one plane however steep, large across a silhouette), and the normals' agreement.
-fn denoise_geometry_weight(a: Surface, b: Surface, distance: f32, pixel_angle: f32) -> f32 {
+fn denoise_geometry_weight(a: DenoiseCentre, b: Surface, distance: f32, pixel_angle: f32) -> f32 {
 #ifdef PLANTED_NO_EDGE_STOPPING
     return 1.0;  // test only: a plain blur, which the edge test must catch
 #else
-    let normal = pow(max(dot(oct_decode(a.normal), oct_decode(b.normal)), 0.0), params.denoise_phi_normal);
-    let plane = abs(dot(oct_decode(a.geo_normal), b.position - a.position));
+    let normal = pow(max(dot(a.normal, oct_decode(b.normal)), 0.0), params.denoise_phi_normal);
+    let plane = abs(dot(a.geo_normal, b.position - a.position));
     let reach = params.denoise_phi_depth * a.depth * pixel_angle * distance + 1e-6 * a.depth;
     return normal * exp(-plane / reach);
 #endif

@@ -1,7 +1,8 @@
 // Temporal accumulation (SVGF, Schied et al. 2017): this frame's demodulated illumination
 // blended into last frame's, read through the motion vector with a bilinear filter over
 // the taps that see the same surface, and the first two moments of its luminance alike.
-// The blend weight is 1/length while the history is young, then `denoise_alpha`.
+// The blend weight is 1/length while the history is young, then `denoise_alpha`; with
+// temporal gradients, α + (1 − α) λ where a share λ of the lighting changed (gradient.wgsl).
 #include "denoise/common.wgsl"
 
 @group(2) @binding(0) var<storage, read> surfaces: array<Surface>;
@@ -9,7 +10,8 @@
 @group(2) @binding(2) var<storage, read> radiance: array<vec4<f32>>;
 @group(2) @binding(3) var<storage, read> history: array<DenoiseHistory>;
 @group(2) @binding(4) var<uniform> pass_info: PassInfo;
-@group(2) @binding(5) var<storage, read_write> next: array<DenoiseHistory>;
+@group(2) @binding(5) var<storage, read> gradient: array<vec4<f32>>;
+@group(2) @binding(6) var<storage, read_write> next: array<DenoiseHistory>;
 
 // Whether last frame's surface `prev` is this pixel's point seen again.
 fn same_surface(s: Surface, prev: Surface) -> bool {
@@ -67,8 +69,12 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     out.moments = moments;
     if sum_w > 1e-3 {
         let length = min(sum_length / sum_w + 1.0, max(params.denoise_history_cap, 1.0));
-        let alpha = max(params.denoise_alpha, 1.0 / length);
-        let moments_alpha = max(params.denoise_moments_alpha, 1.0 / length);
+        var lambda = 0.0;
+        if (params.flags & PARAM_FLAG_DENOISE_GRADIENTS) != 0u {
+            lambda = gradient[index].x;
+        }
+        let alpha = mix(max(params.denoise_alpha, 1.0 / length), 1.0, lambda);
+        let moments_alpha = mix(max(params.denoise_moments_alpha, 1.0 / length), 1.0, lambda);
         out.illumination = mix(sum_illum / sum_w, illum, alpha);
         out.moments = mix(sum_moments / sum_w, moments, moments_alpha);
         out.length = length;

@@ -25,6 +25,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let pixel_angle = denoise_pixel_angle();
+    let centre = denoise_centre(s);
     let r = i32(DENOISE_VARIANCE_RADIUS);
     var illum = vec3<f32>(0.0);
     var moments = vec2<f32>(0.0);
@@ -40,7 +41,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             if !denoise_has_surface(q) {
                 continue;
             }
-            let w = denoise_geometry_weight(s, q, length(vec2<f32>(f32(dx), f32(dy))), pixel_angle);
+            let w = denoise_geometry_weight(centre, q, length(vec2<f32>(f32(dx), f32(dy))), pixel_angle);
             illum += w * history[j].illumination;
             moments += w * history[j].moments;
             sum += w;

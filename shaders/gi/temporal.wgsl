@@ -87,14 +87,11 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let sp = shading_point_from_surface(s, frame.camera_position);
     var rng = rng_seed(id.xy, STREAM_INDIRECT_TEMPORAL);
-    let reprojected = vec2<i32>(floor(s.motion));
-    // As in DI: permuted reads fail at object edges; retry the plain reprojection (one call
-    // site of the validation for both tries: docs/src/compile-time.md).
-    var permuted = (params.flags & PARAM_FLAG_PERMUTATION) != 0u;
-    var pixel = reprojected;
-    if permuted {
-        pixel = permute_pixel(reprojected);
-    }
+    // One call site of the validation for both tries: the driver compiles a copy per
+    // call (docs/src/compile-time.md).
+    let first = temporal_first_read(s);
+    var permuted = first.permuted;
+    var pixel = first.pixel;
     var cand: GiTemporalCandidate;
     loop {
         cand = gi_validate_previous(pixel, s, sp);
@@ -103,7 +100,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         }
         count_stat(STAT_INDIRECT_FALLBACK_TRIED);
         permuted = false;
-        pixel = reprojected;
+        pixel = first.reprojected;
     }
     if !permuted && (params.flags & PARAM_FLAG_PERMUTATION) != 0u && cand.mask == 0u {
         count_stat(STAT_INDIRECT_FALLBACK_USED);

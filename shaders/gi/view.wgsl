@@ -16,20 +16,18 @@
 
 const GI_NO_SURFACE: vec3<f32> = vec3<f32>(0.08, 0.08, 0.08);
 
-// One colour per GI rejection bit: DI's six checks keep DI's colours; GI's own three.
+// One colour per GI rejection bit: the shared checks in DI's colours (check_color), then
+// GI's own three.
 fn gi_reason_color(bit: u32) -> vec3<f32> {
-    var palette = array<vec3<f32>, GI_REJECT_REASON_COUNT>(
-        vec3<f32>(1.0, 0.0, 0.0),   // off-screen: red
-        vec3<f32>(1.0, 0.5, 0.0),   // previous surface invalid: orange
-        vec3<f32>(1.0, 0.0, 1.0),   // material: magenta
-        vec3<f32>(0.0, 0.6, 1.0),   // normal: blue
-        vec3<f32>(0.0, 1.0, 1.0),   // depth / position: cyan
-        vec3<f32>(1.0, 1.0, 0.0),   // reservoir null: yellow
+    if bit < SHARED_REJECT_CHECKS {
+        return check_color(bit);
+    }
+    var palette = array<vec3<f32>, GI_REJECT_REASON_COUNT - SHARED_REJECT_CHECKS>(
         vec3<f32>(0.55, 0.0, 1.0),  // reconnection undefined: violet
         vec3<f32>(1.0, 1.0, 1.0),   // Jacobian outside the window: white
         vec3<f32>(0.1, 0.9, 0.2),   // reconnection occluded: green
     );
-    return palette[min(bit, GI_REJECT_REASON_COUNT - 1u)];
+    return palette[min(bit - SHARED_REJECT_CHECKS, GI_REJECT_REASON_COUNT - SHARED_REJECT_CHECKS - 1u)];
 }
 
 // log2 |J| over ±log2(window).

@@ -124,6 +124,8 @@ pub fn write_results(
     header.extend([
         "mean_luma_rmse",
         "mean_stability_rmse",
+        "mean_low_frequency_rmse",
+        "error_correlation",
         "temporal_flicker",
         "accumulated_rgb_rmse",
         "accumulated_rgb_rmse_minus_reference_noise",
@@ -166,6 +168,8 @@ pub fn write_results(
         cells.extend([
             num(scored.then_some(s.mean_luma_rmse)),
             num(scored.then_some(s.mean_stability)),
+            num(scored.then_some(s.mean_low_frequency_rmse)),
+            num(scored.then_some(s.error_correlation())),
             num(r.flicker),
             num(s.accumulated_rgb_rmse),
             num(without_noise(

@@ -123,6 +123,8 @@ pub fn results(info: &BenchInfo, results: &[ConfigResult]) -> String {
         "time × nee[^t]",
         "per-frame luma RMSE",
         "stability (luma RMSE)",
+        "8×8 error (low-freq. RMSE)",
+        "error correlation[^c]",
         "flicker (\\|Δ luma\\| / reference)",
         accumulated,
         "luma ratio",
@@ -144,6 +146,9 @@ pub fn results(info: &BenchInfo, results: &[ConfigResult]) -> String {
                 ratio(r.time_vs_nee),
                 sig(s.map(|s| s.mean_luma_rmse)),
                 sig(s.map(|s| s.mean_stability)),
+                sig(s.map(|s| s.mean_low_frequency_rmse)),
+                s.map(|s| format!("{:.2}", s.error_correlation()))
+                    .unwrap_or_else(|| "n/a".into()),
                 sig(r.flicker),
                 sig(s.and_then(|s| s.accumulated_rgb_rmse)),
                 s.map(|s| format!("{:.4}", s.luma_ratio))
@@ -197,6 +202,11 @@ pub fn results(info: &BenchInfo, results: &[ConfigResult]) -> String {
         .collect();
     pass_table(&mut md, "configuration", &labelled);
     let _ = writeln!(md, "\n{}", time_footnote(info.timing_note()));
+    let _ = writeln!(
+        md,
+        "[^c]: 8 × the 8×8-tile error's RMSE / the per-pixel RMSE: 1 for grain, 8 for blotches \
+         a tile wide (docs/bench.md, \"How it measures\")."
+    );
     md
 }
 

@@ -7,7 +7,8 @@
 
 use restir_render::LinearImage;
 use restir_render::metrics::{
-    SequenceMetrics, black_pixel_fraction, luma_ratio, luma_rmse, rel_mse,
+    LOW_FREQUENCY_TILE, SequenceMetrics, black_pixel_fraction, low_frequency_rmse, luma_ratio,
+    luma_rmse, rel_mse,
 };
 
 /// One frame's numbers.
@@ -49,6 +50,10 @@ pub struct ScoreSummary {
     pub signed_bias: f64,
     /// Per frame, the fraction of pixels black where the reference is lit (speckles), mean.
     pub black_pixel_fraction: f64,
+    /// Per-frame luma error averaged over 8 × 8 tiles, RMS over tiles, mean over frames:
+    /// the correlated (blotchy) part of the error that RMSE cannot see
+    /// (`metrics::low_frequency_rmse`).
+    pub mean_low_frequency_rmse: f64,
     /// Non-finite pixels seen (each skipped by the metrics).
     pub non_finite_pixels: usize,
 }
@@ -59,6 +64,7 @@ pub enum Scoring<'a> {
     Still {
         reference: &'a LinearImage,
         sequence: SequenceMetrics,
+        low_frequency: Vec<f64>,
     },
     Moving {
         /// One per measured frame.
@@ -68,6 +74,7 @@ pub enum Scoring<'a> {
         stability: Vec<f64>,
         ratios: Vec<f64>,
         black: Vec<f64>,
+        low_frequency: Vec<f64>,
         non_finite: usize,
     },
 }
@@ -77,6 +84,7 @@ impl<'a> Scoring<'a> {
         Scoring::Still {
             reference,
             sequence: SequenceMetrics::new(reference.clone()),
+            low_frequency: Vec::new(),
         }
     }
 
@@ -88,6 +96,7 @@ impl<'a> Scoring<'a> {
             stability: Vec::new(),
             ratios: Vec::new(),
             black: Vec::new(),
+            low_frequency: Vec::new(),
             non_finite: 0,
         }
     }
@@ -100,8 +109,13 @@ impl<'a> Scoring<'a> {
     pub fn push(&mut self, index: usize, frame: &LinearImage) -> anyhow::Result<FrameScores> {
         match self {
             Scoring::Off => Ok(FrameScores::default()),
-            Scoring::Still { sequence, .. } => {
+            Scoring::Still {
+                reference,
+                sequence,
+                low_frequency,
+            } => {
                 sequence.push(frame)?;
+                low_frequency.push(low_frequency_rmse(frame, reference)?);
                 let report = sequence.report();
                 Ok(FrameScores {
                     luma_rmse: report.per_frame_luma_rmse.last().copied(),
@@ -119,6 +133,7 @@ impl<'a> Scoring<'a> {
                 stability,
                 ratios,
                 black,
+                low_frequency,
                 non_finite,
             } => {
                 let reference = references
@@ -129,6 +144,7 @@ impl<'a> Scoring<'a> {
                 luma.push(luma_rmse(frame, reference)?);
                 ratios.push(luma_ratio(frame, reference)?);
                 black.push(black_pixel_fraction(frame, reference)?);
+                low_frequency.push(low_frequency_rmse(frame, reference)?);
                 let step = match previous_error {
                     Some(previous) => Some(luma_rmse(&error, previous)?),
                     None => None,
@@ -150,6 +166,7 @@ impl<'a> Scoring<'a> {
             Scoring::Still {
                 reference,
                 sequence,
+                low_frequency,
             } => {
                 let report = sequence.report();
                 Some(ScoreSummary {
@@ -160,6 +177,7 @@ impl<'a> Scoring<'a> {
                     luma_ratio: report.accumulated_luma_ratio,
                     signed_bias: report.mean_signed_bias,
                     black_pixel_fraction: report.mean_black_pixel_fraction,
+                    mean_low_frequency_rmse: mean(low_frequency),
                     non_finite_pixels: report.non_finite_pixels,
                 })
             }
@@ -168,6 +186,7 @@ impl<'a> Scoring<'a> {
                 stability,
                 ratios,
                 black,
+                low_frequency,
                 non_finite,
                 ..
             } => Some(ScoreSummary {
@@ -178,9 +197,22 @@ impl<'a> Scoring<'a> {
                 luma_ratio: mean(ratios),
                 signed_bias: mean(ratios) - 1.0,
                 black_pixel_fraction: mean(black),
+                mean_low_frequency_rmse: mean(low_frequency),
                 non_finite_pixels: *non_finite,
             }),
         })
+    }
+}
+
+impl ScoreSummary {
+    /// 8 × low-frequency RMSE / RMSE: about 1 where the error is grain, up to 8 where it is
+    /// blotches a tile wide (`metrics::error_correlation`, from the means over frames).
+    pub fn error_correlation(&self) -> f64 {
+        if self.mean_luma_rmse > 0.0 {
+            LOW_FREQUENCY_TILE as f64 * self.mean_low_frequency_rmse / self.mean_luma_rmse
+        } else {
+            0.0
+        }
     }
 }
 

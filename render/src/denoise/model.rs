@@ -6,8 +6,8 @@ use glam::{Vec2, Vec3, Vec4};
 
 use crate::gpu_types::{GpuDenoiseHistory, GpuSurface};
 use crate::shader_constants::{
-    DENOISE_ALBEDO_FLOOR, DENOISE_MIN_HISTORY, DENOISE_NORMAL_COS, DENOISE_POSITION_TOLERANCE,
-    DENOISE_VARIANCE_RADIUS,
+    DENOISE_ALBEDO_FLOOR, DENOISE_GRADIENT_STRIDE, DENOISE_GRADIENT_TAPS, DENOISE_MIN_HISTORY,
+    DENOISE_NORMAL_COS, DENOISE_POSITION_TOLERANCE, DENOISE_VARIANCE_RADIUS,
 };
 
 /// What the denoiser reads of a pixel's G-buffer surface.
@@ -76,6 +76,29 @@ pub struct Params {
     pub pixel_angle: f32,
 }
 
+impl Params {
+    /// The settings' `denoise_*` rows, for an image whose neighbouring pixels' rays are
+    /// `pixel_angle` apart.
+    pub fn from_settings(s: &crate::Settings, pixel_angle: f32) -> Params {
+        Params {
+            alpha: s.denoise_alpha,
+            moments_alpha: s.denoise_moments_alpha,
+            phi_luminance: s.denoise_phi_luminance,
+            phi_normal: s.denoise_phi_normal,
+            phi_depth: s.denoise_phi_depth,
+            history_cap: s.denoise_history_cap as f32,
+            iterations: s.denoise_iterations,
+            pixel_angle,
+        }
+    }
+
+    /// The angle between the image centre's ray and the next pixel's, as the WGSL measures
+    /// it (`denoise_pixel_angle`), for a vertical field of view and an image height.
+    pub fn pixel_angle(yfov: f32, height: u32) -> f32 {
+        (2.0 * (yfov / 2.0).tan() / height as f32).atan()
+    }
+}
+
 /// Errors the tests plant to prove that they would see them.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Planted {
@@ -128,13 +151,53 @@ fn same_surface(p: &Pixel, prev: &Pixel) -> bool {
         && (prev.position - p.position).length() <= DENOISE_POSITION_TOLERANCE * p.depth
 }
 
+/// The temporal gradient λ per pixel from DI's gradient samples (each pixel's history
+/// sample shaded last frame and now, `GpuPixelDebug::gradient`): both summed over a
+/// neighbourhood on the same surfaces, λ = |Σ now − Σ before| / max(Σ now, Σ before).
+pub fn gradient(f: &Frame, samples: &[[f32; 2]], p: &Params) -> Vec<f32> {
+    (0..f.pixels.len())
+        .map(|i| {
+            let px = &f.pixels[i];
+            if !px.valid {
+                return 0.0;
+            }
+            let (x, y) = f.coords(i);
+            let r = DENOISE_GRADIENT_TAPS as i32;
+            let stride = DENOISE_GRADIENT_STRIDE as i32;
+            let (mut before, mut now) = (0.0f32, 0.0f32);
+            for dy in -r..=r {
+                for dx in -r..=r {
+                    let (ox, oy) = (dx * stride, dy * stride);
+                    let Some(j) = f.index(x + ox, y + oy) else {
+                        continue;
+                    };
+                    if !f.pixels[j].valid {
+                        continue;
+                    }
+                    let distance = ((ox * ox + oy * oy) as f32).sqrt();
+                    let w = geometry_weight(px, &f.pixels[j], distance, p, Planted::default());
+                    before += w * samples[j][0];
+                    now += w * samples[j][1];
+                }
+            }
+            let larger = before.max(now);
+            if larger > 0.0 {
+                ((now - before).abs() / larger).clamp(0.0, 1.0)
+            } else {
+                0.0
+            }
+        })
+        .collect()
+}
+
 /// Temporal accumulation: this frame's illumination blended into last frame's,
 /// reprojected through the motion vector with a bilinear filter over the taps that see the
 /// same surface; luminance moments alike. `history` is `None` when there is none (first
-/// frame, cut, resize).
+/// frame, cut, resize); `lambda`, the temporal gradient, raises this frame's weight.
 pub fn temporal(
     f: &Frame,
     history: Option<&[GpuDenoiseHistory]>,
+    lambda: Option<&[f32]>,
     p: &Params,
 ) -> Vec<GpuDenoiseHistory> {
     (0..f.pixels.len())
@@ -174,11 +237,13 @@ pub fn temporal(
             let has_history = acc.3 > 1e-3;
             let (length, alpha, moments_alpha) = if has_history {
                 let length = (acc.1 / acc.3 + 1.0).min(p.history_cap.max(1.0));
-                (
-                    length,
-                    p.alpha.max(1.0 / length),
-                    p.moments_alpha.max(1.0 / length),
-                )
+                // α + (1 − α) λ: a changed neighbourhood weighs this frame more.
+                let lambda = lambda.map_or(0.0, |l| l[i]);
+                let blend = |alpha: f32| {
+                    let alpha = alpha.max(1.0 / length);
+                    alpha + (1.0 - alpha) * lambda
+                };
+                (length, blend(p.alpha), blend(p.moments_alpha))
             } else {
                 (1.0, 1.0, 1.0)
             };
@@ -349,13 +414,16 @@ pub fn modulate(f: &Frame, filtered: &[Vec4]) -> Vec<Vec3> {
 }
 
 /// One frame of the whole denoiser: (next frame's history, the denoised radiance).
+/// `gradient_samples`: DI's gradient samples when temporal gradients are on.
 pub fn denoise(
     f: &Frame,
     history: Option<&[GpuDenoiseHistory]>,
+    gradient_samples: Option<&[[f32; 2]]>,
     p: &Params,
     planted: Planted,
 ) -> (Vec<GpuDenoiseHistory>, Vec<Vec3>) {
-    let h = temporal(f, history, p);
+    let lambda = gradient_samples.map(|s| gradient(f, s, p));
+    let h = temporal(f, history, lambda.as_deref(), p);
     let mut filtered = variance(f, &h, p);
     for i in 0..p.iterations {
         filtered = atrous(f, &filtered, 1 << i, p, planted);

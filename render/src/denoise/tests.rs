@@ -10,17 +10,7 @@ const H: u32 = 32;
 const PIXEL_ANGLE: f32 = 0.01;
 
 fn params() -> Params {
-    let s = crate::Settings::default();
-    Params {
-        alpha: s.denoise_alpha,
-        moments_alpha: s.denoise_moments_alpha,
-        phi_luminance: s.denoise_phi_luminance,
-        phi_normal: s.denoise_phi_normal,
-        phi_depth: s.denoise_phi_depth,
-        history_cap: s.denoise_history_cap as f32,
-        iterations: s.denoise_iterations,
-        pixel_angle: PIXEL_ANGLE,
-    }
+    Params::from_settings(&crate::Settings::default(), PIXEL_ANGLE)
 }
 
 /// A wall facing the camera at depth `depth(x)` per column, grey, not moving.
@@ -62,7 +52,7 @@ fn hash(i: u32, frame: u32) -> f32 {
 }
 
 fn spatial_only(f: &Frame, p: &Params, planted: Planted) -> Vec<Vec4> {
-    let h = model::temporal(f, None, p);
+    let h = model::temporal(f, None, None, p);
     let mut filtered = model::variance(f, &h, p);
     for i in 0..p.iterations {
         filtered = model::atrous(f, &filtered, 1 << i, p, planted);
@@ -147,7 +137,7 @@ fn filtering_keeps_the_energy_and_a_centre_only_gate_is_caught() {
                 previous: &pixels,
                 radiance: &radiance,
             };
-            let (h, out) = model::denoise(&f, history.as_deref(), &p, planted);
+            let (h, out) = model::denoise(&f, history.as_deref(), None, &p, planted);
             history = Some(h);
             // After the history has filled (the temporal blend alone is unbiased).
             if frame >= 16 {
@@ -194,7 +184,7 @@ fn temporal_accumulation_converges_to_the_mean() {
             previous: &pixels,
             radiance: &radiance,
         };
-        history = Some(model::temporal(&f, history.as_deref(), &p));
+        history = Some(model::temporal(&f, history.as_deref(), None, &p));
     }
     let h = history.unwrap();
     let mean = h.iter().map(|p| p.illumination[0] as f64).sum::<f64>() / h.len() as f64;
@@ -252,7 +242,7 @@ fn reprojection_follows_the_motion() {
             previous: &pixels,
             radiance: &radiance,
         };
-        history = Some(model::temporal(&f, history.as_deref(), &p));
+        history = Some(model::temporal(&f, history.as_deref(), None, &p));
     }
     let h = history.unwrap();
     // Where the square was two frames ago but is not now: 0.1 (dark, demodulated).
@@ -288,8 +278,8 @@ fn the_sky_passes_through_and_extremes_stay_finite() {
         previous: &pixels,
         radiance: &radiance,
     };
-    let (h, out) = model::denoise(&f, None, &params(), Planted::default());
-    let (_, out2) = model::denoise(&f, Some(&h), &params(), Planted::default());
+    let (h, out) = model::denoise(&f, None, None, &params(), Planted::default());
+    let (_, out2) = model::denoise(&f, Some(&h), None, &params(), Planted::default());
     for (i, (a, b)) in out.iter().zip(&out2).enumerate() {
         assert!(a.is_finite() && b.is_finite(), "pixel {i}: {a} {b}");
         if !pixels[i].valid {

@@ -181,3 +181,40 @@ fn signed_bias_and_black_pixels_on_known_images() {
         0.5 * signed_bias(&frame, &reference).unwrap()
     ));
 }
+
+/// Equal per-pixel RMSE, different structure: grain (each pixel its own error) reads about
+/// 1, blotches (one error per 8 × 8 tile) read 8. The low-frequency figure is the one that
+/// tells them apart.
+#[test]
+fn low_frequency_error_tells_blotches_from_grain() {
+    let (w, h) = (64u32, 48u32);
+    let image = |value: &dyn Fn(u32, u32) -> f32| LinearImage {
+        width: w,
+        height: h,
+        pixels: (0..w * h)
+            .map(|i| {
+                let v = 1.0 + value(i % w, i / w);
+                [v, v, v, 1.0]
+            })
+            .collect(),
+    };
+    let sign = |x: u32, y: u32| {
+        let mut k = x.wrapping_mul(0x9E37_79B9) ^ y.wrapping_mul(0x85EB_CA6B);
+        k ^= k >> 15;
+        k = k.wrapping_mul(0x2C1B_3C6D);
+        k ^= k >> 12;
+        if k & 1 == 0 { 0.1 } else { -0.1 }
+    };
+    let reference = image(&|_, _| 0.0);
+    let grain = image(&|x, y| sign(x, y));
+    let blotches = image(&|x, y| sign(x / 8, y / 8));
+    let g = luma_rmse(&grain, &reference).unwrap();
+    let b = luma_rmse(&blotches, &reference).unwrap();
+    assert!((g - b).abs() < 1e-6, "equal RMSE: {g} {b}");
+    let grain_c = error_correlation(&grain, &reference).unwrap();
+    let blotch_c = error_correlation(&blotches, &reference).unwrap();
+    // 48 tiles of 64 ±0.1 values: the tile means' RMS is 0.1/8 give or take ~40 %.
+    assert!((0.5..2.0).contains(&grain_c), "grain {grain_c}");
+    assert!((blotch_c - 8.0).abs() < 1e-3, "blotches {blotch_c}");
+    assert_eq!(error_correlation(&reference, &reference).unwrap(), 0.0);
+}

@@ -32,7 +32,7 @@ pub use compile::{
 pub use pass::PassDef;
 
 /// Every pass, in pipeline order (a layout is created for each; tests validate each).
-pub const ALL: [&PassDef; 29] = [
+pub const ALL: [&PassDef; 30] = [
     &gbuffer::RASTER,
     &gbuffer::RESOLVE,
     &presample::PASS,
@@ -48,6 +48,7 @@ pub const ALL: [&PassDef; 29] = [
     &pt::temporal::PASS,
     &pt::spatial::PASS,
     &pt::shade::PASS,
+    &denoise::gradient::PASS,
     &denoise::temporal::PASS,
     &denoise::variance::PASS,
     &denoise::atrous::PASS,

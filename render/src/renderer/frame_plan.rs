@@ -93,8 +93,10 @@ pub struct FrameSwitches {
     /// The boiling or survivor-change view is shown: the temporal window is kept and the
     /// view drawn over the display's output.
     pub temporal_window: bool,
-    /// The denoiser runs after shading (real-time frames), with this many à-trous passes.
+    /// The denoiser runs after shading (real-time frames), with this many à-trous passes,
+    /// with or without temporal gradients.
     pub denoise: bool,
+    pub denoise_gradients: bool,
     pub denoise_iterations: u32,
     /// Last frame left the denoiser a valid history.
     pub denoise_history: bool,
@@ -147,6 +149,9 @@ pub fn frame_plan(f: &FrameSwitches) -> Vec<Step> {
             } else {
                 0
             };
+            if f.denoise_gradients {
+                steps.push(Step::new(&denoise::gradient::PASS));
+            }
             steps.push(Step::new(&denoise::temporal::PASS).slots(slot..slot + 1));
             steps.push(Step::new(&denoise::variance::PASS));
             for i in 0..f.denoise_iterations.max(1) {
@@ -228,6 +233,7 @@ mod tests {
             gbuffer: true,
             pt: true,
             denoise: true,
+            denoise_gradients: true,
             denoise_iterations: 3,
             denoise_history: true,
             ..Default::default()
@@ -235,7 +241,8 @@ mod tests {
         let plan = frame_plan(&switches);
         let names: Vec<&str> = plan.iter().map(|s| s.pass.name).collect();
         let at = |name: &str| names.iter().position(|n| *n == name).unwrap();
-        assert!(at("pt shade") < at("denoise temporal"), "{names:?}");
+        assert!(at("pt shade") < at("denoise gradient"), "{names:?}");
+        assert!(at("denoise gradient") < at("denoise temporal"), "{names:?}");
         assert!(at("denoise modulate") < at("moments"), "{names:?}");
         let slots: Vec<_> = plan
             .iter()

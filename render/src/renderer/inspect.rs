@@ -5,7 +5,8 @@
 use super::inspect_pt::{PT_BYTES, PT_DEBUG_BYTES, PtInspection};
 use crate::gpu::readback::ReadbackRing;
 use crate::gpu_types::{
-    GpuGiPixelDebug, GpuGiReservoir, GpuPixelDebug, GpuReservoir, GpuSurface, NO_LIGHT,
+    GpuDenoiseHistory, GpuGiPixelDebug, GpuGiReservoir, GpuPixelDebug, GpuReservoir, GpuSurface,
+    NO_LIGHT,
 };
 use crate::shader_constants::*;
 
@@ -24,7 +25,11 @@ const GI_BYTES: u64 = GI_DEBUG_BYTES + MAX_GI_STAGES * GI_RESERVOIR_BYTES;
 const RADIANCE_BYTES: u64 = 16;
 /// Then ReSTIR PT's debug record and path probe (inspect_pt.rs).
 const PT_AT: u64 = DI_BYTES + GI_BYTES + RADIANCE_BYTES;
-pub const INSPECT_BYTES: u64 = PT_AT + PT_BYTES;
+/// Then the denoiser's history record and temporal gradient.
+const DENOISE_AT: u64 = PT_AT + PT_BYTES;
+const DENOISE_HISTORY_BYTES: u64 = std::mem::size_of::<GpuDenoiseHistory>() as u64;
+const GRADIENT_BYTES: u64 = 16;
+pub const INSPECT_BYTES: u64 = DENOISE_AT + DENOISE_HISTORY_BYTES + GRADIENT_BYTES;
 
 /// One stage's reservoir at the inspected pixel.
 #[derive(Clone, Debug, PartialEq)]
@@ -95,6 +100,27 @@ fn gi_bit_names(mask: u32) -> Vec<&'static str> {
         .collect()
 }
 
+/// The denoiser at the inspected pixel (present when it ran that frame).
+#[derive(Clone, Debug, PartialEq)]
+pub struct DenoiseInspection {
+    /// The temporal history after this frame: its length, the accumulated illumination and
+    /// the luminance moments.
+    pub history: GpuDenoiseHistory,
+    /// λ, the share of the neighbourhood's lighting that changed (0 with gradients off),
+    /// and the neighbourhood's shading before and now that it came from.
+    pub gradient: f32,
+    pub gradient_before: f32,
+    pub gradient_now: f32,
+}
+
+impl DenoiseInspection {
+    /// The standard deviation of the luminance over its mean, from the moments.
+    pub fn relative_sigma(&self) -> f32 {
+        let [m1, m2] = self.history.moments;
+        (m2 - m1 * m1).max(0.0).sqrt() / m1.max(1e-6)
+    }
+}
+
 /// Everything the inspector shows about one pixel in one frame.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PixelInspection {
@@ -106,8 +132,10 @@ pub struct PixelInspection {
     pub gi: Option<GiInspection>,
     /// ReSTIR PT's paths, per stage (present when PT ran that frame).
     pub pt: Option<PtInspection>,
-    /// The pixel's linear radiance this frame (the value the pixel history plots).
+    /// The pixel's linear radiance this frame (the value the pixel history plots; after
+    /// the denoiser when it runs).
     pub radiance: [f32; 3],
+    pub denoise: Option<DenoiseInspection>,
 }
 
 fn bit_names(mask: u32) -> Vec<&'static str> {
@@ -150,6 +178,7 @@ pub struct InspectCapture {
     gi_stages: Vec<String>,
     gi: bool,
     pt: bool,
+    denoise: bool,
 }
 
 /// A capture in flight: the stage names, waiting for its bytes.
@@ -159,6 +188,7 @@ pub struct PendingInspection {
     pub gi_stages: Vec<String>,
     pub gi: bool,
     pub pt: bool,
+    pub denoise: bool,
 }
 
 impl InspectCapture {
@@ -172,6 +202,7 @@ impl InspectCapture {
             gi_stages: Vec::new(),
             gi: false,
             pt: false,
+            denoise: false,
         }
     }
 
@@ -286,6 +317,7 @@ impl InspectCapture {
         surfaces: usize,
         gi: bool,
         pt: bool,
+        denoise_history: Option<usize>,
     ) {
         use crate::passes::gi::initial::GI_DEBUG;
         use crate::passes::pt::initial::{PT_DEBUG, PT_PROBE};
@@ -305,6 +337,18 @@ impl InspectCapture {
                 targets.pixels(&PT_DEBUG),
                 targets.pixels(&PT_PROBE),
             );
+        }
+        if let Some(buffer) = denoise_history {
+            use crate::passes::denoise::{GRADIENT, HISTORY};
+            self.denoise = true;
+            let history = targets.chain(&HISTORY, buffer);
+            let at = self.index * DENOISE_HISTORY_BYTES;
+            let to = DENOISE_AT;
+            encoder.copy_buffer_to_buffer(history, at, &self.staging, to, DENOISE_HISTORY_BYTES);
+            let at = self.index * GRADIENT_BYTES;
+            let to = DENOISE_AT + DENOISE_HISTORY_BYTES;
+            let gradient = targets.pixels(&GRADIENT);
+            encoder.copy_buffer_to_buffer(gradient, at, &self.staging, to, GRADIENT_BYTES);
         }
     }
 
@@ -357,6 +401,7 @@ impl InspectCapture {
             gi_stages: self.gi_stages,
             gi: self.gi,
             pt: self.pt,
+            denoise: self.denoise,
         }
     }
 }
@@ -433,6 +478,19 @@ impl PendingInspection {
                 .then(|| PtInspection::decode(&bytes[PT_AT as usize..]))
                 .flatten(),
             radiance: [radiance[0], radiance[1], radiance[2]],
+            denoise: self.denoise.then(|| {
+                let at = DENOISE_AT as usize;
+                let history =
+                    bytemuck::pod_read_unaligned(&bytes[at..at + DENOISE_HISTORY_BYTES as usize]);
+                let at = (DENOISE_AT + DENOISE_HISTORY_BYTES) as usize;
+                let g: [f32; 4] = bytemuck::pod_read_unaligned(&bytes[at..at + 16]);
+                DenoiseInspection {
+                    history,
+                    gradient: g[0],
+                    gradient_before: g[1],
+                    gradient_now: g[2],
+                }
+            }),
         })
     }
 }

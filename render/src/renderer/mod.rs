@@ -24,7 +24,9 @@ mod state;
 mod uniforms;
 mod window;
 
-pub use inspect::{GiInspection, GiStageReservoir, PixelInspection, StageReservoir};
+pub use inspect::{
+    DenoiseInspection, GiInspection, GiStageReservoir, PixelInspection, StageReservoir,
+};
 pub use inspect_pt::{PtInspection, PtStagePath, PtVertex};
 pub use prepare::{PreparedScene, ScenePreparer};
 pub use ray_bench::{RayKind, RayRate};

@@ -183,7 +183,8 @@ impl Renderer {
             realtime,
             gbuffer: realtime || !settings.jitter,
             light_tiles: realtime && effects.contains(Effect::LightTiles),
-            temporal: realtime && settings.temporal,
+            // DI's temporal pass also makes the denoiser's gradient samples.
+            temporal: realtime && (settings.temporal || settings.denoise_gradients_on()),
             spatial_passes: if spatial_on {
                 settings.spatial_passes.min(MAX_SPATIAL_PASSES)
             } else {
@@ -208,6 +209,7 @@ impl Renderer {
             bias_view: self.view.view == DebugView::Bias,
             temporal_window: self.view.view.uses_temporal_window(),
             denoise: realtime && settings.denoise,
+            denoise_gradients: settings.denoise_gradients_on(),
             denoise_iterations: settings.denoise_iterations.clamp(1, MAX_DENOISE_ITERATIONS),
             // A history only if last frame denoised, and nothing since invalidated it.
             denoise_history: self.history.history_valid
@@ -340,6 +342,10 @@ impl Renderer {
                 resolved.surfaces,
                 switches.gi,
                 switches.pt,
+                switches
+                    .denoise
+                    .then(|| resolved.finals.get(denoise::HISTORY.name).copied())
+                    .flatten(),
             );
         }
 

@@ -197,6 +197,7 @@ mod tests {
                             bias_view: !gi,
                             temporal_window: gi,
                             denoise: spatial_passes != 1,
+                            denoise_gradients: gi,
                             denoise_iterations: spatial_passes + 1,
                             denoise_history: temporal,
                             denoise_view: pt,

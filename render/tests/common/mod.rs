@@ -110,3 +110,15 @@ pub fn channel_means(img: &LinearImage) -> [f64; 3] {
     }
     sum.map(|s| s / img.pixels.len() as f64)
 }
+
+/// The region a scene change changed: the pixels whose reference luminance moved by more
+/// than 10 % of the larger of the two.
+pub fn changed_pixels(before: &LinearImage, after: &LinearImage) -> Vec<usize> {
+    let luma = |p: [f32; 4]| 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+    (0..before.pixels.len())
+        .filter(|&i| {
+            let (a, b) = (luma(before.pixels[i]), luma(after.pixels[i]));
+            (a - b).abs() > 0.1 * a.max(b) && a.max(b) > 0.0
+        })
+        .collect()
+}

@@ -5,7 +5,9 @@
 
 use egui::{RichText, Ui};
 use restir_render::gpu_types::{GpuSurface, NO_LIGHT};
-use restir_render::renderer::{GiInspection, GiStageReservoir, PixelInspection, StageReservoir};
+use restir_render::renderer::{
+    DenoiseInspection, GiInspection, GiStageReservoir, PixelInspection, StageReservoir,
+};
 use restir_render::shader_constants::*;
 
 use super::inspector_pt::pt_inspection;
@@ -89,6 +91,26 @@ pub fn inspection(ui: &mut Ui, i: &PixelInspection) {
         ui.separator();
         pt_inspection(ui, pt);
     }
+    if let Some(d) = &i.denoise {
+        ui.separator();
+        denoise_inspection(ui, d);
+    }
+}
+
+/// The denoiser at this pixel (docs/src/denoiser.md): how many frames its history holds,
+/// how noisy the luminance is by its moments, and the temporal gradient.
+fn denoise_inspection(ui: &mut Ui, d: &DenoiseInspection) {
+    ui.strong("Denoiser");
+    ui.label(format!(
+        "History: {} frames · illumination {} · σ/mean {:.3}",
+        d.history.length,
+        vec3(d.history.illumination),
+        d.relative_sigma()
+    ));
+    ui.label(format!(
+        "Temporal gradient λ {:.3} (neighbourhood shading {:.4e} last frame, {:.4e} now)",
+        d.gradient, d.gradient_before, d.gradient_now
+    ));
 }
 
 /// Behind transparent layers (docs/src/transparency.md, "Camera rays"): what this surface's

@@ -215,7 +215,9 @@ fn ramp_of(ui: &mut egui::Ui, low: &str, high: &str, color: fn(f32) -> Color32) 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use restir_render::shader_constants::{GI_REJECT_REASON_COUNT, REJECT_REASON_COUNT};
+    use restir_render::shader_constants::{
+        GI_REJECT_REASON_COUNT, REJECT_REASON_COUNT, SHARED_REJECT_CHECKS,
+    };
 
     #[test]
     fn palette_matches_the_shader_in_srgb() {
@@ -234,7 +236,8 @@ mod tests {
     /// The `vec3<f32>(r, g, b)` entries of the palette array inside WGSL function `name`.
     fn wgsl_palette(source: &str, name: &str) -> Vec<[f32; 3]> {
         let body = &source[source.find(&format!("fn {name}(")).expect("the function")..];
-        let array = &body[body.find("array<").unwrap()..body.find(");").unwrap()];
+        let start = body.find("array<").unwrap();
+        let array = &body[start..start + body[start..].find(");").unwrap()];
         vec3_literals(array)
             .into_iter()
             .map(|numbers| [numbers[0], numbers[1], numbers[2]])
@@ -273,8 +276,11 @@ mod tests {
     fn rejection_palettes_match_the_shaders() {
         let display = include_str!("../../../../shaders/display.wgsl");
         let gi_view = include_str!("../../../../shaders/gi/view.wgsl");
-        let di = wgsl_palette(display, "reason_color");
-        let gi = wgsl_palette(gi_view, "gi_reason_color");
+        let colours = include_str!("../../../../shaders/common/display_colors.wgsl");
+        let shared = wgsl_palette(colours, "check_color");
+        assert_eq!(shared.len(), SHARED_REJECT_CHECKS as usize);
+        let di = [shared.clone(), wgsl_palette(display, "reason_color")].concat();
+        let gi = [shared, wgsl_palette(gi_view, "gi_reason_color")].concat();
         assert_eq!(di.len(), REJECT_REASON_COUNT);
         assert_eq!(gi.len(), GI_REJECT_REASON_COUNT);
         for (bit, colour) in di.into_iter().enumerate() {

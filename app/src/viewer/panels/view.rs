@@ -131,6 +131,9 @@ fn describe(v: DebugView) -> &'static str {
         DebugView::DenoiseVariance => {
             "Denoiser: σ / mean of each pixel's luminance from its temporal moments, 0 to 1 (where the luminance gate blurs most)"
         }
+        DebugView::TemporalGradient => {
+            "Denoiser: λ, the share of the neighbourhood's lighting that changed since last frame (temporal gradients), 0 to 1; black where gradients are off"
+        }
         DebugView::Boiling => {
             "Where the image flickers: each pixel's σ/mean of luminance over the last 16 frames"
         }
@@ -190,6 +193,7 @@ fn legend(ui: &mut Ui, state: &mut ViewerState) {
             &format!("history cap ({})", state.settings.denoise_history_cap),
         ),
         DebugView::DenoiseVariance => ramp(ui, "σ/mean 0", "1"),
+        DebugView::TemporalGradient => ramp(ui, "λ 0 (unchanged)", "1 (all changed)"),
         DebugView::PtJacobian => {
             jacobian_legend(ui, PT_JACOBIAN_SATURATION);
             ui.weak("white: the pixel's own path (|J| = 1); black: no path");

@@ -8,6 +8,7 @@ use crate::gpu_types::GpuDenoiseHistory;
 use crate::passes::resources::{Allocation, Chain, PixelBuffer};
 
 pub mod atrous;
+pub mod gradient;
 pub mod modulate;
 pub mod temporal;
 pub mod variance;
@@ -25,6 +26,14 @@ pub const HISTORY: Chain = Chain {
 pub const FILTERED: Chain = Chain {
     name: "denoise filtered",
     stride: 16,
+};
+
+/// The temporal gradient: (λ, Σ shading last frame, Σ shading now, 0) per pixel, λ the
+/// share of the neighbourhood's shading that changed.
+pub const GRADIENT: PixelBuffer = PixelBuffer {
+    name: "denoise gradient",
+    stride: 16,
+    allocation: Allocation::Full,
 };
 
 /// The frame's radiance before denoising (the `denoise-input` view; the remodulation

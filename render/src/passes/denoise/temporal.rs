@@ -1,7 +1,7 @@
 //! Temporal accumulation (denoise/temporal.wgsl): this frame's demodulated illumination
 //! blended into last frame's, reprojected through the motion vectors.
 
-use super::HISTORY;
+use super::{GRADIENT, HISTORY};
 use crate::passes::pass::{Dispatch, PassDef, read, write};
 use crate::passes::resources::{RADIANCE, Resource::*, Role};
 
@@ -17,6 +17,7 @@ pub const PASS: PassDef = PassDef {
         read(Pixels(&RADIANCE)),
         read(Chain(&HISTORY, Role::History)),
         read(PassInfo),
+        read(Pixels(&GRADIENT)),
         write(Chain(&HISTORY, Role::Out)),
     ],
     dispatch: Dispatch::Pixels,

@@ -1,7 +1,7 @@
 //! The denoiser's debug views (denoise/view.wgsl), drawn over the display's output when
 //! one is selected and the denoiser runs.
 
-use super::{HISTORY, INPUT};
+use super::{GRADIENT, HISTORY, INPUT};
 use crate::passes::pass::{Dispatch, PassDef, read, write};
 use crate::passes::resources::{Resource::*, Role};
 
@@ -12,6 +12,7 @@ pub const PASS: PassDef = PassDef {
         read(Surfaces),
         read(Chain(&HISTORY, Role::In)),
         read(Pixels(&INPUT)),
+        read(Pixels(&GRADIENT)),
         read(DisplayUniform),
         write(Output),
     ],

@@ -68,6 +68,7 @@ pub(super) fn synthetic_inspection() -> PixelInspection {
         gi: None,
         pt: None,
         radiance: [0.5, 0.25, 0.125],
+        denoise: None,
     }
 }
 

@@ -52,6 +52,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if !pixel_in_frame(id) {
         return;
     }
-    let out = linear_to_srgb(bias_color(pixel_index(id.xy)));
-    textureStore(output, vec2<i32>(id.xy), vec4<f32>(out, 1.0));
+    store_display_color(id.xy, bias_color(pixel_index(id.xy)));
 }

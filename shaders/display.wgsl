@@ -110,12 +110,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let index = pixel_index(id.xy);
-    var out: vec3<f32>;
     if display.view == VIEW_FINAL {
-        out = linear_to_srgb(tonemap(image[index].rgb * display.scale));
+        store_display_color(id.xy, tonemap(image[index].rgb * display.scale));
     } else {
-        // Debug palettes are display colours already: only the sRGB encoding applies.
-        out = linear_to_srgb(debug_color(index, id.xy));
+        store_display_color(id.xy, debug_color(index, id.xy));
     }
-    textureStore(output, vec2<i32>(id.xy), vec4<f32>(out, 1.0));
 }

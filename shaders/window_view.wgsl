@@ -33,6 +33,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if !pixel_in_frame(id) {
         return;
     }
-    let index = pixel_index(id.xy);
-    textureStore(output, vec2<i32>(id.xy), vec4<f32>(linear_to_srgb(window_color(index)), 1.0));
+    store_display_color(id.xy, window_color(pixel_index(id.xy)));
 }

@@ -429,7 +429,7 @@ parameter_table! {
         denoise_phi_luminance: f32 = 4.0, ParamKind::Float { min: 0.01, max: 1000.0 }, "φ luminance",
             "Luminance edge-stopping: a neighbour's weight falls as e^(−|Δl| / (φ σ)), σ the standard deviation of the luminance difference (both pixels' variances). Larger blurs more.";
         denoise_phi_normal: f32 = 128.0, ParamKind::Float { min: 1.0, max: 1024.0 }, "φ normal",
-            "Normal edge-stopping exponent: weight max(0, n·n')^φ (128: 10° halves it). Larger keeps creases sharper.";
+            "Normal edge-stopping exponent: weight max(0, n·n')^φ (128: 6° halves it). Larger keeps creases sharper.";
         denoise_phi_depth: f32 = 1.0, ParamKind::Float { min: 0.01, max: 1000.0 }, "φ depth",
             "Depth edge-stopping: weight e^(−d / (φ · depth · pixel angle · taps apart)), d the neighbour's distance from this pixel's tangent plane; zero on one plane however steep. Larger blurs across silhouettes.";
     }

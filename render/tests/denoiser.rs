@@ -112,7 +112,7 @@ fn energy_ratio(planted: &[&str]) -> f64 {
 /// average, the filter's weights are normalised; what could lose energy is a luminance gate
 /// that treats bright and dark pixels unequally). Planted: the centre-only gate loses it.
 /// Rendering is deterministic (fixed seeds), so the two runs differ only by the gate:
-/// measured 1.0043 and 0.9964. Temporal accumulation leaves the filter little variance
+/// measured 1.0041 and 0.9966. Temporal accumulation leaves the filter little variance
 /// to be unequal about on a real scene; the model's firefly field shows the gate's effect
 /// at full size (render/src/denoise/tests.rs: 1.0001 against 0.960).
 #[test]

@@ -22,6 +22,13 @@ fn tonemap(c: vec3<f32>) -> vec3<f32> {
     }
 }
 
+// Writes a display colour (a palette entry, or an image already tonemapped) to the view's
+// output texture: only the sRGB encoding is left to apply. Every pass that includes this
+// file binds `output`, the RGBA8 display texture.
+fn store_display_color(pixel: vec2<u32>, color: vec3<f32>) {
+    textureStore(output, vec2<i32>(pixel), vec4<f32>(linear_to_srgb(color), 1.0));
+}
+
 // Viridis, 5-stop piecewise linear: dark purple (0) → yellow (1).
 fn heatmap(t_in: f32) -> vec3<f32> {
     let t = clamp(t_in, 0.0, 1.0) * 4.0;

@@ -117,7 +117,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if !pixel_in_frame(id) {
         return;
     }
-    let index = pixel_index(id.xy);
-    // Debug palettes and the tonemapped image are display colours: only sRGB encoding applies.
-    textureStore(output, vec2<i32>(id.xy), vec4<f32>(linear_to_srgb(pt_color(index)), 1.0));
+    store_display_color(id.xy, pt_color(pixel_index(id.xy)));
 }

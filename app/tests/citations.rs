@@ -26,7 +26,7 @@ fn root() -> PathBuf {
 }
 
 fn listed_files(root: &Path) -> Vec<String> {
-    let out = Command::new("git")
+    let listed = Command::new("git")
         .args([
             "ls-files",
             "-z",
@@ -35,14 +35,39 @@ fn listed_files(root: &Path) -> Vec<String> {
             "--exclude-standard",
         ])
         .current_dir(root)
-        .output()
-        .expect("run git ls-files (the check needs a git checkout)");
-    assert!(out.status.success(), "git ls-files failed");
-    String::from_utf8_lossy(&out.stdout)
-        .split('\0')
-        .filter(|f| !f.is_empty() && root.join(f).is_file()) // deleted but not yet staged
-        .map(String::from)
-        .collect()
+        .output();
+    match listed {
+        Ok(out) if out.status.success() => String::from_utf8_lossy(&out.stdout)
+            .split('\0')
+            .filter(|f| !f.is_empty() && root.join(f).is_file()) // deleted but not yet staged
+            .map(String::from)
+            .collect(),
+        // A checkout without git (an exported tree): every file below the root but the
+        // build output and hidden folders.
+        _ => {
+            let mut files = Vec::new();
+            walk(root, root, &mut files);
+            files
+        }
+    }
+}
+
+fn walk(root: &Path, dir: &Path, out: &mut Vec<String>) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let path = entry.path();
+        let name = entry.file_name().to_string_lossy().to_string();
+        if name.starts_with('.') || (dir == root && name == "target") {
+            continue;
+        }
+        if path.is_dir() {
+            walk(root, &path, out);
+        } else if let Ok(relative) = path.strip_prefix(root) {
+            out.push(relative.to_string_lossy().replace('\\', "/"));
+        }
+    }
 }
 
 /// mdBook's id for a heading: lower case, whitespace to '-', punctuation but '-' and '_' dropped.

@@ -16,6 +16,7 @@ pub mod gpu;
 pub mod gpu_scene;
 pub mod gpu_types;
 pub mod image;
+pub mod light_bvh;
 pub mod load_phases;
 pub mod metrics;
 pub mod passes;

@@ -2,6 +2,7 @@
 //! PRNG), diffuse materials are exactly Lambertian (`Material::diffuse`), and emitters light
 //! their front (counter-clockwise) side only unless double-sided.
 
+mod city;
 mod concourse;
 mod cornell;
 pub mod dynamic;
@@ -62,10 +63,15 @@ const SCENES: &[(&str, Generator)] = &[
     }),
 ];
 
-/// A room with a light count: `many-lights:N`, `many-lights-diffuse:N`,
-/// `dynamic:many-lights:N`.
+/// A scene with a light count: `many-lights:N`, `many-lights-diffuse:N`,
+/// `dynamic:many-lights:N`, `city:N` and `city-roofs:N` (N emissive triangles over a night
+/// city, seen from the street or over the roofs).
 type Room = fn(&str, usize) -> Scene;
-const FAMILIES: [(&str, Room); 3] = [
+const FAMILIES: [(&str, Room); 5] = [
+    ("city:", |name, n| city::city(name, n, city::View::Street)),
+    ("city-roofs:", |name, n| {
+        city::city(name, n, city::View::Roofs)
+    }),
     ("many-lights:", |name, n| {
         many_lights_room(name, n, glossy_floor())
     }),
@@ -116,7 +122,7 @@ pub fn builtin_scene(name: &str) -> Result<Scene, SceneError> {
         name: name.to_string(),
         detail: format!(
             "unknown built-in scene (known: {}, many-lights:N, many-lights-diffuse:N, \
-             dynamic:many-lights:N)",
+             dynamic:many-lights:N, city:N, city-roofs:N)",
             builtin_names().join(", ")
         ),
     })

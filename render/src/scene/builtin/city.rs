@@ -119,8 +119,12 @@ pub(super) fn city(name: &str, n: usize, view: View) -> Scene {
         ))
     };
 
-    // Street lamps: 0.6 m squares 8 m up, facing down, along both kerbs of every street.
-    let lamp_half = 0.3;
+    // Every light has a slot of its own: emitters that overlap in one plane are ill-defined
+    // (a ray meets one of them, a shadow ray to either passes), and at a million lights
+    // randomly placed ones would overlap by the thousand. Where a kind has more lights than
+    // slots at its full size, its slots (and lights) shrink until they all fit.
+    let lamp_slots = street_slots(lamps);
+    let lamp_half = 0.3 * lamp_slots.scale;
     let lamp = emitter(
         &mut b,
         "street lamp",
@@ -128,57 +132,50 @@ pub(super) fn city(name: &str, n: usize, view: View) -> Scene {
         4.0 * lamp_half * lamp_half,
         power_of(0),
     );
-    for _ in 0..lamps {
-        let street = street_centre((rng.next_u64() % (BLOCKS as u64 + 1)) as usize);
-        let kerb = if rng.next_f32() < 0.5 { -1.0 } else { 1.0 } * (STREET / 2.0 - 1.0);
-        let along = rng.range(-HALF + 1.0, HALF - 1.0);
-        let centre = if rng.next_f32() < 0.5 {
-            Vec3::new(street + kerb, 8.0, along)
-        } else {
-            Vec3::new(along, 8.0, street + kerb)
-        };
-        // x × z = -y: facing down.
-        b.rect(centre, Vec3::X * lamp_half, Vec3::Z * lamp_half, lamp);
+    for slot in pick(&mut rng, lamp_slots.centres.len(), lamps) {
+        // x × z = -y: facing down, 8 m over the street.
+        b.rect(
+            lamp_slots.centres[slot],
+            Vec3::X * lamp_half,
+            Vec3::Z * lamp_half,
+            lamp,
+        );
     }
 
-    // Lit windows (1.2 × 1.6 m) and signs (3 × 1 m, low on the facade), 0.05 m proud of a
-    // facade and facing out of it.
+    // Lit windows (1.2 × 1.6 m, from 7 m up) and signs (3 × 1 m, between 2.5 and 6.5 m),
+    // 0.05 m proud of a facade and facing out of it.
+    let window_slots = facade_slots(&blocks, 7.0, 1.0, (1.6, 2.2), windows);
+    let sign_slots = facade_slots(&blocks, 2.5, -6.5, (3.5, 1.3), signs);
+    let (ww, wh) = (0.6 * window_slots.scale, 0.8 * window_slots.scale);
+    let (sw, sh) = (1.5 * sign_slots.scale, 0.5 * sign_slots.scale);
     let window_colours: Vec<u32> = WINDOW_COLOURS
         .iter()
-        .map(|&c| emitter(&mut b, "window", c, 1.2 * 1.6, power_of(1)))
+        .map(|&c| emitter(&mut b, "window", c, 4.0 * ww * wh, power_of(1)))
         .collect();
     let sign_colours: Vec<u32> = SIGN_COLOURS
         .iter()
-        .map(|&c| emitter(&mut b, "sign", c, 3.0, power_of(2)))
+        .map(|&c| emitter(&mut b, "sign", c, 4.0 * sw * sh, power_of(2)))
         .collect();
-    for k in 0..windows + signs {
-        let sign = k >= windows;
-        let building = &blocks[(rng.next_u64() % blocks.len() as u64) as usize];
-        let (w, h) = if sign { (1.5, 0.5) } else { (0.6, 0.8) };
-        let height = if sign {
-            rng.range(3.0, 6.0)
+    let chosen_windows = pick(&mut rng, window_slots.centres.len(), windows);
+    let chosen_signs = pick(&mut rng, sign_slots.centres.len(), signs);
+    let placed = chosen_windows
+        .into_iter()
+        .map(|k| (false, k))
+        .chain(chosen_signs.into_iter().map(|k| (true, k)));
+    for (sign, k) in placed {
+        let (slots, (w, h), palette) = if sign {
+            (&sign_slots, (sw, sh), &sign_colours)
         } else {
-            rng.range(2.0, (2.0 * building.half.y - 2.0).max(2.5))
+            (&window_slots, (ww, wh), &window_colours)
         };
-        // One of the four walls: its outward normal and the axis along it.
-        let (normal, along) = match rng.next_u64() % 4 {
-            0 => (Vec3::X, Vec3::Z),
-            1 => (Vec3::NEG_X, Vec3::Z),
-            2 => (Vec3::Z, Vec3::X),
-            _ => (Vec3::NEG_Z, Vec3::X),
-        };
-        let reach = building.half.dot(along.abs()) - w - 0.5;
-        let offset = building.half.dot(normal.abs()) + 0.05;
-        let centre = Vec3::new(building.centre.x, height, building.centre.z)
-            + normal * offset
-            + along * rng.range(-reach, reach);
+        let (centre, normal) = (slots.centres[k], slots.normals[k]);
+        let along = Vec3::Y.cross(normal);
         // u × v = normal: u along the wall, v up or down so that the front faces out.
         let (u, v) = if along.cross(Vec3::Y).dot(normal) > 0.0 {
             (along * w, Vec3::Y * h)
         } else {
             (Vec3::Y * h, along * w)
         };
-        let palette = if sign { &sign_colours } else { &window_colours };
         let material = palette[(rng.next_u64() % palette.len() as u64) as usize];
         b.rect(centre, u, v, material);
     }
@@ -188,6 +185,107 @@ pub(super) fn city(name: &str, n: usize, view: View) -> Scene {
         scene.triangles.pop();
     }
     scene
+}
+
+/// Light slots: their centres (and for facades their outward normals), and how much the
+/// lights in them are scaled down from their full size to fit.
+struct Slots {
+    centres: Vec<Vec3>,
+    normals: Vec<Vec3>,
+    scale: f32,
+}
+
+/// The largest scale ≤ 1, in steps of 0.9×, at which `slots(scale)` holds `count`.
+fn fitting(count: usize, slots: impl Fn(f32) -> Slots) -> Slots {
+    let mut scale = 1.0f32;
+    loop {
+        let s = slots(scale);
+        if s.centres.len() >= count || scale < 1e-3 {
+            return s;
+        }
+        scale *= 0.9;
+    }
+}
+
+/// A grid over the streets 8 m up, pitch 4 m at full size (intersections once).
+fn street_slots(count: usize) -> Slots {
+    fitting(count, |scale| {
+        let pitch = 4.0 * scale;
+        let mut centres = Vec::new();
+        let across = (STREET / pitch).floor().max(1.0) as usize;
+        let length = ((2.0 * HALF) / pitch).floor() as usize;
+        for street in 0..=BLOCKS {
+            let x0 = street_centre(street) - STREET / 2.0;
+            for a in 0..across {
+                let x = x0 + (a as f32 + 0.5) * STREET / across as f32;
+                for l in 0..length {
+                    let z = -HALF + (l as f32 + 0.5) * pitch;
+                    // Streets along z own the intersections; along x, skip them.
+                    centres.push(Vec3::new(x, 8.0, z));
+                    let in_street =
+                        (0..=BLOCKS).any(|s| (z - street_centre(s)).abs() < STREET / 2.0);
+                    if !in_street {
+                        centres.push(Vec3::new(z, 8.0, x));
+                    }
+                }
+            }
+        }
+        let normals = vec![Vec3::NEG_Y; centres.len()];
+        Slots {
+            centres,
+            normals,
+            scale,
+        }
+    })
+}
+
+/// A grid on every building's four walls between `low` m and `top` (a height above the
+/// ground if negative, else metres below the roof), cells `cell` (along, up) at full size.
+fn facade_slots(blocks: &[Building], low: f32, top: f32, cell: (f32, f32), count: usize) -> Slots {
+    fitting(count, |scale| {
+        let (pw, ph) = (cell.0 * scale, cell.1 * scale);
+        let (mut centres, mut normals) = (Vec::new(), Vec::new());
+        for building in blocks {
+            let high = if top < 0.0 {
+                -top
+            } else {
+                2.0 * building.half.y - top
+            };
+            let rows = ((high - low) / ph).floor().max(0.0) as usize;
+            for normal in [Vec3::X, Vec3::NEG_X, Vec3::Z, Vec3::NEG_Z] {
+                let along = Vec3::Y.cross(normal);
+                let width = 2.0 * building.half.dot(along.abs()) - 1.0;
+                let cols = (width / pw).floor().max(0.0) as usize;
+                let offset = building.half.dot(normal.abs()) + 0.05;
+                for c in 0..cols {
+                    for r in 0..rows {
+                        let a = -width / 2.0 + (c as f32 + 0.5) * pw;
+                        let y = low + (r as f32 + 0.5) * ph;
+                        let base = Vec3::new(building.centre.x, y, building.centre.z);
+                        centres.push(base + normal * offset + along * a);
+                        normals.push(normal);
+                    }
+                }
+            }
+        }
+        Slots {
+            centres,
+            normals,
+            scale,
+        }
+    })
+}
+
+/// `count` distinct indices of `0..slots` in random order (a partial Fisher–Yates shuffle).
+fn pick(rng: &mut SplitMix64, slots: usize, count: usize) -> Vec<usize> {
+    let mut all: Vec<usize> = (0..slots).collect();
+    let count = count.min(slots);
+    for i in 0..count {
+        let j = i + (rng.next_u64() % (slots - i) as u64) as usize;
+        all.swap(i, j);
+    }
+    all.truncate(count);
+    all
 }
 
 fn camera(view: View) -> Camera {
@@ -254,6 +352,39 @@ mod tests {
                     && c.y < 9.9
             });
             assert!(!inside, "a light inside a building at {c}");
+        }
+    }
+
+    /// No two lights overlap, at any N: every light has a slot of its own (overlapping
+    /// emitters in one plane are ill-defined: a ray meets one, a shadow ray passes both).
+    #[test]
+    fn no_two_lights_overlap() {
+        for n in [4096usize, 60_000] {
+            let s = city("city", n, View::Street);
+            // Each quad's centre (its two triangles share the diagonal's midpoint).
+            let mut centres: Vec<(Vec3, f32)> = s
+                .triangles
+                .chunks(2)
+                .filter(|t| t.len() == 2 && s.materials[t[0].material as usize].is_emissive())
+                .map(|t| {
+                    let p = t[0].indices.map(|i| s.vertices[i as usize].position);
+                    let size = (p[1] - p[0]).length().min((p[2] - p[1]).length());
+                    ((p[0] + p[2]) / 2.0, size)
+                })
+                .collect();
+            centres.sort_by(|a, b| a.0.x.total_cmp(&b.0.x));
+            for (i, &(a, size)) in centres.iter().enumerate() {
+                for &(b, other) in centres[i + 1..].iter().take_while(|(b, _)| b.x - a.x < 4.0) {
+                    let gap = (a - b).abs();
+                    // Two quads in one plane overlap when their centres are closer than a side
+                    // along the plane; 0.9 of the smaller side leaves rounding room.
+                    let same_plane = gap.min_element() < 1e-3;
+                    assert!(
+                        !same_plane || gap.max_element() >= 0.9 * size.min(other),
+                        "N = {n}: lights at {a} and {b} overlap"
+                    );
+                }
+            }
         }
     }
 }

@@ -4,6 +4,8 @@
 #include "common/frame_bindings.wgsl"
 #include "common/math.wgsl"
 #include "common/display_colors.wgsl"
+#include "common/rng.wgsl"
+#include "common/regir_grid.wgsl"
 
 @group(2) @binding(0) var<storage, read> image: array<vec4<f32>>;
 @group(2) @binding(1) var<storage, read> surfaces: array<Surface>;
@@ -92,6 +94,17 @@ fn debug_color(index: u32, pixel: vec2<u32>) -> vec3<f32> {
                 return vec3<f32>(0.0);
             }
             return heatmap((log2(d.weight) * 0.30103 + 4.0) / 8.0);
+        }
+        case VIEW_PROPOSER: { return proposer_color(d.proposer); }
+        case VIEW_USEFUL_CANDIDATES: { return heatmap(d.useful_candidates); }
+        case VIEW_REGIR_CELL: {
+            // A colour per cell (hashed), black outside the grid.
+            let cell = regir_cell_at(s.position);
+            if cell == REGIR_NO_CELL {
+                return vec3<f32>(0.0);
+            }
+            let h = pcg_hash(cell);
+            return vec3<f32>(f32(h & 255u), f32((h >> 8u) & 255u), f32((h >> 16u) & 255u)) / 255.0 * 0.8 + 0.2;
         }
         case VIEW_NORMALS: { return oct_decode(s.normal) * 0.5 + 0.5; }
         case VIEW_ALBEDO: { return unpack4x8unorm(s.base_color_metallic).rgb; }

@@ -386,10 +386,10 @@ fn the_split_image_halves_match_single_configuration_renders() {
     assert!(String::from_utf8_lossy(&bad.stderr).contains("--compare 'magic'"));
 }
 
-/// `light_tiles=auto` (the default; docs/src/ris.md, "Light tiles") presamples tiles only from the
-/// measured break-even light count on; the stats JSON says which and why.
+/// `light_sampler=auto` (the default; docs/src/light-samplers.md) presamples tiles only from
+/// the measured break-even light count on; the stats JSON says which and why.
 #[test]
-fn light_tiles_auto_drops_tiles_for_few_lights_and_keeps_them_for_many() {
+fn light_sampler_auto_drops_tiles_for_few_lights_and_keeps_them_for_many() {
     let dir = temp_dir("tiles");
     let effects_of = |scene: &str, extra: &[&str]| {
         let stats = dir.join("stats.json");
@@ -418,8 +418,8 @@ fn light_tiles_auto_drops_tiles_for_few_lights_and_keeps_them_for_many() {
     assert!(why.contains("2 lights <"), "{why}");
     let (many, why) = effects_of("builtin:many-lights:65536", &[]);
     assert!(many, "many-lights:65536 drops tiles: {why}");
-    let (forced, _) = effects_of("builtin:cornell", &["--set", "light_tiles=on"]);
-    assert!(forced, "light_tiles=on forces them");
+    let (forced, _) = effects_of("builtin:cornell", &["--set", "light_sampler=tiles"]);
+    assert!(forced, "light_sampler=tiles forces them");
 }
 
 #[test]

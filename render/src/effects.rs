@@ -9,14 +9,53 @@ use std::collections::BTreeSet;
 use std::fmt;
 
 use crate::scene::{AlphaMode, Scene};
-use crate::settings::{LightTiles, Settings};
+use crate::settings::{LightSampler, Settings};
 use crate::shader_constants::{LIGHT_TILE_COUNT, LIGHT_TILE_SIZE};
 
-/// The light count from which `light_tiles=auto` presamples light tiles. Below it the
+/// The light count from which `light_sampler=auto` presamples light tiles. Below it the
 /// fixed cost of presampling LIGHT_TILE_COUNT × LIGHT_TILE_SIZE lights every frame exceeds
 /// what the smaller working set saves; measured by the tiles on/off sweep over
 /// `builtin:many-lights:N` (docs/bench.md, "Light tiles: where they pay").
 pub const LIGHT_TILES_BREAK_EVEN: usize = 16384;
+
+/// `light_sampler=auto` takes the light BVH for scenes whose lights spread over at least
+/// this many metres (glTF's unit) and number at least `LIGHT_BVH_MIN_LIGHTS`: a street or a
+/// city, where each point is lit by the few lights near it. Measured on `city:N` (2^10 to
+/// 2^20 lights over 572 m: the BVH ahead at equal time at every N) against
+/// `many-lights:65536` (a 12 m room) and `concourse` (its lights within about 60 m), where it
+/// does not pay (docs/bench.md, "Light samplers at scale").
+pub const LIGHT_BVH_MIN_EXTENT_M: u32 = 100;
+pub const LIGHT_BVH_MIN_LIGHTS: usize = 1024;
+
+/// The sampler `choice` means for a scene, and why: `auto` by the measurements
+/// (docs/bench.md, "Light tiles: where they pay" and "Light samplers at scale").
+pub fn resolve_light_sampler(f: &SceneFeatures, choice: LightSampler) -> (LightSampler, String) {
+    let lights = f.emissive_triangles + f.punctual_lights;
+    match choice {
+        LightSampler::Auto
+            if f.light_extent_m >= LIGHT_BVH_MIN_EXTENT_M && lights >= LIGHT_BVH_MIN_LIGHTS =>
+        {
+            (
+                LightSampler::Bvh,
+                format!(
+                    "auto: {lights} lights spread over {} m ≥ {LIGHT_BVH_MIN_EXTENT_M} m, where each point sees the few near it",
+                    f.light_extent_m
+                ),
+            )
+        }
+        LightSampler::Auto if lights >= LIGHT_TILES_BREAK_EVEN => (
+            LightSampler::Tiles,
+            format!("auto: {lights} lights ≥ {LIGHT_TILES_BREAK_EVEN}, where presampling pays"),
+        ),
+        LightSampler::Auto => (
+            LightSampler::Power,
+            format!(
+                "auto: {lights} lights < {LIGHT_TILES_BREAK_EVEN}: presampling would cost more than it saves"
+            ),
+        ),
+        other => (other, format!("light_sampler={}", other.name())),
+    }
+}
 
 /// What effect detection needs to know about a scene, counted once at load time.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -42,6 +81,9 @@ pub struct SceneFeatures {
     pub environment: bool,
     /// The scene has an animation (moving geometry or changing lights).
     pub animated: bool,
+    /// The diagonal of the box around every light with a position, in whole metres: how
+    /// far the lights spread (`resolve_light_sampler`).
+    pub light_extent_m: u32,
 }
 
 impl SceneFeatures {
@@ -86,8 +128,36 @@ impl SceneFeatures {
             can_occlude: can_occlude(scene),
             environment: scene.environment.is_some(),
             animated: scene.animation.is_some(),
+            light_extent_m: light_extent(scene).min(u32::MAX as f32) as u32,
         }
     }
+}
+
+/// The diagonal of the box around the emissive triangles and the point and spot lights.
+fn light_extent(scene: &Scene) -> f32 {
+    let mut lo = glam::Vec3::splat(f32::INFINITY);
+    let mut hi = glam::Vec3::splat(f32::NEG_INFINITY);
+    let mut add = |p: glam::Vec3| {
+        if p.is_finite() {
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+    };
+    for (t, tri) in scene.triangles.iter().enumerate() {
+        let emits = scene
+            .materials
+            .get(tri.material as usize)
+            .is_some_and(|m| m.is_emissive());
+        if emits {
+            scene.triangle_positions(t).into_iter().for_each(&mut add);
+        }
+    }
+    for p in &scene.punctual_lights {
+        if p.kind != crate::scene::PunctualKind::Directional {
+            add(p.position);
+        }
+    }
+    if lo.x > hi.x { 0.0 } else { (hi - lo).length() }
 }
 
 /// Emissive triangles, counting those of animated materials dark at load time: a light
@@ -182,6 +252,10 @@ effect_table! {
     Motion => "MOTION", "motion";
     BsdfCandidates => "BSDF_CANDIDATES", "bsdf-candidates";
     LightTiles => "LIGHT_TILES", "light-tiles";
+    /// ReGIR's cells of presampled lights (docs/src/light-samplers.md).
+    Regir => "REGIR", "regir";
+    /// The light BVH (docs/src/light-samplers.md).
+    LightBvh => "LIGHT_BVH", "light-bvh";
     Environment => "ENVIRONMENT", "environment";
     Animation => "ANIMATION", "animation";
 }
@@ -393,29 +467,32 @@ impl EffectSet {
                 "no emissive triangles or environment for BSDF rays to hit".into()
             },
         );
-        let lights = f.emissive_triangles + f.punctual_lights;
-        let (tiles, why) = match settings.light_tiles {
-            _ if !has_lights => (false, "no lights to presample".to_string()),
-            LightTiles::On => (true, "light tiles forced on".to_string()),
-            LightTiles::Off => (false, "light tiles off".to_string()),
-            LightTiles::Auto if lights >= LIGHT_TILES_BREAK_EVEN => (
-                true,
-                format!("{lights} lights ≥ {LIGHT_TILES_BREAK_EVEN}, where presampling pays"),
-            ),
-            LightTiles::Auto => (
-                false,
-                format!(
-                    "{lights} lights < {LIGHT_TILES_BREAK_EVEN}: presampling would cost more than it saves"
-                ),
-            ),
+        let (sampler, why) = resolve_light_sampler(f, settings.light_sampler);
+        let (sampler, why) = if has_lights {
+            (sampler, why)
+        } else {
+            (LightSampler::Power, "no lights to sample".to_string())
         };
         let tile_shape =
             format!("{LIGHT_TILE_COUNT} × {LIGHT_TILE_SIZE} presampled lights per frame");
+        let other = format!("the light sampler is {}: {why}", sampler.name());
         decide(
             Effect::LightTiles,
-            tiles,
+            sampler == LightSampler::Tiles,
             format!("light tiles ({tile_shape}): {why}"),
-            why,
+            other.clone(),
+        );
+        decide(
+            Effect::Regir,
+            sampler == LightSampler::Regir,
+            format!("ReGIR cells around the camera: {why}"),
+            other.clone(),
+        );
+        decide(
+            Effect::LightBvh,
+            sampler == LightSampler::Bvh,
+            format!("a light BVH: {why}"),
+            other,
         );
         decide(
             Effect::Environment,

@@ -17,8 +17,8 @@ pub use records::oct_encode;
 pub use update::SceneUpdateTimes;
 
 use records::{
-    geometry_kind, gpu_materials, light_areas, light_geometry, light_slots, texture_records,
-    triangle_records,
+    LightShape, geometry_kind, gpu_materials, light_areas, light_geometry, light_shapes,
+    light_slots, texture_records, triangle_records,
 };
 
 use std::time::Instant;
@@ -146,6 +146,15 @@ pub struct GpuScene {
     light_geometry_kinds: Vec<Option<(bool, u32)>>,
     /// A directional light's power depends on the scene's size: any motion rebuilds.
     directional: bool,
+    /// Per light entry, what a light sampler needs beside its geometry (`LightShape`).
+    light_shapes: Vec<LightShape>,
+    /// Σ select_pdf over the lights with a position (not the environment, not directional):
+    /// what the light BVH's PDF is scaled by (docs/src/light-samplers.md).
+    finite_light_share: f32,
+    /// Bumped when the lights' powers change (the light table is rebuilt) and when they
+    /// move: a light BVH rebuilds on the first, refits on the second.
+    pub light_power_generation: u64,
+    pub light_motion_generation: u64,
     /// Dynamic scenes (`rebuild.rs`): the BVH order light slots were assigned in at upload
     /// (a slot is its triangle's identity for the animation, whatever the tree's order
     /// now), the SAH cost of the tree when last built, and CPU mirrors of the current and
@@ -182,6 +191,15 @@ fn node_capacity(scene: &Scene, bvh: &Bvh) -> Vec<GpuBvhNode> {
         nodes.resize(most.max(nodes.len()), GpuBvhNode::default());
     }
     nodes
+}
+
+/// Σ select_pdf over the lights with a position.
+fn finite_share(pdfs: &[f32], shapes: &[LightShape]) -> f32 {
+    pdfs.iter()
+        .zip(shapes)
+        .filter(|(_, shape)| **shape != LightShape::Infinite)
+        .map(|(pdf, _)| f64::from(*pdf))
+        .sum::<f64>() as f32
 }
 
 /// A storage buffer with at least one element (WebGPU forbids empty bindings).
@@ -248,6 +266,15 @@ impl GpuScene {
         let (textures, texels) = texture_records(scene);
         let materials = gpu_materials(scene);
         let light_geometry = light_geometry(&lights, &triangles);
+        let light_shapes = light_shapes(&lights, &triangles, &materials);
+        let finite_light_share = finite_share(
+            &lights
+                .lights
+                .iter()
+                .map(|l| l.select_pdf)
+                .collect::<Vec<_>>(),
+            &light_shapes,
+        );
         let buffers = SceneBuffers {
             triangles: storage_buffer(gpu, "triangles", &triangles),
             shading: storage_buffer(gpu, "triangle shading", &shading),
@@ -419,6 +446,10 @@ impl GpuScene {
             light_areas,
             light_geometry_kinds,
             directional,
+            light_shapes,
+            finite_light_share,
+            light_power_generation: 0,
+            light_motion_generation: 0,
             light_entries: lights.entries,
             slot_order: bvh.triangle_order.clone(),
             built_sah: bvh.sah_cost(),
@@ -474,6 +505,7 @@ impl GpuScene {
         gpu.queue
             .write_buffer(&self.buffers.lights, 0, bytemuck::cast_slice(&table));
         self.light_pdfs = table.iter().map(|l| l.select_pdf).collect();
+        self.finite_light_share = finite_share(&self.light_pdfs, &self.light_shapes);
         if let Some(info) = self.info.environment.as_mut() {
             info.light_share = table
                 .get(self.environment_light as usize)
@@ -486,6 +518,35 @@ impl GpuScene {
     pub fn environment_direction(&self, light: u32, uv: [f32; 2]) -> Option<[f32; 3]> {
         (light == self.environment_light && light != NO_LIGHT)
             .then(|| crate::environment::uv_to_direction(uv, self.environment_rotation).into())
+    }
+
+    /// Σ select_pdf over the lights with a position (`finite_light_share` of the frame).
+    pub fn finite_light_share(&self) -> f32 {
+        self.finite_light_share
+    }
+
+    /// Each light entry as a light sampler's structure sees it (`light_sampler.rs`): its
+    /// corners (a punctual light's position three times), power and sidedness, or `None`
+    /// for an infinite light (the environment, a directional light).
+    pub fn light_sampler_lights(&self) -> Vec<Option<crate::light_bvh::EmissiveTriangle>> {
+        self.light_shapes
+            .iter()
+            .zip(&self.light_geometry)
+            .zip(&self.light_entries)
+            .map(|((shape, geometry), (_, power))| {
+                let p = (*geometry)?;
+                let two_sided = match shape {
+                    LightShape::Infinite => return None,
+                    LightShape::OneSided => false,
+                    LightShape::TwoSided => true,
+                };
+                Some(crate::light_bvh::EmissiveTriangle {
+                    p,
+                    power: *power as f32,
+                    two_sided,
+                })
+            })
+            .collect()
     }
 
     /// The world position of light sample (light, uv), as `light_point` in lights.wgsl.

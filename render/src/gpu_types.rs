@@ -187,6 +187,46 @@ pub struct GpuTileSample {
     pub flags: u32,
 }
 
+/// A node of the light BVH (light_bvh.wgsl; built by `light_sampler.rs` from the plain-Rust
+/// `LightBvh`): what its lights' positions, directions and power are bounded by. An
+/// interior node's first child is the next node, `child_or_light` the second; a leaf has
+/// `LIGHT_BVH_LEAF | light`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuLightBvhNode {
+    pub min: [f32; 3],
+    pub phi: f32,
+    pub max: [f32; 3],
+    pub child_or_light: u32,
+    /// The normals' cone: octahedral axis, cos θ_o (widened a little for the encoding).
+    pub axis: u32,
+    pub cos_theta_o: f32,
+    /// cos θ_e: how far past its normal a light emits (0: 90°).
+    pub cos_theta_e: f32,
+    pub _pad: u32,
+}
+
+/// Per light entry: its branch choices from the root (bit k: the second child at depth k)
+/// and how deep its leaf is (`LIGHT_BVH_NOT_IN_TREE`: no leaf).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuLightBvhTrail {
+    pub bits: [u32; 2],
+    pub depth: u32,
+    pub _pad: u32,
+}
+
+/// One ReGIR slot (regir_fill.wgsl): a light sample resampled toward its cell's target and
+/// its contribution weight W = w_sum / (M p̂_cell(y)), per unit area (docs/src/light-samplers.md,
+/// "ReGIR"); W = 0 for an empty slot.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuRegirSlot {
+    pub light: u32,
+    pub weight: f32,
+    pub uv: [f32; 2],
+}
+
 /// Per-pixel surface written by the G-buffer resolve pass and kept one frame for
 /// temporal validation (docs/src/temporal-reuse.md, "Validation").
 #[repr(C)]
@@ -244,6 +284,10 @@ pub struct GpuPixelDebug {
     /// last frame (p̂·W at the previous pixel) and now (p̂·V·W here); 0, 0 where it had none
     /// (docs/src/denoiser.md, "Temporal gradients").
     pub gradient: [f32; 2],
+    /// The initial pass: which strategy proposed its survivor (`PROPOSER_*`), and the share
+    /// of its light candidates with a non-zero unshadowed contribution.
+    pub proposer: u32,
+    pub useful_candidates: f32,
 }
 
 /// Uniforms that change every frame.
@@ -274,7 +318,9 @@ pub struct GpuFrame {
     /// The pixel inspector's pixel (y · width + x), or `NO_INSPECT_PIXEL`: the PT passes
     /// write that pixel's path into the path probe.
     pub inspect_pixel: u32,
-    pub _pad: u32,
+    /// Σ select_pdf over the lights with a position: the light BVH's share of a light
+    /// sample (docs/src/light-samplers.md, "The light BVH").
+    pub finite_light_share: f32,
 }
 
 /// Pipeline parameters as the shaders see them (built from `Settings`).
@@ -326,7 +372,14 @@ pub struct GpuParams {
     pub denoise_phi_normal: f32,
     pub denoise_phi_depth: f32,
     pub denoise_history_cap: f32,
-    pub _denoise_pad: [u32; 2],
+    /// ReGIR (settings `regir_*`; docs/src/light-samplers.md): cells per side, slots per
+    /// cell (as used), cell side as a fraction of `scene_scale`, build samples, jitter.
+    pub regir_grid: u32,
+    pub regir_slots: u32,
+    pub regir_cell_size: f32,
+    pub regir_build_samples: u32,
+    pub regir_jitter: f32,
+    pub _regir_pad: [u32; 3],
 }
 
 /// What the display pass shows and how (view settings, not pipeline parameters).

@@ -17,6 +17,7 @@ pub mod gpu_scene;
 pub mod gpu_types;
 pub mod image;
 pub mod light_bvh;
+pub mod light_sampler;
 pub mod load_phases;
 pub mod metrics;
 pub mod passes;

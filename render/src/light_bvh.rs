@@ -80,10 +80,13 @@ pub struct LightBounds {
 }
 
 /// One emissive triangle: its corners and its power (emitted flux, any consistent unit).
+/// A punctual light is its position three times (no normal: it emits all around).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EmissiveTriangle {
     pub p: [Vec3; 3],
     pub power: f32,
+    /// Emits from both faces (a double-sided material).
+    pub two_sided: bool,
 }
 
 impl EmissiveTriangle {
@@ -97,13 +100,18 @@ impl EmissiveTriangle {
         (self.p[0] + self.p[1] + self.p[2]) / 3.0
     }
 
-    /// A one-sided emitter: it emits into the hemisphere of its normal.
+    /// A one-sided emitter emits into the hemisphere of its normal; a two-sided one (or a
+    /// point) all around: its normals' cone is the whole sphere.
     pub fn bounds(&self) -> LightBounds {
         LightBounds {
             min: self.p[0].min(self.p[1]).min(self.p[2]),
             max: self.p[0].max(self.p[1]).max(self.p[2]),
             phi: self.power.max(0.0),
-            normals: DirectionCone::around(self.normal()),
+            normals: if self.two_sided {
+                DirectionCone::entire_sphere()
+            } else {
+                DirectionCone::around(self.normal())
+            },
             cos_theta_e: 0.0,
         }
     }
@@ -222,7 +230,8 @@ impl Node {
 pub struct LightBvh {
     pub nodes: Vec<Node>,
     pub trails: Vec<(u64, u32)>,
-    /// Lights with no power are not in the tree (their PDF is 0).
+    /// Lights with a non-finite corner or power are not in the tree (their PDF is 0). A
+    /// light with no power is, with PDF 0 until a refit gives it power (a blinking light).
     pub in_tree: Vec<bool>,
 }
 
@@ -244,7 +253,10 @@ impl LightBvh {
             in_tree: vec![false; lights.len()],
         };
         let mut ids: Vec<usize> = (0..lights.len())
-            .filter(|&i| lights[i].power > 0.0)
+            .filter(|&i| {
+                let l = &lights[i];
+                l.power >= 0.0 && l.power.is_finite() && l.p.iter().all(|v| v.is_finite())
+            })
             .collect();
         if !ids.is_empty() {
             bvh.build_node(lights, &mut ids, 0, 0);
@@ -370,9 +382,9 @@ impl LightBvh {
         pdf
     }
 
-    /// Moved lights (same count, same powers on/off): every node's bounds recomputed from its
-    /// children, leaves from their triangles, bottom up. The tree's shape is kept, so its
-    /// quality degrades as lights wander; adding or removing lights rebuilds.
+    /// Moved lights or changed powers (same lights): every node's bounds recomputed from
+    /// its children, leaves from their triangles, bottom up. The tree's shape is kept, so
+    /// its quality degrades as lights wander; adding or removing lights rebuilds.
     pub fn refit(&mut self, lights: &[EmissiveTriangle]) {
         for index in (0..self.nodes.len()).rev() {
             let bounds = match &self.nodes[index] {

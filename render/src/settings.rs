@@ -134,17 +134,34 @@ impl PtShift {
     }
 }
 
-/// Whether light candidates come from presampled light tiles (docs/src/ris.md, "Light tiles").
+/// Where DI's light candidates come from (docs/src/light-samplers.md).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum LightTiles {
-    /// On only where they pay: scenes with at least `effects::LIGHT_TILES_BREAK_EVEN` lights
-    /// (measured, docs/bench.md "Light tiles: where they pay").
+pub enum LightSampler {
+    /// Chosen by the scene, as the measurements say (`effects::resolve_light_sampler`).
     Auto,
-    On,
-    Off,
+    /// The power alias table over every light.
+    Power,
+    /// Presampled light tiles: the power distribution from a small shared working set.
+    Tiles,
+    /// World-space cells of lights resampled for each cell every frame (ReGIR).
+    Regir,
+    /// A light BVH walked stochastically by distance and orientation.
+    Bvh,
 }
 
-pub const LIGHT_TILES_NAMES: &[&str] = &["auto", "on", "off"];
+pub const LIGHT_SAMPLER_NAMES: &[&str] = &["auto", "power", "tiles", "regir", "bvh"];
+
+impl LightSampler {
+    pub fn name(self) -> &'static str {
+        match self {
+            LightSampler::Auto => "auto",
+            LightSampler::Power => "power",
+            LightSampler::Tiles => "tiles",
+            LightSampler::Regir => "regir",
+            LightSampler::Bvh => "bvh",
+        }
+    }
+}
 
 /// Which implementation traces the renderer's rays (`tracing.rs`): every pass calls the
 /// same functions of shaders/common/trace.wgsl; this picks what is compiled behind them.
@@ -228,7 +245,11 @@ macro_rules! choice_param {
 }
 
 choice_param!(BiasCorrection, BIAS_CORRECTION_NAMES, [OneOverM, Pairwise]);
-choice_param!(LightTiles, LIGHT_TILES_NAMES, [Auto, On, Off]);
+choice_param!(
+    LightSampler,
+    LIGHT_SAMPLER_NAMES,
+    [Auto, Power, Tiles, Regir, Bvh]
+);
 choice_param!(
     PtShift,
     PT_SHIFT_NAMES,
@@ -296,8 +317,18 @@ parameter_table! {
             "Light samples per pixel drawn from the power-proportional alias table and streamed through the reservoir (docs/src/ris.md, \"The streaming reservoir\"). 1 light and 0 BSDF candidates is plain NEE.";
         bsdf_candidates: u32 = 1, ParamKind::Int { min: 0, max: 16 }, "BSDF candidates",
             "BSDF-sampled rays per pixel; those that hit an emitter join the reservoir, combined with the light candidates by the balance heuristic.";
-        light_tiles: LightTiles = LightTiles::Auto, ParamKind::Choice(LIGHT_TILES_NAMES), "Light tiles",
-            "Draw light candidates from 128 tiles of 1024 lights presampled by power once per frame (one tile per 16×16 pixel block) instead of from the whole light table: same distribution, a small shared working set, so selection costs the same for a thousand or a million lights (docs/src/ris.md, \"Light tiles\"). auto: on for scenes with at least 16384 lights (emissive triangles + punctual lights), where the measured sweep says they pay (docs/bench.md); on / off force it.";
+        light_sampler: LightSampler = LightSampler::Auto, ParamKind::Choice(LIGHT_SAMPLER_NAMES), "Light sampler",
+            "Where the light candidates come from (docs/src/light-samplers.md). power: the alias table over all lights. tiles: 128 tiles of 1024 lights presampled by power once per frame, one per 16×16 pixel block — the same distribution from a small shared working set. regir: world-space cells around the camera whose slots are refilled every frame by RIS toward each cell's lights; a pixel reads a jittered cell. bvh: a light BVH walked by distance and orientation, each candidate's PDF exact. auto: by the scene, as the measurements say (docs/bench.md, \"Light samplers at scale\").";
+        regir_grid: u32 = 16, ParamKind::Int { min: 1, max: MAX_REGIR_GRID as i64 }, "ReGIR cells per side",
+            "The ReGIR grid is this many cells along each axis, centred on the camera and snapped to whole cells (docs/src/light-samplers.md, \"ReGIR\"). Outside it, candidates come from the power table.";
+        regir_cell_size: f32 = 0.02, ParamKind::Float { min: 1e-4, max: 1.0 }, "ReGIR cell size",
+            "A cell's side as a fraction of the scene's diagonal.";
+        regir_slots: u32 = 32, ParamKind::Int { min: 1, max: MAX_REGIR_SLOTS as i64 }, "ReGIR lights per cell",
+            "Slots per cell, each refilled every frame by RIS; a candidate reads one slot at random. Cells × slots is capped at 2^18: past it, fewer slots.";
+        regir_build_samples: u32 = 4, ParamKind::Int { min: 1, max: 64 }, "ReGIR build samples",
+            "Power-sampled lights each slot resamples from, toward the cell's target (power over squared distance, zero where the cell lies wholly behind a one-sided emitter).";
+        regir_jitter: f32 = 1.0, ParamKind::Float { min: 0.0, max: 4.0 }, "ReGIR jitter",
+            "How far (in cells) a pixel's lookup point is jittered before its cell is found: 0 reads the pixel's own cell (visible cell edges), 1 blends neighbours. Any value is unbiased: each cell's target covers the pixels that may read it.";
         environment_share: f32 = 0.0, ParamKind::Float { min: 0.0, max: 0.99 }, "Environment share",
             "Probability that a light sample is an environment direction. 0: by estimated power (π R² ∫L dω against the lights' power; docs/src/environment.md, \"Split with the other lights\"). Any value is unbiased; it only moves noise between sky and lights (an enclosed room under a bright sky wants less). Without an environment it does nothing.";
         initial_visibility: bool = true, ParamKind::Bool, "Initial visibility",
@@ -661,8 +692,22 @@ impl Settings {
             denoise_phi_normal: self.denoise_phi_normal,
             denoise_phi_depth: self.denoise_phi_depth,
             denoise_history_cap: self.denoise_history_cap as f32,
-            _denoise_pad: [0; 2],
+            regir_grid: self.regir_grid.clamp(1, MAX_REGIR_GRID),
+            regir_slots: self.regir_slots_in_use(),
+            regir_cell_size: self.regir_cell_size,
+            regir_build_samples: self.regir_build_samples.max(1),
+            regir_jitter: self.regir_jitter,
+            _regir_pad: [0; 3],
         }
+    }
+
+    /// ReGIR's slots per cell as used: the setting, lowered until cells × slots fits
+    /// `MAX_REGIR_SLOTS_TOTAL` (the fill pass's dispatch and the buffer's size).
+    pub fn regir_slots_in_use(&self) -> u32 {
+        let cells = self.regir_grid.clamp(1, MAX_REGIR_GRID).pow(3);
+        self.regir_slots
+            .clamp(1, MAX_REGIR_SLOTS)
+            .min((MAX_REGIR_SLOTS_TOTAL / cells).max(1))
     }
 
     /// Whether the denoiser runs with temporal gradients (which need DI's temporal pass,

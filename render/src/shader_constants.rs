@@ -63,6 +63,27 @@ wgsl_constants! {
 }
 pub const SOURCE_NAMES: [&str; 4] = ["null", "initial", "temporal", "spatial"];
 wgsl_constants! {
+    fn proposers;
+    /// Which strategy proposed a pixel's initial survivor (the `proposer` view;
+    /// docs/src/light-samplers.md): a BSDF ray, or the light sampler — its power table (also
+    /// ReGIR outside its grid and the BVH's lights without a position), a tile, a ReGIR slot
+    /// or the BVH walk.
+    pub const PROPOSER_NONE: u32 = 0;
+    pub const PROPOSER_BSDF: u32 = 1;
+    pub const PROPOSER_POWER: u32 = 2;
+    pub const PROPOSER_TILE: u32 = 3;
+    pub const PROPOSER_REGIR: u32 = 4;
+    pub const PROPOSER_BVH: u32 = 5;
+}
+pub const PROPOSER_NAMES: [&str; 6] = [
+    "none",
+    "BSDF ray",
+    "power table",
+    "light tile",
+    "ReGIR slot",
+    "light BVH",
+];
+wgsl_constants! {
     fn packing_and_flags;
     /// `Reservoir.source` holds the SOURCE_* in its low bits and the sample's age (frames
     /// since it was first drawn) above AGE_SHIFT: no new field, so the reservoir layout and
@@ -152,7 +173,12 @@ wgsl_constants! {
     /// Shadow rays traced by each DI pass, at STAT_SHADOW_RAYS + PASS_* (GUARDED_PASS_NAMES
     /// order; the reference's rays are not counted), summed over pixels.
     pub const STAT_SHADOW_RAYS: u32 = STAT_INDIRECT_FRAMES + INDIRECT_NAMES.len() as u32;
-    pub const STAT_COUNT: u32 = STAT_SHADOW_RAYS + GUARDED_PASS_NAMES.len() as u32;
+    /// DI's light candidates, and those with a non-zero unshadowed
+    /// contribution (p̂ > 0): the light sampler's useful-candidate share
+    /// (docs/src/light-samplers.md).
+    pub const STAT_LIGHT_CANDIDATES: u32 = STAT_SHADOW_RAYS + GUARDED_PASS_NAMES.len() as u32;
+    pub const STAT_USEFUL_CANDIDATES: u32 = STAT_LIGHT_CANDIDATES + 1;
+    pub const STAT_COUNT: u32 = STAT_USEFUL_CANDIDATES + 1;
 
     /// The indirect passes that count non-finite values (at STAT_INDIRECT_NONFINITE + id),
     /// named in `--stats` after the technique that ran ("gi initial", "pt initial", ...).
@@ -176,6 +202,7 @@ wgsl_constants! {
     pub const STREAM_INITIAL: u32 = 0;
     pub const STREAM_TEMPORAL: u32 = 1;
     pub const STREAM_REFERENCE: u32 = 2;
+    /// Light presampling: the tiles or the ReGIR cells (never both in one frame).
     pub const STREAM_LIGHT_TILES: u32 = 3;
     pub const STREAM_SPATIAL: u32 = 4;
     // Spatial passes use STREAM_SPATIAL + pass index (4..4 + MAX_SPATIAL_PASSES).
@@ -218,6 +245,18 @@ wgsl_constants! {
     pub const LIGHT_TILE_COUNT: u32 = 128;
     pub const LIGHT_TILE_SIZE: u32 = 1024;
     pub const LIGHT_TILE_PIXELS: u32 = 16;
+
+    /// ReGIR (docs/src/light-samplers.md, "ReGIR"): the grid's cells per side and slots per
+    /// cell at most, and cells × slots at most (the fill pass's dispatch, 4 MiB of slots).
+    pub const MAX_REGIR_GRID: u32 = 32;
+    pub const MAX_REGIR_SLOTS: u32 = 1024;
+    pub const MAX_REGIR_SLOTS_TOTAL: u32 = 262144;
+
+    /// The light BVH (docs/src/light-samplers.md, "The light BVH"): a node's `child_or_light`
+    /// with this bit set is a leaf holding that light; a light whose trail has depth
+    /// LIGHT_BVH_NOT_IN_TREE has no leaf (no power or no position: PDF 0).
+    pub const LIGHT_BVH_LEAF: u32 = 0x80000000;
+    pub const LIGHT_BVH_NOT_IN_TREE: u32 = 0xffffffff;
 
     /// Upper bound of `spatial_neighbours` (the shader keeps accepted ones in an array).
     pub const MAX_SPATIAL_NEIGHBOURS: u32 = 32;
@@ -396,7 +435,7 @@ wgsl_constants! {
 /// gpu_types.rs, as a WGSL `const` (one row emits the Rust constant and its WGSL line).
 pub fn wgsl_prelude() -> String {
     let mut out = String::from("// Generated from render/src/shader_constants.rs: edit there.\n");
-    let blocks: [fn() -> Vec<(&'static str, WgslValue)>; 18] = [
+    let blocks: [fn() -> Vec<(&'static str, WgslValue)>; 19] = [
         gpu_types::absent_markers,
         gpu_types::material_flags,
         gpu_types::texture_packing,
@@ -406,6 +445,7 @@ pub fn wgsl_prelude() -> String {
         rejection_bits,
         surface_checks,
         sources,
+        proposers,
         packing_and_flags,
         counters,
         indirect_techniques,
@@ -478,6 +518,8 @@ mod stream_tests {
             (STAT_INDIRECT_FALLBACK_USED, 1),
             (STAT_INDIRECT_FRAMES, INDIRECT_NAMES.len() as u32),
             (STAT_SHADOW_RAYS, GUARDED_PASS_NAMES.len() as u32),
+            (STAT_LIGHT_CANDIDATES, 1),
+            (STAT_USEFUL_CANDIDATES, 1),
         ];
         let mut next = 0;
         for (start, size) in blocks {

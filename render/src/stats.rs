@@ -90,6 +90,9 @@ pub struct StatsSummary {
     /// out), and their total.
     pub shadow_rays_per_pixel: BTreeMap<String, f64>,
     pub shadow_rays_per_pixel_total: f64,
+    /// The share of DI's light candidates with a non-zero unshadowed contribution: how much
+    /// of the light sampler's work can pay (docs/src/light-samplers.md).
+    pub useful_candidate_share: f64,
 }
 
 /// What an indirect technique (ReSTIR GI or PT) counted: its block of `--stats`, under
@@ -230,6 +233,14 @@ impl StatsSummary {
             shadow_rays_per_pixel: rays.clone(),
             // From +0: an empty f64 sum is −0, which the CSV would print as "-0".
             shadow_rays_per_pixel_total: rays.values().fold(0.0, |a, b| a + b),
+            useful_candidate_share: {
+                let candidates = total.get(STAT_LIGHT_CANDIDATES);
+                if candidates > 0 {
+                    total.get(STAT_USEFUL_CANDIDATES) as f64 / candidates as f64
+                } else {
+                    0.0
+                }
+            },
         }
     }
 

@@ -147,6 +147,12 @@ debug_views! {
     DenoiseVariance, "denoise-variance", VIEW_DENOISE_VARIANCE = 26, DenoiseView, false;
     /// λ, the share of the lighting that changed since last frame (temporal gradients).
     TemporalGradient, "temporal-gradient", VIEW_TEMPORAL_GRADIENT = 27, DenoiseView, false;
+    /// The light samplers (docs/src/light-samplers.md): which strategy proposed the initial
+    /// survivor, the share of light candidates that could contribute (p̂ > 0, unshadowed),
+    /// and the ReGIR cell each pixel lies in.
+    Proposer, "proposer", VIEW_PROPOSER = 28, Display, false;
+    UsefulCandidates, "useful-candidates", VIEW_USEFUL_CANDIDATES = 29, Display, false;
+    RegirCell, "regir-cell", VIEW_REGIR_CELL = 30, Display, false;
     /// σ/mean of each pixel's luminance over the temporal window: where the image flickers.
     Boiling, "boiling", VIEW_BOILING = 18, WindowView, false;
     /// How often the survivor's light changed within the temporal window.

@@ -279,6 +279,22 @@ fn host_structs_match_wgsl_layouts() {
     check_struct!(m, "BvhNode", GpuBvhNode, [min, first, max, count]);
     check_struct!(
         m,
+        "LightBvhNode",
+        GpuLightBvhNode,
+        [
+            min,
+            phi,
+            max,
+            child_or_light,
+            axis,
+            cos_theta_o,
+            cos_theta_e
+        ]
+    );
+    check_struct!(m, "LightBvhTrail", GpuLightBvhTrail, [bits, depth]);
+    check_struct!(m, "RegirSlot", GpuRegirSlot, [light, weight, uv]);
+    check_struct!(
+        m,
         "TileSample",
         GpuTileSample,
         [position, source_pdf, radiance, light, uv, normal, flags]
@@ -323,7 +339,9 @@ fn host_structs_match_wgsl_layouts() {
             weight,
             p_hat,
             spatial_accepted,
-            gradient
+            gradient,
+            proposer,
+            useful_candidates
         ]
     );
     check_struct!(
@@ -345,7 +363,8 @@ fn host_structs_match_wgsl_layouts() {
             light_count,
             punctual_count,
             prev_jitter,
-            inspect_pixel
+            inspect_pixel,
+            finite_light_share
         ]
     );
     check_struct!(
@@ -382,7 +401,12 @@ fn host_structs_match_wgsl_layouts() {
             denoise_phi_luminance,
             denoise_phi_normal,
             denoise_phi_depth,
-            denoise_history_cap
+            denoise_history_cap,
+            regir_grid,
+            regir_slots,
+            regir_cell_size,
+            regir_build_samples,
+            regir_jitter
         ]
     );
     check_struct!(
@@ -538,7 +562,7 @@ fn expected_kind(binding: &restir_render::passes::pass::Binding) -> String {
         Resource::Pixels(p) => stride(p.stride),
         Resource::Chain(c, _) => stride(c.stride),
         Resource::ShownImage => stride(16),
-        Resource::LightTiles => stride(std::mem::size_of::<GpuTileSample>()),
+        Resource::Lights(data) => stride(data.stride()),
     }
 }
 

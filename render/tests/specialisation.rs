@@ -87,7 +87,7 @@ fn effect_detection_gives_known_answers() {
     let features = SceneFeatures::of(&cornell);
     let s = Settings {
         bsdf_candidates: 0,
-        light_tiles: restir_render::settings::LightTiles::Off,
+        light_sampler: restir_render::settings::LightSampler::Power,
         ..Settings::default()
     };
     assert!(!EffectSet::detect(&features, &s, false).contains(BsdfCandidates));
@@ -157,7 +157,7 @@ fn specialised_and_general_pipelines_render_the_same_diffuse_image() {
                 48,
                 36,
                 mode,
-                common::settings(&["jitter=false", "reference_spp=4", "light_tiles=on"]),
+                common::settings(&["jitter=false", "reference_spp=4", "light_sampler=tiles"]),
             );
             r.force_effects(effects);
             common::accumulate(&mut r, 4)

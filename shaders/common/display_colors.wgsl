@@ -57,6 +57,19 @@ fn check_color(bit: u32) -> vec3<f32> {
     return palette[min(bit, SHARED_REJECT_CHECKS - 1u)];
 }
 
+// Which strategy proposed the initial survivor (PROPOSER_*; none is black).
+fn proposer_color(proposer: u32) -> vec3<f32> {
+    var palette = array<vec3<f32>, 6>(
+        vec3<f32>(0.0, 0.0, 0.0),    // none: black
+        vec3<f32>(1.0, 1.0, 1.0),    // BSDF ray: white
+        vec3<f32>(0.5, 0.5, 0.5),    // power table: grey
+        vec3<f32>(0.15, 0.35, 1.0),  // light tile: blue
+        vec3<f32>(1.0, 0.55, 0.05),  // ReGIR slot: orange
+        vec3<f32>(0.1, 0.85, 0.25),  // light BVH: green
+    );
+    return palette[min(proposer, 5u)];
+}
+
 fn source_color(source: u32) -> vec3<f32> {
     switch source {
         case SOURCE_INITIAL: { return vec3<f32>(0.15, 0.35, 1.0); }

@@ -155,7 +155,11 @@ struct LightSampleId {
 }
 
 fn sample_light(rng: ptr<function, u32>) -> LightSampleId {
-    let light = sample_light_index(rand_vec2(rng));
+    return sample_point_on_light(sample_light_index(rand_vec2(rng)), rng);
+}
+
+// A point on `light` (uniform on a triangle; by the environment's table on the sky).
+fn sample_point_on_light(light: u32, rng: ptr<function, u32>) -> LightSampleId {
     let u = rand_vec2(rng);
     var uv = uniform_triangle_uv(u);
 #ifdef ENVIRONMENT
@@ -166,6 +170,32 @@ fn sample_light(rng: ptr<function, u32>) -> LightSampleId {
     }
 #endif
     return LightSampleId(light, uv);
+}
+
+// Whether a light has a position (a triangle, a point or spot light): the light samplers
+// with locality (light BVH, ReGIR targets) handle those; the environment and directional
+// lights keep their power-table probability (docs/src/light-samplers.md).
+fn light_is_finite(light_id: u32) -> bool {
+    let light = lights[light_id];
+    let kind = light_kind_of(light);
+    if kind == LIGHT_KIND_TRIANGLE {
+        return true;
+    }
+#ifdef PUNCTUAL_LIGHTS
+    if kind == LIGHT_KIND_PUNCTUAL {
+        return punctual_lights[light_prim_of(light)].kind != PUNCTUAL_DIRECTIONAL;
+    }
+#endif
+    return false;
+}
+
+// The same point drawn with another selection probability: source_pdf is select_pdf ×
+// the point's density on its light, so it scales with the selection.
+fn with_selection_pdf(lp: LightPoint, light_id: u32, selection: f32) -> LightPoint {
+    var out = lp;
+    let table = lights[light_id].select_pdf;
+    out.source_pdf = select(0.0, lp.source_pdf * (selection / table), table > 0.0);
+    return out;
 }
 
 // An environment sample keeps its direction in `position` and kind 3 in the two kind bits.

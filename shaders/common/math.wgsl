@@ -3,6 +3,7 @@
 const PI: f32 = 3.14159265358979;
 const INV_PI: f32 = 0.318309886183791;
 const FLT_MAX: f32 = 3.4e38;
+const ONE_MINUS_EPSILON: f32 = 0.99999994;  // the largest f32 below 1
 
 fn luminance(c: vec3<f32>) -> f32 {
     // Rec. 709, the same weights as render/src/image.rs.

@@ -94,6 +94,35 @@ struct TileSample {
     flags: u32,    // kind | double_sided << 2 | punctual index << 8
 }
 
+// A light BVH node (render/src/light_sampler.rs builds them; light_bvh.wgsl walks them):
+// bounds of its lights' positions, normals' cone and power. Interior: the first child is
+// the next node, child_or_light the second; a leaf: LIGHT_BVH_LEAF | light.
+struct LightBvhNode {
+    min: vec3<f32>,
+    phi: f32,
+    max: vec3<f32>,
+    child_or_light: u32,
+    axis: u32,          // octahedral
+    cos_theta_o: f32,
+    cos_theta_e: f32,
+    _pad: u32,
+}
+
+// A light's branch choices from the root (bit k: the second child at depth k) and depth.
+struct LightBvhTrail {
+    bits: vec2<u32>,
+    depth: u32,         // LIGHT_BVH_NOT_IN_TREE: no leaf
+    _pad: u32,
+}
+
+// A ReGIR slot: a light sample resampled toward its cell's target, and its contribution
+// weight W (per unit area; 0: empty).
+struct RegirSlot {
+    light: u32,
+    weight: f32,
+    uv: vec2<f32>,
+}
+
 // One pixel's primary surface (docs/src/frame.md, "The G-buffer"), kept for one frame for
 // temporal validation.
 struct Surface {
@@ -125,6 +154,8 @@ struct PixelDebug {
     p_hat: f32,       // p̂ of the survivor at shading
     spatial_accepted: u32,
     gradient: vec2<f32>, // the history sample's shading last frame and now (denoiser gradients)
+    proposer: u32,       // PROPOSER_* of the initial survivor
+    useful_candidates: f32, // share of light candidates with p̂ > 0 (unshadowed)
 }
 
 struct Frame {
@@ -143,7 +174,7 @@ struct Frame {
     punctual_count: u32,
     prev_jitter: vec2<f32>,       // the previous frame's jitter, for reprojection
     inspect_pixel: u32,           // the inspector's pixel index, or NO_INSPECT_PIXEL
-    _pad0: u32,
+    finite_light_share: f32,      // Σ select_pdf of lights with a position (light BVH)
 }
 
 struct Params {
@@ -180,8 +211,15 @@ struct Params {
     denoise_phi_normal: f32,
     denoise_phi_depth: f32,
     denoise_history_cap: f32,     // frames
-    _denoise_pad0: u32,
-    _denoise_pad1: u32,
+    // ReGIR (docs/src/light-samplers.md, "ReGIR")
+    regir_grid: u32,              // cells per side
+    regir_slots: u32,             // slots per cell
+    regir_cell_size: f32,         // a fraction of frame.scene_scale
+    regir_build_samples: u32,
+    regir_jitter: f32,            // cells
+    _regir_pad0: u32,
+    _regir_pad1: u32,
+    _regir_pad2: u32,
 }
 
 struct Display {

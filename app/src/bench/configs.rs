@@ -123,14 +123,14 @@ const BUILTIN: &[(&str, Mode, &[&str], &str)] = &[
     (
         "tiles-on",
         Mode::Restir,
-        &["light_tiles=on"],
-        "restir defaults with light tiles forced on (the tiles sweep)",
+        &["light_sampler=tiles"],
+        "restir defaults with light tiles (the tiles sweep)",
     ),
     (
         "tiles-off",
         Mode::Restir,
-        &["light_tiles=off"],
-        "restir defaults with light tiles off (the tiles sweep)",
+        &["light_sampler=power"],
+        "restir defaults with the power table (the tiles sweep)",
     ),
 ];
 
@@ -150,11 +150,26 @@ fn split_backend(item: &str) -> (&str, Option<&str>) {
     match item.rsplit_once(':') {
         Some((name, backend))
             if restir_render::settings::RAY_BACKEND_NAMES.contains(&backend)
-                && BUILTIN.iter().any(|(n, ..)| *n == split_denoise(name).0) =>
+                && BUILTIN
+                    .iter()
+                    .any(|(n, ..)| *n == split_denoise(split_sampler(name).0).0) =>
         {
             (name, Some(backend))
         }
         _ => (item, None),
+    }
+}
+
+/// `ris@bvh`: the configuration `ris` with DI's light candidates from that light sampler
+/// (`light_sampler`; docs/src/light-samplers.md), whatever `--set` says.
+fn split_sampler(name: &str) -> (&str, Option<&str>) {
+    match name.rsplit_once('@') {
+        Some((base, sampler))
+            if restir_render::settings::LIGHT_SAMPLER_NAMES.contains(&sampler) =>
+        {
+            (base, Some(sampler))
+        }
+        _ => (name, None),
     }
 }
 
@@ -170,13 +185,15 @@ fn split_denoise(name: &str) -> (&str, bool) {
     }
 }
 
-/// Parses `--configs`: comma-separated built-in names (each optionally `:software`,
-/// `:ray-query` or `:auto`) and preset files (`.toml`; the configuration is named after the
+/// Parses `--configs`: comma-separated built-in names (each optionally `+denoise`, then
+/// `@power`, `@tiles`, `@regir`, `@bvh` or `@auto`, then `:software`, `:ray-query` or
+/// `:auto`) and preset files (`.toml`; the configuration is named after the
 /// file stem and runs in `restir` mode).
 pub fn parse_configs(list: &str, base: &Settings) -> anyhow::Result<Vec<Config>> {
     let mut configs: Vec<Config> = Vec::new();
     for item in list.split(',').map(str::trim).filter(|s| !s.is_empty()) {
         let (named, backend) = split_backend(item);
+        let (named, sampler) = split_sampler(named);
         let (builtin, denoise) = split_denoise(named);
         let mut config = match BUILTIN.iter().find(|(name, ..)| *name == builtin) {
             Some(&(_, mode, sets, description)) => {
@@ -190,6 +207,12 @@ pub fn parse_configs(list: &str, base: &Settings) -> anyhow::Result<Vec<Config>>
                         .set_from_str("ray_backend", b)
                         .expect("a listed backend name");
                     description.push_str(&format!(", rays traced by {b}"));
+                }
+                if let Some(s) = sampler {
+                    settings
+                        .set_from_str("light_sampler", s)
+                        .expect("a listed sampler name");
+                    description.push_str(&format!(", light candidates from the {s} sampler"));
                 }
                 Config {
                     name: item.into(),
@@ -205,7 +228,7 @@ pub fn parse_configs(list: &str, base: &Settings) -> anyhow::Result<Vec<Config>>
                 let known: Vec<_> = BUILTIN.iter().map(|(n, ..)| *n).collect();
                 bail!(
                     "--configs: '{item}' is neither a configuration ({}, each optionally \
-                     {DENOISE_SUFFIX}) nor a preset file",
+                     {DENOISE_SUFFIX}, @SAMPLER and :BACKEND) nor a preset file",
                     known.join(", ")
                 )
             }
@@ -289,6 +312,24 @@ mod tests {
             configs[5].settings.bias_correction,
             BiasCorrection::Pairwise
         );
+    }
+
+    #[test]
+    fn a_sampler_suffix_picks_the_light_sampler() {
+        use restir_render::settings::LightSampler;
+        let configs = parse_configs(
+            "ris@bvh,restir-pairwise@regir:software,ris+denoise@tiles,ris",
+            &Settings::default(),
+        )
+        .unwrap();
+        assert_eq!(configs[0].mode, Mode::Ris);
+        assert_eq!(configs[0].settings.light_sampler, LightSampler::Bvh);
+        assert_eq!(configs[1].settings.light_sampler, LightSampler::Regir);
+        assert_eq!(configs[1].name, "restir-pairwise@regir:software");
+        assert!(configs[2].settings.denoise);
+        assert_eq!(configs[2].settings.light_sampler, LightSampler::Tiles);
+        assert_eq!(configs[3].settings.light_sampler, LightSampler::Auto);
+        assert!(parse_configs("ris@octree", &Settings::default()).is_err());
     }
 
     #[test]

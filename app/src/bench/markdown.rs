@@ -131,6 +131,7 @@ pub fn results(info: &BenchInfo, results: &[ConfigResult]) -> String {
         "signed bias",
         "black pixels",
         "shadow rays / pixel",
+        "useful candidates",
         "rays traced by",
         "per-frame MSE × nee",
     ]
@@ -158,6 +159,7 @@ pub fn results(info: &BenchInfo, results: &[ConfigResult]) -> String {
                 s.map(|s| format!("{:.2} %", 100.0 * s.black_pixel_fraction))
                     .unwrap_or_else(|| "n/a".into()),
                 format!("{:.2}", r.times.shadow_rays_per_pixel_total),
+                format!("{:.1} %", 100.0 * r.times.useful_candidate_share),
                 r.ray_backend.map_or("n/a", |b| b.name()).to_string(),
                 ratio(r.frame_mse_vs_nee),
             ]

@@ -233,3 +233,42 @@ pub(super) fn light_geometry(
         })
         .collect()
 }
+
+/// How a light entry emits, for the light samplers (`light_sampler.rs`): a one- or
+/// two-sided triangle or a punctual light (emits all around: two-sided), or a light with
+/// no position (the environment, a directional light).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LightShape {
+    OneSided,
+    TwoSided,
+    Infinite,
+}
+
+pub(super) fn light_shapes(
+    lights: &LightTable,
+    triangles: &[GpuTriangle],
+    materials: &[GpuMaterial],
+) -> Vec<LightShape> {
+    lights
+        .lights
+        .iter()
+        .map(|l| match geometry_kind(l) {
+            None => LightShape::Infinite,
+            Some((true, index)) => {
+                let material = materials.get(triangles[index as usize].material as usize);
+                if material.is_some_and(|m| m.flags & MATERIAL_DOUBLE_SIDED != 0) {
+                    LightShape::TwoSided
+                } else {
+                    LightShape::OneSided
+                }
+            }
+            Some((false, index)) => {
+                if lights.punctual[index as usize].kind == PUNCTUAL_DIRECTIONAL {
+                    LightShape::Infinite
+                } else {
+                    LightShape::TwoSided
+                }
+            }
+        })
+        .collect()
+}

@@ -125,6 +125,7 @@ impl GpuScene {
                     })
                 })
                 .collect();
+            self.light_motion_generation += 1;
             self.bounds = scene.bounds();
             self.info.bounds_min = self.bounds.min.into();
             self.info.bounds_max = self.bounds.max.into();
@@ -148,6 +149,7 @@ impl GpuScene {
                     *g = Some([scene.punctual_lights[index as usize].position; 3]);
                 }
             }
+            self.light_motion_generation += 1;
         }
         if change.emission {
             let materials = gpu_materials(scene);
@@ -170,6 +172,7 @@ impl GpuScene {
                 self.light_entries = entries;
                 // Through the environment share, as at upload (it also sets light_pdfs).
                 self.write_light_table(gpu);
+                self.light_power_generation += 1;
                 self.info.power_range = table.power_range;
                 self.info.total_power = table.total_power;
             }

@@ -34,6 +34,8 @@ fn city(count: u32) -> Vec<EmissiveTriangle> {
             EmissiveTriangle {
                 p: [c, c + 0.5 * t, c + 0.5 * b],
                 power: 0.1 + 10.0 * hash(i, 6),
+                // Every fifth light emits from both faces.
+                two_sided: i % 5 == 0,
             }
         })
         .collect()
@@ -176,10 +178,12 @@ fn degenerate_light_sets_stay_finite() {
             Vec3::new(i as f32, 5.0, 0.5),
         ],
         power: 1.0,
+        two_sided: false,
     };
     let point = EmissiveTriangle {
         p: [Vec3::splat(3.0); 3],
         power: 2.0,
+        two_sided: false,
     };
     let sets: Vec<Vec<EmissiveTriangle>> = vec![
         Vec::new(),

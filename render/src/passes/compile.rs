@@ -240,19 +240,27 @@ impl ComputePass {
 
     /// Records the pass as one timed compute pass over an image of `size` pixels: one
     /// dispatch, or one per dynamic offset of group 2 (`PassInfo` slots); wgpu orders the
-    /// dispatches' storage accesses.
+    /// dispatches' storage accesses. `threads` dispatches fewer invocations than a
+    /// `Dispatch::Threads` pass's maximum.
     pub fn record(
         &self,
         rec: &mut FrameRecorder,
         groups: [&wgpu::BindGroup; 3],
         dynamic_offsets: &[u32],
         size: (u32, u32),
+        threads: Option<u32>,
     ) {
         let workgroups = match self.dispatch {
             Dispatch::Threads {
                 invocations,
                 workgroup,
-            } => (invocations.div_ceil(workgroup), 1),
+            } => (
+                threads
+                    .unwrap_or(invocations)
+                    .min(invocations)
+                    .div_ceil(workgroup),
+                1,
+            ),
             _ => (size.0.div_ceil(WORKGROUP), size.1.div_ceil(WORKGROUP)),
         };
         rec.compute_pass(self.name, |pass| {

@@ -1,7 +1,7 @@
 //! Initial RIS candidates (initial.wgsl): surfaces → reservoir (M = 1) + debug record.
 
 use super::pass::{Dispatch, PassDef, read, write};
-use super::resources::{DEBUG, RESERVOIRS, Resource::*, Role};
+use super::resources::{DEBUG, LightData, RESERVOIRS, Resource::*, Role};
 
 pub const PASS: PassDef = PassDef {
     name: "initial",
@@ -10,7 +10,10 @@ pub const PASS: PassDef = PassDef {
         read(Surfaces),
         write(Chain(&RESERVOIRS, Role::Out)),
         write(Pixels(&DEBUG)),
-        read(LightTiles),
+        read(Lights(LightData::Tiles)),
+        read(Lights(LightData::RegirSlots)),
+        read(Lights(LightData::BvhNodes)),
+        read(Lights(LightData::BvhTrails)),
     ],
     dispatch: Dispatch::Pixels,
 };

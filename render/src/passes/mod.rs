@@ -19,6 +19,7 @@ pub mod presample;
 pub mod pt;
 pub mod ray_bench;
 pub mod reference;
+pub mod regir;
 pub mod shade;
 pub mod spatial;
 pub mod temporal;
@@ -32,10 +33,11 @@ pub use compile::{
 pub use pass::PassDef;
 
 /// Every pass, in pipeline order (a layout is created for each; tests validate each).
-pub const ALL: [&PassDef; 30] = [
+pub const ALL: [&PassDef; 31] = [
     &gbuffer::RASTER,
     &gbuffer::RESOLVE,
     &presample::PASS,
+    &regir::FILL,
     &initial::PASS,
     &temporal::PASS,
     &spatial::PASS,

@@ -2,13 +2,13 @@
 //! frame, before the initial pass reads them.
 
 use super::pass::{Dispatch, PassDef, write};
-use super::resources::Resource::*;
+use super::resources::{LightData, Resource::*};
 use crate::shader_constants::{LIGHT_TILE_COUNT, LIGHT_TILE_SIZE};
 
 pub const PASS: PassDef = PassDef {
     name: "presample lights",
     shader: "presample_lights.wgsl",
-    group: &[write(LightTiles)],
+    group: &[write(Lights(LightData::Tiles))],
     dispatch: Dispatch::Threads {
         invocations: LIGHT_TILE_COUNT * LIGHT_TILE_SIZE,
         // The shader's @workgroup_size.

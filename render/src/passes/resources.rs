@@ -55,12 +55,37 @@ pub enum Resource {
     /// A `PassInfo` slot picked by dynamic offset (spatial pass index, reference chunk).
     PassInfo,
     DisplayUniform,
-    /// The presampled light tiles (owned by the renderer).
-    LightTiles,
+    /// A light sampler's data (owned by the renderer, `light_sampler.rs`).
+    Lights(LightData),
     /// The rasterised visibility buffer (triangle id + barycentrics), sampled as a texture.
     Visibility,
     /// The display's RGBA8 output, a write-only storage texture.
     Output,
+}
+
+/// The light samplers' buffers (docs/src/light-samplers.md).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum LightData {
+    /// The presampled light tiles.
+    Tiles,
+    /// ReGIR's cells of slots.
+    RegirSlots,
+    /// The light BVH's nodes and its per-light trails.
+    BvhNodes,
+    BvhTrails,
+}
+
+impl LightData {
+    /// The record size of the buffer (`GpuTileSample`, `GpuRegirSlot`, ...).
+    pub fn stride(self) -> usize {
+        use crate::gpu_types::*;
+        match self {
+            LightData::Tiles => std::mem::size_of::<GpuTileSample>(),
+            LightData::RegirSlots => std::mem::size_of::<GpuRegirSlot>(),
+            LightData::BvhNodes => std::mem::size_of::<GpuLightBvhNode>(),
+            LightData::BvhTrails => std::mem::size_of::<GpuLightBvhTrail>(),
+        }
+    }
 }
 
 pub const DEBUG: PixelBuffer = PixelBuffer {

@@ -8,14 +8,15 @@ use super::resolve::Bound;
 use crate::frame_targets::FrameTargets;
 use crate::gpu::Gpu;
 use crate::gpu_types::GpuPassInfo;
+use crate::passes::resources::LightData;
 use crate::passes::{PassDef, PassLayouts};
 
 /// Buffers some groups bind besides the size-dependent targets.
 pub struct Uniforms<'a> {
     pub pass_info: &'a wgpu::Buffer,
     pub display: &'a wgpu::Buffer,
-    /// The presampled light tiles (a one-element placeholder until tiles are used).
-    pub light_tiles: &'a wgpu::Buffer,
+    /// The light samplers' buffers (one-element placeholders until a sampler is used).
+    pub light_sampler: &'a crate::light_sampler::LightSamplerBuffers,
 }
 
 /// Per pass, per arrangement (looked up by slice: the common frame allocates nothing).
@@ -75,7 +76,16 @@ fn create(
                 Bound::Chain(name, i) => t.chain_named(name, i).as_entire_binding(),
                 Bound::PassInfo => pass_info_binding(u.pass_info),
                 Bound::DisplayUniform => u.display.as_entire_binding(),
-                Bound::LightTiles => u.light_tiles.as_entire_binding(),
+                Bound::Lights(data) => {
+                    let l = u.light_sampler;
+                    match data {
+                        LightData::Tiles => &l.tiles,
+                        LightData::RegirSlots => &l.regir_slots,
+                        LightData::BvhNodes => &l.bvh_nodes,
+                        LightData::BvhTrails => &l.bvh_trails,
+                    }
+                    .as_entire_binding()
+                }
                 Bound::Visibility => wgpu::BindingResource::TextureView(&t.visibility),
                 Bound::Output => wgpu::BindingResource::TextureView(&t.display_view),
             },

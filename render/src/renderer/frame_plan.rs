@@ -11,7 +11,7 @@ use std::ops::Range;
 use crate::passes::resources::{Chain, RESERVOIRS};
 use crate::passes::{
     PassDef, bias_view, denoise, display, gbuffer, gi, initial, moments, presample, pt, reference,
-    shade, spatial, temporal, temporal_window, window_view,
+    regir, shade, spatial, temporal, temporal_window, window_view,
 };
 
 /// One pass of the frame.
@@ -23,6 +23,9 @@ pub struct Step {
     pub slots: Range<u32>,
     /// After this step the pixel inspector captures this chain's reservoir as a stage.
     pub inspect: Option<Inspect>,
+    /// Invocations of a `Dispatch::Threads` pass this frame, below its maximum (ReGIR's
+    /// cells × slots); `None`: the maximum.
+    pub threads: Option<u32>,
 }
 
 /// What the inspector captures after a step: the current reservoir of `chain`, as `stage`.
@@ -38,7 +41,13 @@ impl Step {
             pass,
             slots: 0..0,
             inspect: None,
+            threads: None,
         }
+    }
+
+    fn threads(mut self, threads: u32) -> Step {
+        self.threads = Some(threads);
+        self
     }
 
     fn slots(mut self, slots: Range<u32>) -> Step {
@@ -71,6 +80,8 @@ pub struct FrameSwitches {
     /// Rasterise the G-buffer (every real-time frame; the reference with jitter off).
     pub gbuffer: bool,
     pub light_tiles: bool,
+    /// ReGIR's slots to fill this frame (cells × slots per cell; 0: ReGIR off).
+    pub regir_slots: u32,
     pub temporal: bool,
     /// Spatial passes (0 = spatial reuse off).
     pub spatial_passes: u32,
@@ -113,6 +124,9 @@ pub fn frame_plan(f: &FrameSwitches) -> Vec<Step> {
     if f.realtime {
         if f.light_tiles {
             steps.push(Step::new(&presample::PASS));
+        }
+        if f.regir_slots > 0 {
+            steps.push(Step::new(&regir::FILL).threads(f.regir_slots));
         }
         steps.push(Step::new(&initial::PASS).inspect("initial"));
         if f.temporal {

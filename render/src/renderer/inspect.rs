@@ -136,6 +136,9 @@ pub struct PixelInspection {
     /// the denoiser when it runs).
     pub radiance: [f32; 3],
     pub denoise: Option<DenoiseInspection>,
+    /// The final survivor's light under each light sampler (docs/src/light-samplers.md);
+    /// `None` without a survivor.
+    pub light_pdfs: Option<crate::light_sampler::SelectionPdfs>,
 }
 
 fn bit_names(mask: u32) -> Vec<&'static str> {
@@ -478,6 +481,7 @@ impl PendingInspection {
                 .then(|| PtInspection::decode(&bytes[PT_AT as usize..]))
                 .flatten(),
             radiance: [radiance[0], radiance[1], radiance[2]],
+            light_pdfs: None,
             denoise: self.denoise.then(|| {
                 let at = DENOISE_AT as usize;
                 let history =

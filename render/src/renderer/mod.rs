@@ -177,6 +177,18 @@ impl Renderer {
         self.scene.bvh.sah_cost()
     }
 
+    /// What the light samplers' structures cost: BVH build and refit, memory.
+    pub fn light_sampler_stats(&self) -> crate::light_sampler::LightSamplerStats {
+        self.buffers.light_sampler.stats
+    }
+
+    /// Test-only: the light samplers' structures stay as they are now, whatever the scene
+    /// does (the planted twin of the BVH's refit).
+    #[doc(hidden)]
+    pub fn freeze_light_sampler_for_tests(&mut self) {
+        self.buffers.light_sampler.frozen = true;
+    }
+
     /// The cost of the last `update_scene`.
     pub fn last_scene_update(&self) -> SceneUpdateTimes {
         self.last_update

@@ -92,6 +92,8 @@ impl Renderer {
     pub fn set_prepared_scene(&mut self, prepared: PreparedScene) {
         self.scene = prepared.scene;
         self.features = prepared.features;
+        // The light BVH is the old scene's: the next frame that samples with it builds anew.
+        self.buffers.light_sampler.forget_scene();
         // The effect set is cached while settings stay the same: the new scene's features
         // decide it afresh (textures, glass, an environment).
         self.pipelines.last_effects = None;

@@ -85,6 +85,7 @@ impl Renderer {
             pass: &PASS,
             slots: slot..slot + 1,
             inspect: None,
+            threads: None,
         }];
         let variant = self
             .pipelines
@@ -97,7 +98,7 @@ impl Renderer {
         let uniforms = Uniforms {
             pass_info: &self.buffers.pass_info,
             display: &self.buffers.display_uniform,
-            light_tiles: &self.buffers.light_tiles,
+            light_sampler: &self.buffers.light_sampler,
         };
         let group = self.bind_groups.get(
             &self.gpu,
@@ -119,6 +120,7 @@ impl Renderer {
                 [&self.buffers.frame_bind_group, &scene_group, &group],
                 &[slot * PASS_INFO_STRIDE],
                 (self.targets.width, self.targets.height),
+                None,
             );
             dispatch_ms.extend(rec.submit(self.frame_index, |_| {}).iter().map(|t| t.1));
         }

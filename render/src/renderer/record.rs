@@ -75,6 +75,7 @@ impl StepContext<'_> {
             [frame, scene, &group],
             &dynamic_offsets(step),
             size,
+            step.threads,
         );
     }
 }
@@ -183,6 +184,15 @@ impl Renderer {
             realtime,
             gbuffer: realtime || !settings.jitter,
             light_tiles: realtime && effects.contains(Effect::LightTiles),
+            regir_slots: if realtime && effects.contains(Effect::Regir) {
+                settings
+                    .regir_grid
+                    .clamp(1, crate::shader_constants::MAX_REGIR_GRID)
+                    .pow(3)
+                    * settings.regir_slots_in_use()
+            } else {
+                0
+            },
             // DI's temporal pass also makes the denoiser's gradient samples.
             temporal: realtime && (settings.temporal || settings.denoise_gradients_on()),
             spatial_passes: if spatial_on {
@@ -260,9 +270,7 @@ impl Renderer {
 
         let switches = self.frame_switches(&settings, effects);
         let plan = frame_plan(&switches);
-        if switches.light_tiles
-            && super::setup::ensure_light_tiles(&self.gpu, &mut self.buffers.light_tiles)
-        {
+        if self.ensure_light_sampler(&switches, effects) {
             self.bind_groups.clear();
         }
         self.compile_frame_pipelines(&active, &plan)?;
@@ -309,7 +317,7 @@ impl Renderer {
         let uniforms = Uniforms {
             pass_info: &self.buffers.pass_info,
             display: &self.buffers.display_uniform,
-            light_tiles: &self.buffers.light_tiles,
+            light_sampler: &self.buffers.light_sampler,
         };
         let steps = StepContext {
             gpu: &self.gpu,
@@ -511,7 +519,7 @@ impl Renderer {
         let uniforms = Uniforms {
             pass_info: &self.buffers.pass_info,
             display: &self.buffers.display_uniform,
-            light_tiles: &self.buffers.light_tiles,
+            light_sampler: &self.buffers.light_sampler,
         };
         let mut rec = FrameRecorder::new(
             &self.gpu,
@@ -535,5 +543,24 @@ impl Renderer {
         }
         rec.submit(self.frame_index, |_| {});
         self.gpu.check()
+    }
+}
+
+impl Renderer {
+    /// The light samplers' data this frame needs, allocated or brought up to date (the BVH
+    /// rebuilt or refitted after the lights changed); true if a buffer was replaced.
+    fn ensure_light_sampler(&mut self, switches: &FrameSwitches, effects: &EffectSet) -> bool {
+        let lights = &mut self.buffers.light_sampler;
+        let mut replaced = false;
+        if switches.light_tiles {
+            replaced |= lights.ensure_tiles(&self.gpu);
+        }
+        if switches.regir_slots > 0 {
+            replaced |= lights.ensure_regir(&self.gpu, switches.regir_slots);
+        }
+        if switches.realtime && effects.contains(Effect::LightBvh) {
+            replaced |= lights.ensure_bvh(&self.gpu, &self.scene);
+        }
+        replaced
     }
 }

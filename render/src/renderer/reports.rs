@@ -30,6 +30,18 @@ impl Renderer {
                     |light, uv| scene.sample_point(light, uv),
                     |light, uv| scene.environment_direction(light, uv),
                 ) {
+                    let mut i = i;
+                    i.light_pdfs = i.stages.last().and_then(|stage| {
+                        let light = stage.reservoir.light;
+                        (light != crate::gpu_types::NO_LIGHT).then(|| {
+                            self.buffers.light_sampler.selection_pdfs(
+                                scene,
+                                light,
+                                glam::Vec3::from(i.surface.position),
+                                crate::denoise::model::oct_decode(i.surface.normal),
+                            )
+                        })
+                    });
                     self.readbacks.arrived_inspections.insert(frame, i);
                 }
             }

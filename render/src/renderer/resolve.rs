@@ -7,7 +7,7 @@ use std::collections::HashMap;
 use super::frame_plan::Step;
 use crate::frame_targets::Needs;
 use crate::passes::pass::Access;
-use crate::passes::resources::{ACCUMULATION, Chain, RADIANCE, Resource, Role};
+use crate::passes::resources::{ACCUMULATION, Chain, LightData, RADIANCE, Resource, Role};
 
 /// A binding resolved to one concrete resource (a bind group cache key).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -17,7 +17,7 @@ pub enum Bound {
     Chain(&'static str, usize),
     PassInfo,
     DisplayUniform,
-    LightTiles,
+    Lights(LightData),
     Visibility,
     Output,
 }
@@ -136,7 +136,7 @@ pub fn resolve(
                 }
                 Resource::PassInfo => Bound::PassInfo,
                 Resource::DisplayUniform => Bound::DisplayUniform,
-                Resource::LightTiles => Bound::LightTiles,
+                Resource::Lights(data) => Bound::Lights(data),
                 Resource::Visibility => Bound::Visibility,
                 Resource::Output => Bound::Output,
             });
@@ -183,6 +183,7 @@ mod tests {
                             realtime,
                             gbuffer: true,
                             light_tiles: true,
+                            regir_slots: if temporal { 4096 } else { 0 },
                             temporal,
                             spatial_passes,
                             reference_chunks: 2,

@@ -16,31 +16,11 @@ use crate::gpu_types::*;
 use crate::passes::{PASS_INFO_SLOTS, PASS_INFO_STRIDE, PassLayouts};
 use crate::scene::Scene;
 use crate::settings::Settings;
-use crate::shader_constants::{LIGHT_TILE_COUNT, LIGHT_TILE_SIZE, STAT_COUNT};
+use crate::shader_constants::STAT_COUNT;
 use crate::view::{Mode, ViewSettings};
 
 use super::bind_groups::BindGroupCache;
 use super::{inspect, state};
-
-fn tile_buffer(gpu: &Gpu, entries: u64) -> wgpu::Buffer {
-    gpu.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("light tiles"),
-        size: entries * std::mem::size_of::<GpuTileSample>() as u64,
-        usage: wgpu::BufferUsages::STORAGE,
-        mapped_at_creation: false,
-    })
-}
-
-/// Replaces the placeholder by the full light-tile buffer on first use; true if it did
-/// (bind groups holding the placeholder must be rebuilt).
-pub(super) fn ensure_light_tiles(gpu: &Gpu, tiles: &mut wgpu::Buffer) -> bool {
-    let full = (LIGHT_TILE_COUNT * LIGHT_TILE_SIZE) as u64;
-    let replace = tiles.size() < full * std::mem::size_of::<GpuTileSample>() as u64;
-    if replace {
-        *tiles = tile_buffer(gpu, full);
-    }
-    replace
-}
 
 /// Validated output size.
 pub fn check_size(width: u32, height: u32) -> Result<(), GpuError> {
@@ -95,7 +75,7 @@ impl Renderer {
                 contents: &pass_info_data,
                 usage: wgpu::BufferUsages::UNIFORM,
             });
-        let light_tiles = tile_buffer(&gpu, 1);
+        let light_sampler = crate::light_sampler::LightSamplerBuffers::new(&gpu);
         let stats_size = STAT_COUNT as u64 * 4;
         let stats_buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("stats"),
@@ -129,7 +109,7 @@ impl Renderer {
                 params_uniform,
                 display_uniform,
                 pass_info,
-                light_tiles,
+                light_sampler,
                 stats_buffer,
                 frame_bind_group,
             },

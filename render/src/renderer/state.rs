@@ -21,8 +21,8 @@ pub(super) struct FrameBuffers {
     pub params_uniform: wgpu::Buffer,
     pub display_uniform: wgpu::Buffer,
     pub pass_info: wgpu::Buffer,
-    /// Light tiles: a one-element placeholder until the first frame that uses them.
-    pub light_tiles: wgpu::Buffer,
+    /// The light samplers' data: placeholders until the first frame that uses each.
+    pub light_sampler: crate::light_sampler::LightSamplerBuffers,
     pub stats_buffer: wgpu::Buffer,
     pub frame_bind_group: wgpu::BindGroup,
 }

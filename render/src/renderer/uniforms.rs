@@ -66,7 +66,7 @@ impl Renderer {
                 .inspected_pixel
                 .filter(|&(x, y)| x < width && y < height)
                 .map_or(NO_INSPECT_PIXEL, |(x, y)| y * width + x),
-            _pad: 0,
+            finite_light_share: self.scene.finite_light_share(),
         };
         self.gpu
             .queue

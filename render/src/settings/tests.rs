@@ -23,11 +23,11 @@ fn defaults_are_what_the_measurements_favour() {
     // more time; light tiles only where the sweep says they pay.
     let s = Settings::default();
     assert_eq!(s.bias_correction, BiasCorrection::Pairwise);
-    assert_eq!(s.light_tiles, LightTiles::Auto);
+    assert_eq!(s.light_sampler, LightSampler::Auto);
     let mut t = s.clone();
-    t.set_from_str("light_tiles", "off").unwrap();
-    assert_eq!(t.light_tiles, LightTiles::Off);
-    assert!(t.set_from_str("light_tiles", "true").is_err());
+    t.set_from_str("light_sampler", "bvh").unwrap();
+    assert_eq!(t.light_sampler, LightSampler::Bvh);
+    assert!(t.set_from_str("light_sampler", "true").is_err());
 }
 
 #[test]

@@ -111,6 +111,9 @@ struct StatsFile<'a> {
     /// `spatial_radius` is set at 1080p; this is the radius used at this height.
     effective_spatial_radius_px: f32,
     mean_luminance: f64,
+    /// The light samplers' structures: BVH build and refit times, memory
+    /// (docs/src/light-samplers.md).
+    light_sampler: restir_render::light_sampler::LightSamplerStats,
     #[serde(skip_serializing_if = "Option::is_none")]
     scene_time: Option<SceneTimeStats>,
     /// With the boiling or survivor-change view: the temporal window's figures.
@@ -286,6 +289,7 @@ fn side_stats(side: &Side) -> StatsFile<'_> {
             .collect(),
         effective_spatial_radius_px: settings.effective_spatial_radius(height),
         mean_luminance: side.image.mean_luminance(),
+        light_sampler: renderer.light_sampler_stats(),
         scene_time: side.scene_time.clone(),
         temporal_window: window_stats(renderer),
         summary: StatsSummary::from_reports(&side.reports, side.image.non_finite_count() as u64),

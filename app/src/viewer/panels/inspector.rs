@@ -78,6 +78,7 @@ pub fn inspection(ui: &mut Ui, i: &PixelInspection) {
         d.m_initial, d.m_temporal, d.m_spatial
     ));
     reservoirs(ui, i);
+    light_pdfs(ui, i);
     let merged = d.flags & DEBUG_FLAG_TEMPORAL_MERGED != 0;
     di_rejections(ui, "Temporal", d.temporal_mask, merged);
     di_rejections(ui, "Spatial", d.spatial_mask, false);
@@ -95,6 +96,26 @@ pub fn inspection(ui: &mut Ui, i: &PixelInspection) {
         ui.separator();
         denoise_inspection(ui, d);
     }
+}
+
+/// What each light sampler would give the survivor's light here (docs/src/light-samplers.md).
+fn light_pdfs(ui: &mut Ui, i: &PixelInspection) {
+    let Some(p) = &i.light_pdfs else {
+        return;
+    };
+    ui.label(format!(
+        "Light {}: selection probability {:.3e} by power (and tiles), {} by the light BVH; ReGIR weighs it by its slot's W (no PDF)",
+        p.light,
+        p.power,
+        p.bvh
+            .map_or("not built (light_sampler ≠ bvh)".to_string(), |b| format!("{b:.3e}"))
+    ));
+    ui.label(format!(
+        "Proposed by: {}",
+        PROPOSER_NAMES
+            .get(i.debug.proposer as usize)
+            .unwrap_or(&"?")
+    ));
 }
 
 /// The denoiser at this pixel (docs/src/denoiser.md): how many frames its history holds,

@@ -27,6 +27,20 @@ pub fn source_color(source: u32) -> Color32 {
     })
 }
 
+/// Which strategy proposed the initial survivor (`PROPOSER_*`), as display_colors.wgsl.
+const PROPOSER_PALETTE: [[f32; 3]; 6] = [
+    [0.0, 0.0, 0.0],
+    [1.0, 1.0, 1.0],
+    [0.5, 0.5, 0.5],
+    [0.15, 0.35, 1.0],
+    [1.0, 0.55, 0.05],
+    [0.1, 0.85, 0.25],
+];
+
+pub fn proposer_color(proposer: u32) -> Color32 {
+    linear(PROPOSER_PALETTE[(proposer as usize).min(PROPOSER_PALETTE.len() - 1)])
+}
+
 /// The six surface and reservoir checks DI and GI share (bits 0..6), in both palettes.
 const CHECK_COLOURS: [[f32; 3]; 6] = [
     [1.0, 0.0, 0.0],
@@ -289,6 +303,17 @@ mod tests {
         for (bit, colour) in gi.into_iter().enumerate() {
             assert_eq!(gi_reason_color(bit as u32), linear(colour), "GI bit {bit}");
         }
+    }
+
+    #[test]
+    fn the_proposer_legend_matches_the_shader() {
+        let colours = include_str!("../../../../shaders/common/display_colors.wgsl");
+        let palette = wgsl_palette(colours, "proposer_color");
+        assert_eq!(palette, PROPOSER_PALETTE.to_vec());
+        assert_eq!(
+            palette.len(),
+            restir_render::shader_constants::PROPOSER_NAMES.len()
+        );
     }
 
     #[test]

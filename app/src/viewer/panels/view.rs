@@ -5,7 +5,7 @@
 use egui::Ui;
 use restir_render::shader_constants::{
     BIAS_BATCH, BIAS_NEGLIGIBLE, BIAS_SIGNIFICANCE, BOILING_THRESHOLD, BOILING_VIEW_MAX,
-    GI_REJECT_REASON_NAMES, MAX_BOUNCES, PT_FAIL_NAMES, REJECT_REASON_NAMES,
+    GI_REJECT_REASON_NAMES, MAX_BOUNCES, PROPOSER_NAMES, PT_FAIL_NAMES, REJECT_REASON_NAMES,
     REJECT_TEMPORAL_REASONS, TEMPORAL_WINDOW_FRAMES,
 };
 use restir_render::{DebugView, Settings, Tonemapper, ViewSettings};
@@ -13,8 +13,8 @@ use restir_render::{DebugView, Settings, Tonemapper, ViewSettings};
 use super::accuracy;
 use super::palette::{
     PT_DEPTHS, PT_JACOBIAN_SATURATION, bias_color, gi_reason_color, jacobian_colors,
-    pt_depth_color, pt_failure_color, pt_pure_replay_color, ramp, reason_color, source_legend,
-    spatial_count_ramp, swatch,
+    proposer_color, pt_depth_color, pt_failure_color, pt_pure_replay_color, ramp, reason_color,
+    source_legend, spatial_count_ramp, swatch,
 };
 use crate::viewer::state::{Action, DisplayOptions, ViewerState};
 
@@ -134,6 +134,15 @@ fn describe(v: DebugView) -> &'static str {
         DebugView::TemporalGradient => {
             "Denoiser: λ, the share of the neighbourhood's lighting that changed since last frame (temporal gradients), 0 to 1; black where gradients are off"
         }
+        DebugView::Proposer => {
+            "Light samplers: which strategy proposed the initial survivor (a BSDF ray, the power table, a light tile, a ReGIR slot, the light BVH)"
+        }
+        DebugView::UsefulCandidates => {
+            "Light samplers: the share of a pixel's light candidates that can light it at all (unshadowed contribution > 0), 0 to 1"
+        }
+        DebugView::RegirCell => {
+            "Light samplers: the ReGIR cell each pixel lies in (a colour per cell; black outside the grid around the camera)"
+        }
         DebugView::Boiling => {
             "Where the image flickers: each pixel's σ/mean of luminance over the last 16 frames"
         }
@@ -194,6 +203,8 @@ fn legend(ui: &mut Ui, state: &mut ViewerState) {
         ),
         DebugView::DenoiseVariance => ramp(ui, "σ/mean 0", "1"),
         DebugView::TemporalGradient => ramp(ui, "λ 0 (unchanged)", "1 (all changed)"),
+        DebugView::Proposer => proposer_legend(ui),
+        DebugView::UsefulCandidates => ramp(ui, "0 useful", "all candidates useful"),
         DebugView::PtJacobian => {
             jacobian_legend(ui, PT_JACOBIAN_SATURATION);
             ui.weak("white: the pixel's own path (|J| = 1); black: no path");
@@ -229,6 +240,23 @@ fn technique_off(view: DebugView, settings: &Settings) -> Option<&'static str> {
     (view.is_path_view() && !pt).then_some(
         "ReSTIR PT is off (Indirect section): this view has nothing to show until it runs.",
     )
+}
+
+/// The proposer palette, one swatch per strategy.
+fn proposer_legend(ui: &mut Ui) {
+    egui::Grid::new(ui.next_auto_id())
+        .num_columns(3)
+        .show(ui, |ui| {
+            for (p, name) in PROPOSER_NAMES.iter().enumerate() {
+                ui.horizontal(|ui| {
+                    swatch(ui, proposer_color(p as u32));
+                    ui.label(*name);
+                });
+                if p % 3 == 2 {
+                    ui.end_row();
+                }
+            }
+        });
 }
 
 /// A log |J| ramp's three anchors, saturating at 1/`w` and `w`.

@@ -7,9 +7,11 @@
 
 use glam::{Quat, Vec3};
 
+use super::dynamic::{Motion, linear_vec3};
 use super::many_lights::luminance;
 use super::rng::SplitMix64;
 use super::shapes::SceneBuilder;
+use crate::scene::animation::{Target, Trs};
 use crate::scene::{Camera, Material, Scene};
 
 /// Blocks per side, their side and the street between them (metres).
@@ -62,7 +64,94 @@ struct Building {
 
 /// `n` (≥ 1, checked by the caller) emissive triangles over the city.
 pub(super) fn city(name: &str, n: usize, view: View) -> Scene {
-    let rects = n.div_ceil(2);
+    let (b, _) = city_builder(name, n.div_ceil(2));
+    let mut scene = b.finish(Some(camera(view)));
+    // An odd N: the last light is one triangle of its quad.
+    if n % 2 == 1 {
+        scene.triangles.pop();
+    }
+    scene
+}
+
+/// The share of `city-traffic:N`'s lights on cars, and of its power.
+const CAR_SHARE: f32 = 0.1;
+const CAR_POWER_SHARE: f32 = 0.05;
+/// Cars drive there and back along their street: this far, in this many seconds.
+const CAR_TRAVEL: f32 = PITCH;
+pub const CAR_PERIOD: f32 = 8.0;
+/// Two of the four sign colours blink: on for a second, off for a second.
+pub const SIGN_BLINK: f32 = 1.0;
+
+/// `city:N` with traffic: a tenth of the N lights are headlights on cars that drive along
+/// the streets (one convoy per lane, each a node of the animation), and two of the four
+/// sign colours blink. For the light structures' refit and lag (docs/src/light-samplers.md).
+pub(super) fn city_traffic(name: &str, n: usize) -> Scene {
+    let car_rects = (n as f32 * CAR_SHARE / 2.0) as usize;
+    let (mut b, signs) = city_builder(name, n.div_ceil(2) - car_rects);
+    let mut motion = Motion::default();
+    if car_rects > 0 {
+        let colour = Vec3::new(1.0, 0.95, 0.85);
+        let (w, h) = (0.25f32, 0.15f32);
+        let power = TOTAL_POWER * CAR_POWER_SHARE / car_rects as f32;
+        let headlight = b.material(Material::emitter(
+            "headlight",
+            colour * (power / (4.0 * w * h * luminance(colour))),
+            false,
+        ));
+        // Two lanes per street along z, one each way; cars spread evenly over all lanes.
+        let lanes = 2 * (BLOCKS + 1);
+        for lane in 0..lanes {
+            let count = car_rects / lanes + usize::from(lane < car_rects % lanes);
+            if count == 0 {
+                continue;
+            }
+            let (street, forward) = (lane / 2, lane % 2 == 0);
+            let dir = if forward { Vec3::Z } else { Vec3::NEG_Z };
+            let x = street_centre(street) + if forward { 2.5 } else { -2.5 };
+            let node = motion.node(None, Trs::default());
+            let first = b.vertex_count();
+            let spacing = (2.0 * HALF - CAR_TRAVEL) / count as f32;
+            for c in 0..count {
+                let z = -HALF + (c as f32 + 0.5) * spacing;
+                // u × v = dir: facing along the lane.
+                let u = dir.cross(Vec3::Y) * w;
+                b.rect(Vec3::new(x, 0.7, z), u, Vec3::Y * h, headlight);
+            }
+            motion.attach(&b, node, first);
+            let there = dir * CAR_TRAVEL;
+            motion.channel(
+                Target::Translation(node),
+                linear_vec3(
+                    &[0.0, CAR_PERIOD / 2.0, CAR_PERIOD],
+                    &[Vec3::ZERO, there, Vec3::ZERO],
+                ),
+            );
+        }
+    }
+    let scene = b.finish(Some(camera(View::Street)));
+    // Keys over the cars' whole period, so the clip loops with both in step.
+    let keys = (CAR_PERIOD / SIGN_BLINK) as usize;
+    for &m in signs.iter().step_by(2) {
+        motion.blink(
+            &scene,
+            m as usize,
+            (0..=keys).map(|k| k as f32 * SIGN_BLINK).collect(),
+            (0..=keys)
+                .map(|k| if k % 2 == 0 { 1.0 } else { 0.0 })
+                .collect(),
+        );
+    }
+    let mut scene = motion.finish(scene, "traffic");
+    if n % 2 == 1 {
+        scene.triangles.pop();
+    }
+    scene
+}
+
+/// The city with `rects` light quads (lamps, windows, signs), unfinished, and the sign
+/// materials.
+fn city_builder(name: &str, rects: usize) -> (SceneBuilder, Vec<u32>) {
+    let rects = rects.max(1);
     let buildings = BLOCKS * BLOCKS;
     let mut b = SceneBuilder::with_capacity(
         name,
@@ -179,12 +268,7 @@ pub(super) fn city(name: &str, n: usize, view: View) -> Scene {
         let material = palette[(rng.next_u64() % palette.len() as u64) as usize];
         b.rect(centre, u, v, material);
     }
-    let mut scene = b.finish(Some(camera(view)));
-    // An odd N: the last light is one triangle of its quad.
-    if n % 2 == 1 {
-        scene.triangles.pop();
-    }
-    scene
+    (b, sign_colours)
 }
 
 /// Light slots: their centres (and for facades their outward normals), and how much the
@@ -386,5 +470,35 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// `city-traffic:N` has N lights at t = 0, a tenth on cars that move, and blinking
+    /// signs that switch some lights off and on again.
+    #[test]
+    fn traffic_moves_cars_and_blinks_signs() {
+        use crate::scene::animation::ClipChoice;
+        for n in [1usize, 4096, 4097] {
+            let s = city_traffic("city-traffic", n);
+            assert_eq!(emissive_triangles(&s), n, "N = {n}");
+        }
+        let mut s = city_traffic("city-traffic", 4096);
+        let anim = s.animation.clone().unwrap();
+        let lit = emissive_triangles(&s);
+        let before: Vec<Vec3> = s.vertices.iter().map(|v| v.position).collect();
+        anim.pose(&mut s, 1.5, ClipChoice::All);
+        let moved = s
+            .vertices
+            .iter()
+            .zip(&before)
+            .filter(|(v, b)| v.position.distance(**b) > 1.0)
+            .count();
+        // 4 vertices per car quad, 409 car lights in 204 quads.
+        assert_eq!(moved, 4 * 204, "the cars drive");
+        assert!(
+            emissive_triangles(&s) < lit,
+            "half the signs are off at 1.5 s"
+        );
+        anim.pose(&mut s, CAR_PERIOD, ClipChoice::All);
+        assert_eq!(emissive_triangles(&s), lit, "and on again");
     }
 }

@@ -16,7 +16,7 @@ use crate::scene::{Camera, Material, Scene};
 
 /// Collects nodes, moving meshes and channels while a scene is built.
 #[derive(Default)]
-struct Motion {
+pub(super) struct Motion {
     nodes: Vec<Node>,
     meshes: Vec<MeshBinding>,
     materials: Vec<MaterialBinding>,
@@ -24,7 +24,7 @@ struct Motion {
 }
 
 impl Motion {
-    fn node(&mut self, parent: Option<usize>, trs: Trs) -> usize {
+    pub(super) fn node(&mut self, parent: Option<usize>, trs: Trs) -> usize {
         self.nodes.push(Node {
             name: format!("node {}", self.nodes.len()),
             parent,
@@ -34,7 +34,7 @@ impl Motion {
     }
 
     /// Makes the vertices built since `first` belong to `node` (they were built in its space).
-    fn attach(&mut self, b: &SceneBuilder, node: usize, first: u32) {
+    pub(super) fn attach(&mut self, b: &SceneBuilder, node: usize, first: u32) {
         self.meshes.push(MeshBinding {
             node,
             first,
@@ -43,12 +43,24 @@ impl Motion {
         });
     }
 
-    fn channel(&mut self, target: Target, track: Track) {
+    pub(super) fn channel(&mut self, target: Target, track: Track) {
         self.channels.push(Channel { target, track });
     }
 
     /// Attaches the animation and poses the scene at t = 0.
-    fn finish(self, mut scene: Scene, clip: &str) -> Scene {
+    /// Switches material `m` of `scene` on (1) and off (0) at the keys `times` (STEP).
+    pub(super) fn blink(&mut self, scene: &Scene, m: usize, times: Vec<f32>, on: Vec<f32>) {
+        self.materials.push(MaterialBinding {
+            material: m,
+            emissive_factor: scene.materials[m].emission,
+            emissive_strength: 1.0,
+        });
+        let binding = self.materials.len() - 1;
+        let track = Keyframes::new(times, on, Interpolation::Step).expect("valid keys");
+        self.channel(Target::EmissiveStrength(binding), Track::Scalar(track));
+    }
+
+    pub(super) fn finish(self, mut scene: Scene, clip: &str) -> Scene {
         let mut anim = SceneAnimation {
             nodes: Hierarchy::new(self.nodes).expect("built-in hierarchies are trees"),
             clips: vec![Clip {
@@ -76,7 +88,7 @@ fn spin_y(period: f32, phase: f32) -> Track {
     Track::Quat(Keyframes::new(times, values, Interpolation::Linear).expect("valid keys"))
 }
 
-fn linear_vec3(times: &[f32], values: &[Vec3]) -> Track {
+pub(super) fn linear_vec3(times: &[f32], values: &[Vec3]) -> Track {
     Track::Vec3(
         Keyframes::new(times.to_vec(), values.to_vec(), Interpolation::Linear).expect("valid keys"),
     )
@@ -152,19 +164,12 @@ pub(super) fn blinking_lights(name: &str) -> Scene {
         .filter(|&m| scene.materials[m].is_emissive())
         .collect();
     for &m in palette.iter().step_by(2) {
-        motion.materials.push(MaterialBinding {
-            material: m,
-            emissive_factor: scene.materials[m].emission,
-            emissive_strength: 1.0,
-        });
-        let binding = motion.materials.len() - 1;
-        let track = Keyframes::new(
+        motion.blink(
+            &scene,
+            m,
             vec![0.0, BLINK_OFF_AT, BLINK_ON_AT, BLINK_PERIOD],
             vec![1.0, 0.0, 1.0, 1.0],
-            Interpolation::Step,
-        )
-        .expect("valid keys");
-        motion.channel(Target::EmissiveStrength(binding), Track::Scalar(track));
+        );
     }
     motion.finish(scene, "blink")
 }

@@ -65,10 +65,12 @@ const SCENES: &[(&str, Generator)] = &[
 
 /// A scene with a light count: `many-lights:N`, `many-lights-diffuse:N`,
 /// `dynamic:many-lights:N`, `city:N` and `city-roofs:N` (N emissive triangles over a night
-/// city, seen from the street or over the roofs).
+/// city, seen from the street or over the roofs) and `city-traffic:N` (the street view
+/// with moving cars and blinking signs).
 type Room = fn(&str, usize) -> Scene;
-const FAMILIES: [(&str, Room); 5] = [
+const FAMILIES: [(&str, Room); 6] = [
     ("city:", |name, n| city::city(name, n, city::View::Street)),
+    ("city-traffic:", city::city_traffic),
     ("city-roofs:", |name, n| {
         city::city(name, n, city::View::Roofs)
     }),
@@ -122,7 +124,7 @@ pub fn builtin_scene(name: &str) -> Result<Scene, SceneError> {
         name: name.to_string(),
         detail: format!(
             "unknown built-in scene (known: {}, many-lights:N, many-lights-diffuse:N, \
-             dynamic:many-lights:N, city:N, city-roofs:N)",
+             dynamic:many-lights:N, city:N, city-roofs:N, city-traffic:N)",
             builtin_names().join(", ")
         ),
     })

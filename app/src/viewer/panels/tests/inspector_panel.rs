@@ -44,6 +44,7 @@ pub(super) fn synthetic_inspection() -> PixelInspection {
             weight: 1.75,
             p_hat: 0.25,
             spatial_accepted: 4,
+            proposer: PROPOSER_BVH,
             ..Default::default()
         },
         stages: vec![
@@ -69,6 +70,11 @@ pub(super) fn synthetic_inspection() -> PixelInspection {
         pt: None,
         radiance: [0.5, 0.25, 0.125],
         denoise: None,
+        light_pdfs: Some(restir_render::light_sampler::SelectionPdfs {
+            light: 11,
+            power: 0.25,
+            bvh: Some(0.0625),
+        }),
     }
 }
 
@@ -103,6 +109,8 @@ fn the_inspector_shows_every_field_of_a_pixel() {
         "under pairwise MIS these are counted, not rejected",
         "Spatial neighbours merged: 4",
         "spatial M cap fired",
+        "Light 11: selection probability 2.500e-1 by power (and tiles), 6.250e-2 by the light BVH",
+        "Proposed by: light BVH",
     ] {
         assert!(shows(&h, text), "the inspector does not show '{text}'");
     }

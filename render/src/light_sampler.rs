@@ -1,0 +1,283 @@
+//! The light samplers' GPU data beside the power table (docs/src/light-samplers.md): the
+//! presampled light tiles, the ReGIR slots and the light BVH. The renderer owns them and
+//! allocates each on the first frame that uses it (a one-element placeholder before), so a
+//! scene that never asks for a structure pays nothing for it. The BVH is the plain-Rust
+//! `LightBvh` (the model its tests check) uploaded as it is: built on a scene's first frame
+//! that uses it, refitted when lights move or change power (a scene's lights keep their
+//! slots, so none is ever added or removed: a light switched off stays in the tree with
+//! no power).
+
+use std::time::Instant;
+
+use glam::Vec3;
+
+use crate::gpu::Gpu;
+use crate::gpu_scene::{GpuScene, oct_encode};
+use crate::gpu_types::{GpuLightBvhNode, GpuLightBvhTrail, GpuRegirSlot, GpuTileSample};
+use crate::light_bvh::{EmissiveTriangle, LightBvh, Node};
+use crate::shader_constants::{
+    LIGHT_BVH_LEAF, LIGHT_BVH_NOT_IN_TREE, LIGHT_TILE_COUNT, LIGHT_TILE_SIZE,
+};
+
+/// Widening of each node's normals cone (radians) so that the octahedral encoding of its
+/// axis (≈ 1e-4 rad of error) never makes the bound exclude a direction it holds.
+const CONE_SLACK: f32 = 1e-3;
+
+/// What the light samplers cost, for `--stats`, the viewer and docs/bench.md.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct LightSamplerStats {
+    /// Lights in the BVH, its nodes, its bytes on the GPU (nodes and trails).
+    pub bvh_lights: usize,
+    pub bvh_nodes: usize,
+    pub bvh_bytes: u64,
+    /// The last build and the last refit on the CPU, upload included (ms).
+    pub bvh_build_ms: f64,
+    pub bvh_refit_ms: f64,
+    pub bvh_refits: u64,
+    /// The ReGIR slots' bytes (cells × slots × 16).
+    pub regir_bytes: u64,
+    pub tiles_bytes: u64,
+}
+
+/// A light's selection probability at a shading point under each sampler, for the
+/// inspector: the power table's (the tiles draw from it too), and the light BVH's when it
+/// is built (`None` before the first frame that samples with it). ReGIR has none to show:
+/// its slots carry contribution weights W, unbiased estimates of 1 / p, not a PDF.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SelectionPdfs {
+    pub light: u32,
+    pub power: f32,
+    pub bvh: Option<f32>,
+}
+
+/// The BVH of the scene's lights as built, with what it was built from.
+struct SceneLightBvh {
+    tree: LightBvh,
+    /// The lights it holds (those with a position) and their light-table entries.
+    lights: Vec<EmissiveTriangle>,
+    entries: Vec<u32>,
+    power_generation: u64,
+    motion_generation: u64,
+}
+
+pub struct LightSamplerBuffers {
+    pub tiles: wgpu::Buffer,
+    pub regir_slots: wgpu::Buffer,
+    pub bvh_nodes: wgpu::Buffer,
+    pub bvh_trails: wgpu::Buffer,
+    bvh: Option<SceneLightBvh>,
+    pub stats: LightSamplerStats,
+    /// Test-only: the BVH is neither refitted nor rebuilt (a planted stale tree).
+    pub frozen: bool,
+}
+
+fn storage(gpu: &Gpu, label: &str, bytes: u64) -> wgpu::Buffer {
+    gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: bytes.max(16),
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
+}
+
+fn size_of<T>(count: u64) -> u64 {
+    count * std::mem::size_of::<T>() as u64
+}
+
+impl LightSamplerBuffers {
+    /// One-element placeholders for every structure.
+    pub fn new(gpu: &Gpu) -> LightSamplerBuffers {
+        LightSamplerBuffers {
+            tiles: storage(gpu, "light tiles", size_of::<GpuTileSample>(1)),
+            regir_slots: storage(gpu, "regir slots", size_of::<GpuRegirSlot>(1)),
+            bvh_nodes: storage(gpu, "light bvh nodes", size_of::<GpuLightBvhNode>(1)),
+            bvh_trails: storage(gpu, "light bvh trails", size_of::<GpuLightBvhTrail>(1)),
+            bvh: None,
+            stats: LightSamplerStats::default(),
+            frozen: false,
+        }
+    }
+
+    /// The full tile buffer on first use; true if it replaced a buffer (bind groups holding
+    /// the old one must be rebuilt).
+    pub fn ensure_tiles(&mut self, gpu: &Gpu) -> bool {
+        let bytes = size_of::<GpuTileSample>((LIGHT_TILE_COUNT * LIGHT_TILE_SIZE) as u64);
+        let replace = self.tiles.size() < bytes;
+        if replace {
+            self.tiles = storage(gpu, "light tiles", bytes);
+            self.stats.tiles_bytes = bytes;
+        }
+        replace
+    }
+
+    /// Room for `slots` ReGIR slots (cells × slots per cell); true if the buffer was
+    /// replaced.
+    pub fn ensure_regir(&mut self, gpu: &Gpu, slots: u32) -> bool {
+        let bytes = size_of::<GpuRegirSlot>(slots as u64);
+        let replace = self.regir_slots.size() < bytes;
+        if replace {
+            self.regir_slots = storage(gpu, "regir slots", bytes);
+        }
+        self.stats.regir_bytes = bytes;
+        replace
+    }
+
+    /// The light BVH of `scene` as it is now: built on first use, refitted after its
+    /// lights moved or changed power. True if the buffers were replaced.
+    pub fn ensure_bvh(&mut self, gpu: &Gpu, scene: &GpuScene) -> bool {
+        let power = scene.light_power_generation;
+        let motion = scene.light_motion_generation;
+        match &mut self.bvh {
+            Some(_) if self.frozen => false,
+            Some(b) if b.power_generation == power && b.motion_generation == motion => false,
+            Some(b) => {
+                let start = Instant::now();
+                let now = scene.light_sampler_lights();
+                for (light, &entry) in b.lights.iter_mut().zip(&b.entries) {
+                    if let Some(Some(t)) = now.get(entry as usize) {
+                        *light = *t;
+                    }
+                }
+                b.tree.refit(&b.lights);
+                b.power_generation = power;
+                b.motion_generation = motion;
+                let nodes = node_records(&b.tree, &b.entries);
+                gpu.queue
+                    .write_buffer(&self.bvh_nodes, 0, bytemuck::cast_slice(&nodes));
+                self.stats.bvh_refit_ms = start.elapsed().as_secs_f64() * 1e3;
+                self.stats.bvh_refits += 1;
+                false
+            }
+            None => {
+                self.build_bvh(gpu, scene);
+                true
+            }
+        }
+    }
+
+    fn build_bvh(&mut self, gpu: &Gpu, scene: &GpuScene) {
+        let start = Instant::now();
+        let all = scene.light_sampler_lights();
+        let (entries, lights): (Vec<u32>, Vec<EmissiveTriangle>) = all
+            .iter()
+            .enumerate()
+            .filter_map(|(i, l)| l.map(|l| (i as u32, l)))
+            .unzip();
+        let tree = LightBvh::build(&lights);
+        let nodes = node_records(&tree, &entries);
+        let trails = trail_records(&tree, &entries, all.len());
+        self.bvh_nodes = storage(
+            gpu,
+            "light bvh nodes",
+            size_of::<GpuLightBvhNode>(nodes.len() as u64),
+        );
+        self.bvh_trails = storage(
+            gpu,
+            "light bvh trails",
+            size_of::<GpuLightBvhTrail>(trails.len() as u64),
+        );
+        gpu.queue
+            .write_buffer(&self.bvh_nodes, 0, bytemuck::cast_slice(&nodes));
+        gpu.queue
+            .write_buffer(&self.bvh_trails, 0, bytemuck::cast_slice(&trails));
+        self.stats.bvh_lights = tree.in_tree.iter().filter(|&&t| t).count();
+        self.stats.bvh_nodes = tree.nodes.len();
+        self.stats.bvh_bytes = self.bvh_nodes.size() + self.bvh_trails.size();
+        self.stats.bvh_build_ms = start.elapsed().as_secs_f64() * 1e3;
+        self.bvh = Some(SceneLightBvh {
+            tree,
+            lights,
+            entries,
+            power_generation: scene.light_power_generation,
+            motion_generation: scene.light_motion_generation,
+        });
+    }
+
+    /// `light`'s selection probability at point `p` with normal `n` under each sampler
+    /// (light_bvh.wgsl's `light_bvh_selection`, by the plain-Rust tree it was uploaded from).
+    pub fn selection_pdfs(&self, scene: &GpuScene, light: u32, p: Vec3, n: Vec3) -> SelectionPdfs {
+        let power = scene.light_select_pdf(light).unwrap_or(0.0);
+        let bvh = self
+            .bvh
+            .as_ref()
+            .map(|b| match b.entries.binary_search(&light) {
+                Ok(index) => scene.finite_light_share() * b.tree.pdf(index, p, n, true),
+                // No position (the environment, a directional light): the table's.
+                Err(_) => power,
+            });
+        SelectionPdfs { light, power, bvh }
+    }
+
+    /// Drops the BVH (a new scene): the next frame that samples with it builds it again.
+    pub fn forget_scene(&mut self) {
+        self.bvh = None;
+    }
+}
+
+/// The tree's nodes as the GPU reads them (at least one, a placeholder for an empty tree:
+/// the shader never walks it, `finite_light_share` is then 0).
+pub fn node_records(tree: &LightBvh, entries: &[u32]) -> Vec<GpuLightBvhNode> {
+    let mut nodes: Vec<GpuLightBvhNode> = tree
+        .nodes
+        .iter()
+        .enumerate()
+        .map(|(index, node)| {
+            let b = node.bounds();
+            let child_or_light = match node {
+                Node::Leaf { light, .. } => LIGHT_BVH_LEAF | entries[*light],
+                Node::Interior { children, .. } => {
+                    debug_assert_eq!(children[0], index + 1, "first child follows its parent");
+                    children[1] as u32
+                }
+            };
+            let cos_theta_o = if b.normals.cos_theta <= -1.0 {
+                -1.0
+            } else {
+                (b.normals.cos_theta.clamp(-1.0, 1.0).acos() + CONE_SLACK)
+                    .min(std::f32::consts::PI)
+                    .cos()
+            };
+            GpuLightBvhNode {
+                min: b.min.into(),
+                phi: b.phi,
+                max: b.max.into(),
+                child_or_light,
+                axis: oct_encode(b.normals.w.normalize_or(Vec3::Z)),
+                cos_theta_o,
+                cos_theta_e: b.cos_theta_e,
+                _pad: 0,
+            }
+        })
+        .collect();
+    if nodes.is_empty() {
+        nodes.push(GpuLightBvhNode::default());
+    }
+    nodes
+}
+
+/// Per light-table entry, its trail (`LIGHT_BVH_NOT_IN_TREE` for entries outside the tree).
+pub fn trail_records(
+    tree: &LightBvh,
+    entries: &[u32],
+    entry_count: usize,
+) -> Vec<GpuLightBvhTrail> {
+    let mut trails = vec![
+        GpuLightBvhTrail {
+            bits: [0, 0],
+            depth: LIGHT_BVH_NOT_IN_TREE,
+            _pad: 0,
+        };
+        entry_count.max(1)
+    ];
+    for (light, &entry) in entries.iter().enumerate() {
+        if tree.in_tree[light] {
+            let (bits, depth) = tree.trails[light];
+            trails[entry as usize] = GpuLightBvhTrail {
+                bits: [bits as u32, (bits >> 32) as u32],
+                depth,
+                _pad: 0,
+            };
+        }
+    }
+    trails
+}

@@ -12,13 +12,12 @@
 @group(2) @binding(0) var<storage, read> surfaces: array<Surface>;
 @group(2) @binding(1) var<storage, read_write> reservoirs_out: array<Reservoir>;
 @group(2) @binding(2) var<storage, read_write> debug: array<PixelDebug>;
-// Presampled lights (presample_lights.wgsl); a one-element placeholder without tiles.
-@group(2) @binding(3) var<storage, read> light_tiles: array<TileSample>;
-// ReGIR's slots (regir_fill.wgsl) and the light BVH (render/src/light_sampler.rs); each a
-// one-element placeholder unless its sampler is on (docs/src/light-samplers.md).
-@group(2) @binding(4) var<storage, read> regir_slots: array<RegirSlot>;
-@group(2) @binding(5) var<storage, read> light_bvh_nodes: array<LightBvhNode>;
-@group(2) @binding(6) var<storage, read> light_bvh_trails: array<LightBvhTrail>;
+// The light samplers' data (docs/src/light-samplers.md), each a one-element placeholder
+// unless its sampler is on: presampled lights (the light tiles, presample_lights.wgsl, or
+// ReGIR's slots, regir_fill.wgsl) and the light BVH (render/src/light_sampler.rs).
+@group(2) @binding(3) var<storage, read> presampled: array<PresampledLight>;
+@group(2) @binding(4) var<storage, read> light_bvh_nodes: array<LightBvhNode>;
+@group(2) @binding(5) var<storage, read> light_bvh_trails: array<LightBvhTrail>;
 
 #ifdef REGIR
 #include "common/regir.wgsl"
@@ -71,8 +70,8 @@ fn light_bvh_selection(sp: ShadingPoint, light: u32) -> f32 {
 fn light_candidate(sp: ShadingPoint, rng: ptr<function, u32>, pixel: vec2<u32>) -> Candidate {
 #ifdef LIGHT_TILES
     let j = min(u32(rand_f32(rng) * f32(LIGHT_TILE_SIZE)), LIGHT_TILE_SIZE - 1u);
-    let t = light_tiles[block_tile(pixel) * LIGHT_TILE_SIZE + j];
-    return exact_candidate(LightSampleId(t.light, t.uv), unpack_tile_sample(t), PROPOSER_TILE);
+    let t = presampled[block_tile(pixel) * LIGHT_TILE_SIZE + j];
+    return exact_candidate(LightSampleId(t.light, t.uv), unpack_presampled_light(t), PROPOSER_TILE);
 #else
 #ifdef REGIR
     let jitter = (vec3<f32>(rand_f32(rng), rand_f32(rng), rand_f32(rng)) - 0.5) * params.regir_jitter * regir_cell_side();
@@ -80,11 +79,11 @@ fn light_candidate(sp: ShadingPoint, rng: ptr<function, u32>, pixel: vec2<u32>) 
     let u_slot = rand_f32(rng);
     if cell != REGIR_NO_CELL {
         let j = min(u32(u_slot * f32(params.regir_slots)), params.regir_slots - 1u);
-        let slot = regir_slots[cell * params.regir_slots + j];
+        let slot = presampled[cell * params.regir_slots + j];
         if !(slot.weight > 0.0) {
             return no_candidate();
         }
-        let lp = light_point(slot.light, slot.uv);
+        let lp = unpack_presampled_light(slot);
 #ifdef PLANTED_REGIR_WEIGHT_IGNORED
         return exact_candidate(LightSampleId(slot.light, slot.uv), lp, PROPOSER_REGIR);
 #else

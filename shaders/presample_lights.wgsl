@@ -6,7 +6,7 @@
 #include "common/frame_bindings.wgsl"
 #include "common/lights.wgsl"
 
-@group(2) @binding(0) var<storage, read_write> light_tiles: array<TileSample>;
+@group(2) @binding(0) var<storage, read_write> light_tiles: array<PresampledLight>;
 
 @compute @workgroup_size(64)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -17,5 +17,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     // A stream of its own: the "pixel" (i, 0xffffffff) lies outside every image.
     var rng = rng_seed(vec2<u32>(i, 0xffffffffu), STREAM_LIGHT_TILES);
     let y = sample_light(&rng);
-    light_tiles[i] = pack_tile_sample(y, light_point(y.light, y.uv));
+    let lp = light_point(y.light, y.uv);
+    // An exact draw: its contribution weight is 1 / its density.
+    light_tiles[i] = pack_presampled_light(y, lp, select(0.0, 1.0 / lp.source_pdf, lp.source_pdf > 0.0));
 }

@@ -4,7 +4,7 @@
 #include "common/frame_bindings.wgsl"
 #include "common/regir.wgsl"
 
-@group(2) @binding(0) var<storage, read_write> regir_slots: array<RegirSlot>;
+@group(2) @binding(0) var<storage, read_write> regir_slots: array<PresampledLight>;
 
 @compute @workgroup_size(64)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -19,7 +19,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     // tiles use row 0xffffffff, and never run in the same frame).
     var rng = rng_seed(vec2<u32>(i, 0xfffffffeu), STREAM_LIGHT_TILES);
     var w_sum = 0.0;
-    var chosen = RegirSlot(NO_LIGHT, 0.0, vec2<f32>(0.0));
+    var chosen = LightSampleId(NO_LIGHT, vec2<f32>(0.0));
+    var chosen_point: LightPoint;
     var chosen_target = 0.0;
     for (var s = 0u; s < params.regir_build_samples; s++) {
         let y = sample_light(&rng);
@@ -31,12 +32,16 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         }
         w_sum += w;
         if rand_f32(&rng) * w_sum < w {
-            chosen = RegirSlot(y.light, 0.0, y.uv);
+            chosen = y;
+            chosen_point = lp;
             chosen_target = t;
         }
     }
+    // The slot keeps the point's power-table density (what the balance heuristic uses
+    // for it) and its contribution weight; an empty slot has W = 0.
+    var weight = 0.0;
     if chosen_target > 0.0 {
-        chosen.weight = w_sum / (f32(params.regir_build_samples) * chosen_target);
+        weight = w_sum / (f32(params.regir_build_samples) * chosen_target);
     }
-    regir_slots[i] = chosen;
+    regir_slots[i] = pack_presampled_light(chosen, chosen_point, weight);
 }

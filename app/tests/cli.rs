@@ -175,6 +175,36 @@ fn bad_arguments_and_presets_fail_with_one_line() {
         &render("builtin:cornell", &["--set", "nope=1"], &out),
         &["nope"],
     );
+    // The light samplers (docs/src/light-samplers.md): an unknown sampler or a number that
+    // is none is refused in one line; ReGIR values out of range are clamped, with one line
+    // saying so.
+    for (set, name) in [
+        ("light_sampler=octree", "light_sampler"),
+        ("regir_jitter=nan", "regir_jitter"),
+    ] {
+        assert_one_line_error(&render("builtin:cornell", &["--set", set], &out), &[name]);
+    }
+    for (set, said) in [
+        ("regir_grid=0", "regir_grid: 0 is outside 1..=32, using 1"),
+        (
+            "regir_slots=100000",
+            "regir_slots: 100000 is outside 1..=1024, using 1024",
+        ),
+        ("regir_cell_size=-1", "regir_cell_size: -1 is outside"),
+    ] {
+        let res = render(
+            "builtin:cornell",
+            &["--set", set, "--set", "light_sampler=regir"],
+            &out,
+        );
+        let stderr = String::from_utf8_lossy(&res.stderr);
+        assert!(res.status.success(), "{set}: {stderr}");
+        assert_eq!(
+            stderr.lines().filter(|l| l.contains(said)).count(),
+            1,
+            "{set}: {stderr}"
+        );
+    }
     assert_one_line_error(
         &render("builtin:cornell", &["--mode", "magic"], &out),
         &["--mode"],

@@ -171,11 +171,13 @@ pub struct GpuReservoir {
     pub source: u32,
 }
 
-/// One presampled light of a light tile: everything the initial pass needs to score it,
-/// in one contiguous read (lights.wgsl `LightPoint`, packed).
+/// A presampled light: a light tile's entry or a ReGIR slot (docs/src/light-samplers.md).
+/// Everything the initial pass needs to score it in one contiguous read (lights.wgsl
+/// `LightPoint`, packed), with the density the balance heuristic uses for it and its
+/// contribution weight W: 1 / density for a tile's exact draw, the RIS weight for a slot.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
-pub struct GpuTileSample {
+pub struct GpuPresampledLight {
     pub position: [f32; 3],
     pub source_pdf: f32,
     pub radiance: [f32; 3],
@@ -185,6 +187,9 @@ pub struct GpuTileSample {
     pub normal: u32,
     /// `kind | double_sided << 2 | punctual index << 8`.
     pub flags: u32,
+    /// W; 0 for an empty slot.
+    pub weight: f32,
+    pub _pad: [u32; 3],
 }
 
 /// A node of the light BVH (light_bvh.wgsl; built by `light_sampler.rs` from the plain-Rust
@@ -214,17 +219,6 @@ pub struct GpuLightBvhTrail {
     pub bits: [u32; 2],
     pub depth: u32,
     pub _pad: u32,
-}
-
-/// One ReGIR slot (regir_fill.wgsl): a light sample resampled toward its cell's target and
-/// its contribution weight W = w_sum / (M p̂_cell(y)), per unit area (docs/src/light-samplers.md,
-/// "ReGIR"); W = 0 for an empty slot.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
-pub struct GpuRegirSlot {
-    pub light: u32,
-    pub weight: f32,
-    pub uv: [f32; 2],
 }
 
 /// Per-pixel surface written by the G-buffer resolve pass and kept one frame for

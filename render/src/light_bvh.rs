@@ -233,7 +233,14 @@ pub struct LightBvh {
     /// Lights with a non-finite corner or power are not in the tree (their PDF is 0). A
     /// light with no power is, with PDF 0 until a refit gives it power (a blinking light).
     pub in_tree: Vec<bool>,
+    /// Per node its parent, per light its leaf (`NO_NODE`: the root; a light not in the
+    /// tree): what a refit of a few lights climbs.
+    pub parents: Vec<u32>,
+    pub leaves: Vec<u32>,
 }
+
+/// No node: the root's parent, the leaf of a light outside the tree.
+pub const NO_NODE: u32 = u32::MAX;
 
 /// A drawn light and the probability of drawing it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -251,6 +258,8 @@ impl LightBvh {
             nodes: Vec::new(),
             trails: vec![(0, 0); lights.len()],
             in_tree: vec![false; lights.len()],
+            parents: Vec::new(),
+            leaves: vec![NO_NODE; lights.len()],
         };
         let mut ids: Vec<usize> = (0..lights.len())
             .filter(|&i| {
@@ -260,6 +269,15 @@ impl LightBvh {
             .collect();
         if !ids.is_empty() {
             bvh.build_node(lights, &mut ids, 0, 0);
+        }
+        bvh.parents = vec![NO_NODE; bvh.nodes.len()];
+        for (index, node) in bvh.nodes.iter().enumerate() {
+            match node {
+                Node::Interior { children, .. } => {
+                    children.iter().for_each(|&c| bvh.parents[c] = index as u32)
+                }
+                Node::Leaf { light, .. } => bvh.leaves[*light] = index as u32,
+            }
         }
         bvh
     }
@@ -387,16 +405,46 @@ impl LightBvh {
     /// its quality degrades as lights wander; adding or removing lights rebuilds.
     pub fn refit(&mut self, lights: &[EmissiveTriangle]) {
         for index in (0..self.nodes.len()).rev() {
-            let bounds = match &self.nodes[index] {
-                Node::Leaf { light, .. } => lights[*light].bounds(),
-                Node::Interior { children, .. } => LightBounds::union(
-                    self.nodes[children[0]].bounds(),
-                    self.nodes[children[1]].bounds(),
-                ),
-            };
-            match &mut self.nodes[index] {
-                Node::Leaf { bounds: b, .. } | Node::Interior { bounds: b, .. } => *b = bounds,
+            self.recompute(index, lights);
+        }
+    }
+
+    /// The refit for `changed` lights only (those that moved or changed power): their
+    /// leaves and every node above them, children before parents; the other nodes keep
+    /// their bounds, which are still right. The same tree as `refit` when `changed` lists
+    /// every light that changed. Returns the nodes it rewrote, in ascending order.
+    pub fn refit_changed(&mut self, lights: &[EmissiveTriangle], changed: &[usize]) -> Vec<usize> {
+        let mut dirty = vec![false; self.nodes.len()];
+        let mut rewritten = Vec::new();
+        for &light in changed {
+            let mut node = self.leaves.get(light).copied().unwrap_or(NO_NODE);
+            // Up to the root, or to a node another changed light already marked.
+            while node != NO_NODE && !dirty[node as usize] {
+                dirty[node as usize] = true;
+                rewritten.push(node as usize);
+                node = self.parents[node as usize];
             }
+        }
+        // Preorder: a node's children come after it, so descending order is bottom up.
+        rewritten.sort_unstable_by(|a, b| b.cmp(a));
+        for &index in &rewritten {
+            self.recompute(index, lights);
+        }
+        rewritten.reverse();
+        rewritten
+    }
+
+    /// Node `index`'s bounds from its light or its children.
+    fn recompute(&mut self, index: usize, lights: &[EmissiveTriangle]) {
+        let bounds = match &self.nodes[index] {
+            Node::Leaf { light, .. } => lights[*light].bounds(),
+            Node::Interior { children, .. } => LightBounds::union(
+                self.nodes[children[0]].bounds(),
+                self.nodes[children[1]].bounds(),
+            ),
+        };
+        match &mut self.nodes[index] {
+            Node::Leaf { bounds: b, .. } | Node::Interior { bounds: b, .. } => *b = bounds,
         }
     }
 }

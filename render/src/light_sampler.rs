@@ -1,5 +1,5 @@
 //! The light samplers' GPU data beside the power table (docs/src/light-samplers.md): the
-//! presampled light tiles, the ReGIR slots and the light BVH. The renderer owns them and
+//! presampled lights (the light tiles' entries or ReGIR's slots) and the light BVH. The renderer owns them and
 //! allocates each on the first frame that uses it (a one-element placeholder before), so a
 //! scene that never asks for a structure pays nothing for it. The BVH is the plain-Rust
 //! `LightBvh` (the model its tests check) uploaded as it is: built on a scene's first frame
@@ -13,11 +13,24 @@ use glam::Vec3;
 
 use crate::gpu::Gpu;
 use crate::gpu_scene::{GpuScene, oct_encode};
-use crate::gpu_types::{GpuLightBvhNode, GpuLightBvhTrail, GpuRegirSlot, GpuTileSample};
+use crate::gpu_types::{GpuLightBvhNode, GpuLightBvhTrail, GpuPresampledLight};
 use crate::light_bvh::{EmissiveTriangle, LightBvh, Node};
-use crate::shader_constants::{
-    LIGHT_BVH_LEAF, LIGHT_BVH_NOT_IN_TREE, LIGHT_TILE_COUNT, LIGHT_TILE_SIZE,
-};
+use crate::shader_constants::{LIGHT_BVH_LEAF, LIGHT_BVH_NOT_IN_TREE};
+
+/// Rewritten nodes closer than this are uploaded in one write with the nodes between them.
+const UPLOAD_GAP: usize = 64;
+
+/// Ascending `indices` as ranges, joined where fewer than `gap` indices lie between them.
+fn runs(indices: &[usize], gap: usize) -> Vec<std::ops::Range<usize>> {
+    let mut out: Vec<std::ops::Range<usize>> = Vec::new();
+    for &i in indices {
+        match out.last_mut() {
+            Some(run) if i < run.end + gap => run.end = i + 1,
+            _ => out.push(i..i + 1),
+        }
+    }
+    out
+}
 
 /// Widening of each node's normals cone (radians) so that the octahedral encoding of its
 /// axis (≈ 1e-4 rad of error) never makes the bound exclude a direction it holds.
@@ -34,9 +47,10 @@ pub struct LightSamplerStats {
     pub bvh_build_ms: f64,
     pub bvh_refit_ms: f64,
     pub bvh_refits: u64,
-    /// The ReGIR slots' bytes (cells × slots × 16).
-    pub regir_bytes: u64,
-    pub tiles_bytes: u64,
+    /// Nodes the last refit rewrote (the changed lights' leaves and everything above them).
+    pub bvh_refit_nodes: usize,
+    /// The presampled lights' bytes (the tiles' entries or ReGIR's slots, 64 each).
+    pub presampled_bytes: u64,
 }
 
 /// A light's selection probability at a shading point under each sampler, for the
@@ -53,6 +67,8 @@ pub struct SelectionPdfs {
 /// The BVH of the scene's lights as built, with what it was built from.
 struct SceneLightBvh {
     tree: LightBvh,
+    /// Its nodes as uploaded (a refit rewrites the changed ones).
+    records: Vec<GpuLightBvhNode>,
     /// The lights it holds (those with a position) and their light-table entries.
     lights: Vec<EmissiveTriangle>,
     entries: Vec<u32>,
@@ -61,8 +77,8 @@ struct SceneLightBvh {
 }
 
 pub struct LightSamplerBuffers {
-    pub tiles: wgpu::Buffer,
-    pub regir_slots: wgpu::Buffer,
+    /// The light tiles' entries or ReGIR's slots (the frame uses one or the other).
+    pub presampled: wgpu::Buffer,
     pub bvh_nodes: wgpu::Buffer,
     pub bvh_trails: wgpu::Buffer,
     bvh: Option<SceneLightBvh>,
@@ -88,8 +104,7 @@ impl LightSamplerBuffers {
     /// One-element placeholders for every structure.
     pub fn new(gpu: &Gpu) -> LightSamplerBuffers {
         LightSamplerBuffers {
-            tiles: storage(gpu, "light tiles", size_of::<GpuTileSample>(1)),
-            regir_slots: storage(gpu, "regir slots", size_of::<GpuRegirSlot>(1)),
+            presampled: storage(gpu, "presampled lights", size_of::<GpuPresampledLight>(1)),
             bvh_nodes: storage(gpu, "light bvh nodes", size_of::<GpuLightBvhNode>(1)),
             bvh_trails: storage(gpu, "light bvh trails", size_of::<GpuLightBvhTrail>(1)),
             bvh: None,
@@ -98,27 +113,15 @@ impl LightSamplerBuffers {
         }
     }
 
-    /// The full tile buffer on first use; true if it replaced a buffer (bind groups holding
-    /// the old one must be rebuilt).
-    pub fn ensure_tiles(&mut self, gpu: &Gpu) -> bool {
-        let bytes = size_of::<GpuTileSample>((LIGHT_TILE_COUNT * LIGHT_TILE_SIZE) as u64);
-        let replace = self.tiles.size() < bytes;
+    /// Room for `count` presampled lights (the tiles' entries, or ReGIR's cells × slots);
+    /// true if it replaced the buffer (bind groups holding the old one must be rebuilt).
+    pub fn ensure_presampled(&mut self, gpu: &Gpu, count: u32) -> bool {
+        let bytes = size_of::<GpuPresampledLight>(count as u64);
+        let replace = self.presampled.size() < bytes;
         if replace {
-            self.tiles = storage(gpu, "light tiles", bytes);
-            self.stats.tiles_bytes = bytes;
+            self.presampled = storage(gpu, "presampled lights", bytes);
         }
-        replace
-    }
-
-    /// Room for `slots` ReGIR slots (cells × slots per cell); true if the buffer was
-    /// replaced.
-    pub fn ensure_regir(&mut self, gpu: &Gpu, slots: u32) -> bool {
-        let bytes = size_of::<GpuRegirSlot>(slots as u64);
-        let replace = self.regir_slots.size() < bytes;
-        if replace {
-            self.regir_slots = storage(gpu, "regir slots", bytes);
-        }
-        self.stats.regir_bytes = bytes;
+        self.stats.presampled_bytes = bytes;
         replace
     }
 
@@ -133,17 +136,28 @@ impl LightSamplerBuffers {
             Some(b) => {
                 let start = Instant::now();
                 let now = scene.light_sampler_lights();
-                for (light, &entry) in b.lights.iter_mut().zip(&b.entries) {
-                    if let Some(Some(t)) = now.get(entry as usize) {
+                let mut changed = Vec::new();
+                for (i, (light, &entry)) in b.lights.iter_mut().zip(&b.entries).enumerate() {
+                    if let Some(Some(t)) = now.get(entry as usize).filter(|t| **t != Some(*light)) {
                         *light = *t;
+                        changed.push(i);
                     }
                 }
-                b.tree.refit(&b.lights);
+                let rewritten = b.tree.refit_changed(&b.lights, &changed);
                 b.power_generation = power;
                 b.motion_generation = motion;
-                let nodes = node_records(&b.tree, &b.entries);
-                gpu.queue
-                    .write_buffer(&self.bvh_nodes, 0, bytemuck::cast_slice(&nodes));
+                for &index in &rewritten {
+                    b.records[index] = node_record(&b.tree, index, &b.entries);
+                }
+                for run in runs(&rewritten, UPLOAD_GAP) {
+                    let offset = (run.start * std::mem::size_of::<GpuLightBvhNode>()) as u64;
+                    gpu.queue.write_buffer(
+                        &self.bvh_nodes,
+                        offset,
+                        bytemuck::cast_slice(&b.records[run]),
+                    );
+                }
+                self.stats.bvh_refit_nodes = rewritten.len();
                 self.stats.bvh_refit_ms = start.elapsed().as_secs_f64() * 1e3;
                 self.stats.bvh_refits += 1;
                 false
@@ -186,6 +200,7 @@ impl LightSamplerBuffers {
         self.stats.bvh_build_ms = start.elapsed().as_secs_f64() * 1e3;
         self.bvh = Some(SceneLightBvh {
             tree,
+            records: nodes,
             lights,
             entries,
             power_generation: scene.light_power_generation,
@@ -217,42 +232,43 @@ impl LightSamplerBuffers {
 /// The tree's nodes as the GPU reads them (at least one, a placeholder for an empty tree:
 /// the shader never walks it, `finite_light_share` is then 0).
 pub fn node_records(tree: &LightBvh, entries: &[u32]) -> Vec<GpuLightBvhNode> {
-    let mut nodes: Vec<GpuLightBvhNode> = tree
-        .nodes
-        .iter()
-        .enumerate()
-        .map(|(index, node)| {
-            let b = node.bounds();
-            let child_or_light = match node {
-                Node::Leaf { light, .. } => LIGHT_BVH_LEAF | entries[*light],
-                Node::Interior { children, .. } => {
-                    debug_assert_eq!(children[0], index + 1, "first child follows its parent");
-                    children[1] as u32
-                }
-            };
-            let cos_theta_o = if b.normals.cos_theta <= -1.0 {
-                -1.0
-            } else {
-                (b.normals.cos_theta.clamp(-1.0, 1.0).acos() + CONE_SLACK)
-                    .min(std::f32::consts::PI)
-                    .cos()
-            };
-            GpuLightBvhNode {
-                min: b.min.into(),
-                phi: b.phi,
-                max: b.max.into(),
-                child_or_light,
-                axis: oct_encode(b.normals.w.normalize_or(Vec3::Z)),
-                cos_theta_o,
-                cos_theta_e: b.cos_theta_e,
-                _pad: 0,
-            }
-        })
+    let mut nodes: Vec<GpuLightBvhNode> = (0..tree.nodes.len())
+        .map(|index| node_record(tree, index, entries))
         .collect();
     if nodes.is_empty() {
         nodes.push(GpuLightBvhNode::default());
     }
     nodes
+}
+
+/// Node `index` as the GPU reads it.
+fn node_record(tree: &LightBvh, index: usize, entries: &[u32]) -> GpuLightBvhNode {
+    let node = &tree.nodes[index];
+    let b = node.bounds();
+    let child_or_light = match node {
+        Node::Leaf { light, .. } => LIGHT_BVH_LEAF | entries[*light],
+        Node::Interior { children, .. } => {
+            debug_assert_eq!(children[0], index + 1, "first child follows its parent");
+            children[1] as u32
+        }
+    };
+    let cos_theta_o = if b.normals.cos_theta <= -1.0 {
+        -1.0
+    } else {
+        (b.normals.cos_theta.clamp(-1.0, 1.0).acos() + CONE_SLACK)
+            .min(std::f32::consts::PI)
+            .cos()
+    };
+    GpuLightBvhNode {
+        min: b.min.into(),
+        phi: b.phi,
+        max: b.max.into(),
+        child_or_light,
+        axis: oct_encode(b.normals.w.normalize_or(Vec3::Z)),
+        cos_theta_o,
+        cos_theta_e: b.cos_theta_e,
+        _pad: 0,
+    }
 }
 
 /// Per light-table entry, its trail (`LIGHT_BVH_NOT_IN_TREE` for entries outside the tree).

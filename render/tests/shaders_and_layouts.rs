@@ -292,12 +292,13 @@ fn host_structs_match_wgsl_layouts() {
         ]
     );
     check_struct!(m, "LightBvhTrail", GpuLightBvhTrail, [bits, depth]);
-    check_struct!(m, "RegirSlot", GpuRegirSlot, [light, weight, uv]);
     check_struct!(
         m,
-        "TileSample",
-        GpuTileSample,
-        [position, source_pdf, radiance, light, uv, normal, flags]
+        "PresampledLight",
+        GpuPresampledLight,
+        [
+            position, source_pdf, radiance, light, uv, normal, flags, weight
+        ]
     );
     check_struct!(
         m,

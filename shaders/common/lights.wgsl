@@ -199,12 +199,12 @@ fn with_selection_pdf(lp: LightPoint, light_id: u32, selection: f32) -> LightPoi
 }
 
 // An environment sample keeps its direction in `position` and kind 3 in the two kind bits.
-fn pack_tile_sample(y: LightSampleId, lp: LightPoint) -> TileSample {
+fn pack_presampled_light(y: LightSampleId, lp: LightPoint, weight: f32) -> PresampledLight {
     let flags = lp.kind | (select(0u, 1u, lp.double_sided) << 2u) | (lp.punctual << 8u);
-    return TileSample(lp.position, lp.source_pdf, lp.radiance, y.light, y.uv, oct_encode(lp.normal), flags);
+    return PresampledLight(lp.position, lp.source_pdf, lp.radiance, y.light, y.uv, oct_encode(lp.normal), flags, weight, 0u, 0u, 0u);
 }
 
-fn unpack_tile_sample(t: TileSample) -> LightPoint {
+fn unpack_presampled_light(t: PresampledLight) -> LightPoint {
     var lp: LightPoint;
     lp.kind = t.flags & 3u;
     lp.position = t.position;

@@ -84,7 +84,10 @@ struct Reservoir {
 }
 
 // One presampled light of a light tile (a packed LightPoint plus its identity).
-struct TileSample {
+// A presampled light: a light tile's entry or a ReGIR slot (docs/src/light-samplers.md),
+// its point packed, the density the balance heuristic uses for it (source_pdf) and its
+// contribution weight W (1 / source_pdf for a tile's exact draw; 0: an empty slot).
+struct PresampledLight {
     position: vec3<f32>,
     source_pdf: f32,
     radiance: vec3<f32>,
@@ -92,6 +95,10 @@ struct TileSample {
     uv: vec2<f32>,
     normal: u32,   // octahedral
     flags: u32,    // kind | double_sided << 2 | punctual index << 8
+    weight: f32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 // A light BVH node (render/src/light_sampler.rs builds them; light_bvh.wgsl walks them):
@@ -113,14 +120,6 @@ struct LightBvhTrail {
     bits: vec2<u32>,
     depth: u32,         // LIGHT_BVH_NOT_IN_TREE: no leaf
     _pad: u32,
-}
-
-// A ReGIR slot: a light sample resampled toward its cell's target, and its contribution
-// weight W (per unit area; 0: empty).
-struct RegirSlot {
-    light: u32,
-    weight: f32,
-    uv: vec2<f32>,
 }
 
 // One pixel's primary surface (docs/src/frame.md, "The G-buffer"), kept for one frame for

@@ -157,8 +157,28 @@ fn the_refit_keeps_every_moving_light_inside_its_nodes() {
         escaped(&bvh) > 0,
         "the planted stale tree should miss the moved lights"
     );
+    // Refitting only the moved lights' paths gives the tree a full refit gives; leaving one
+    // moved light out of the list leaves it outside its nodes.
+    let moved: Vec<usize> = (0..lights.len()).step_by(10).collect();
+    let mut partial = bvh.clone();
+    let mut forgetful = bvh.clone();
+    let rewritten = partial.refit_changed(&lights, &moved);
+    assert!(
+        rewritten.len() < bvh.nodes.len(),
+        "{} nodes",
+        rewritten.len()
+    );
+    forgetful.refit_changed(&lights, &moved[1..]);
+    assert!(
+        escaped(&forgetful) > 0,
+        "a light left out of the refit went unseen"
+    );
     bvh.refit(&lights);
     assert_eq!(escaped(&bvh), 0);
+    assert_eq!(escaped(&partial), 0);
+    for (a, b) in partial.nodes.iter().zip(&bvh.nodes) {
+        assert_eq!(a.bounds(), b.bounds());
+    }
     for (p, n) in shading_points(10) {
         let sum: f64 = (0..lights.len())
             .map(|l| bvh.pdf(l, p, n, true) as f64)

@@ -8,7 +8,7 @@ use crate::shader_constants::{LIGHT_TILE_COUNT, LIGHT_TILE_SIZE};
 pub const PASS: PassDef = PassDef {
     name: "presample lights",
     shader: "presample_lights.wgsl",
-    group: &[write(Lights(LightData::Tiles))],
+    group: &[write(Lights(LightData::Presampled))],
     dispatch: Dispatch::Threads {
         invocations: LIGHT_TILE_COUNT * LIGHT_TILE_SIZE,
         // The shader's @workgroup_size.

@@ -9,7 +9,7 @@ use crate::shader_constants::MAX_REGIR_SLOTS_TOTAL;
 pub const FILL: PassDef = PassDef {
     name: "regir fill",
     shader: "regir_fill.wgsl",
-    group: &[write(Lights(LightData::RegirSlots))],
+    group: &[write(Lights(LightData::Presampled))],
     // At most this many slots; the step dispatches the frame's cells × slots
     // (`Step::threads`).
     dispatch: Dispatch::Threads {

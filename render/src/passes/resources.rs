@@ -66,22 +66,19 @@ pub enum Resource {
 /// The light samplers' buffers (docs/src/light-samplers.md).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum LightData {
-    /// The presampled light tiles.
-    Tiles,
-    /// ReGIR's cells of slots.
-    RegirSlots,
+    /// Presampled lights: the light tiles or ReGIR's cells of slots (never both in a frame).
+    Presampled,
     /// The light BVH's nodes and its per-light trails.
     BvhNodes,
     BvhTrails,
 }
 
 impl LightData {
-    /// The record size of the buffer (`GpuTileSample`, `GpuRegirSlot`, ...).
+    /// The record size of the buffer (`GpuPresampledLight`, `GpuLightBvhNode`, ...).
     pub fn stride(self) -> usize {
         use crate::gpu_types::*;
         match self {
-            LightData::Tiles => std::mem::size_of::<GpuTileSample>(),
-            LightData::RegirSlots => std::mem::size_of::<GpuRegirSlot>(),
+            LightData::Presampled => std::mem::size_of::<GpuPresampledLight>(),
             LightData::BvhNodes => std::mem::size_of::<GpuLightBvhNode>(),
             LightData::BvhTrails => std::mem::size_of::<GpuLightBvhTrail>(),
         }

@@ -79,8 +79,7 @@ fn create(
                 Bound::Lights(data) => {
                     let l = u.light_sampler;
                     match data {
-                        LightData::Tiles => &l.tiles,
-                        LightData::RegirSlots => &l.regir_slots,
+                        LightData::Presampled => &l.presampled,
                         LightData::BvhNodes => &l.bvh_nodes,
                         LightData::BvhTrails => &l.bvh_trails,
                     }

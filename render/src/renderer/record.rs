@@ -23,7 +23,8 @@ use crate::passes::resources::RESERVOIRS;
 use crate::passes::{ComputePass, PASS_INFO_SLOTS, PASS_INFO_STRIDE, PassDef, PassLayouts};
 use crate::settings::Settings;
 use crate::shader_constants::{
-    MAX_DENOISE_ITERATIONS, MAX_SPATIAL_PASSES, REFERENCE_SAMPLES_PER_DISPATCH,
+    LIGHT_TILE_COUNT, LIGHT_TILE_SIZE, MAX_DENOISE_ITERATIONS, MAX_SPATIAL_PASSES,
+    REFERENCE_SAMPLES_PER_DISPATCH,
 };
 use crate::tracing::RayBackend;
 use crate::view::{DebugView, Mode};
@@ -553,10 +554,10 @@ impl Renderer {
         let lights = &mut self.buffers.light_sampler;
         let mut replaced = false;
         if switches.light_tiles {
-            replaced |= lights.ensure_tiles(&self.gpu);
+            replaced |= lights.ensure_presampled(&self.gpu, LIGHT_TILE_COUNT * LIGHT_TILE_SIZE);
         }
         if switches.regir_slots > 0 {
-            replaced |= lights.ensure_regir(&self.gpu, switches.regir_slots);
+            replaced |= lights.ensure_presampled(&self.gpu, switches.regir_slots);
         }
         if switches.realtime && effects.contains(Effect::LightBvh) {
             replaced |= lights.ensure_bvh(&self.gpu, &self.scene);

@@ -57,6 +57,10 @@ pub fn resolve_light_sampler(f: &SceneFeatures, choice: LightSampler) -> (LightS
     }
 }
 
+/// The light samplers' effects, alternatives of which a frame uses at most one; the tiles
+/// first (the general pipeline's).
+const LIGHT_SAMPLER_EFFECTS: [Effect; 3] = [Effect::LightTiles, Effect::Regir, Effect::LightBvh];
+
 /// What effect detection needs to know about a scene, counted once at load time.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct SceneFeatures {
@@ -289,9 +293,15 @@ impl fmt::Display for EffectSet {
 
 impl EffectSet {
     /// The general pipeline: every code path compiled in.
+    /// The general pipeline: every code path compiled in. The light samplers are
+    /// alternatives (one draws a frame's candidates), so it keeps the tiles and leaves
+    /// ReGIR and the light BVH out.
     pub fn all() -> EffectSet {
         EffectSet {
-            enabled: Effect::ALL.into_iter().collect(),
+            enabled: Effect::ALL
+                .into_iter()
+                .filter(|e| !LIGHT_SAMPLER_EFFECTS[1..].contains(e))
+                .collect(),
             reasons: Effect::ALL
                 .iter()
                 .map(|e| (*e, "forced (--effects all)".to_string()))
@@ -515,6 +525,17 @@ impl EffectSet {
                 format!("unknown effect '{name}' (known: {})", known.join(", "))
             })?;
             enabled.insert(e);
+        }
+        if LIGHT_SAMPLER_EFFECTS
+            .iter()
+            .filter(|e| enabled.contains(e))
+            .count()
+            > 1
+        {
+            return Err(
+                "light-tiles, regir and light-bvh are alternative light samplers: name at most one"
+                    .into(),
+            );
         }
         let reasons = Effect::ALL
             .iter()

@@ -544,9 +544,7 @@ impl Settings {
         if !self.store(name, &value) {
             return Err(bad(format!("{value} has the wrong type")));
         }
-        if let Some(w) = &warning {
-            log::warn!("{w}");
-        }
+        // The caller says it (one line: `warning: --set ...`, the preset's file, the tour).
         Ok(warning)
     }
 

@@ -201,3 +201,16 @@ fn passes_and_buffers_follow_the_settings() {
         "{effects}"
     );
 }
+
+/// The light samplers are alternatives: the general pipeline keeps the tiles (ReGIR's fill
+/// would overwrite them, the BVH's PDF would misweigh their BSDF candidates), and a forced
+/// list naming two is refused in one line.
+#[test]
+fn the_light_samplers_are_alternatives() {
+    let all = EffectSet::all();
+    assert!(all.contains(Effect::LightTiles));
+    assert!(!all.contains(Effect::Regir) && !all.contains(Effect::LightBvh));
+    let err = EffectSet::parse_list("area-lights,light-tiles,light-bvh").unwrap_err();
+    assert!(err.contains("alternative") && !err.contains('\n'), "{err}");
+    assert!(EffectSet::parse_list("area-lights,regir").is_ok());
+}

@@ -1,7 +1,8 @@
 // Initial candidates (docs/src/ris.md, "Resampled importance sampling"): streaming RIS over
 // `light_candidates` light points from the frame's light sampler (docs/src/light-samplers.md)
 // and `bsdf_candidates` BSDF rays that hit an emitter (or escape to the environment: then
-// the sample is that direction, per steradian), combined with the balance heuristic: w_i = p̂(y_i) / Σ_s N_s p_s(y_i) (area measure), W = w_sum / p̂(y).
+// the sample is that direction, per steradian), combined with the balance heuristic:
+// w_i = p̂(y_i) / Σ_s N_s p_s(y_i) (area measure), W = w_sum / p̂(y).
 // The result has M = 1: M counts reservoirs' worth of samples, so the M cap counts frames.
 // With `initial_visibility` the survivor's shadow ray is traced here already.
 #include "common/frame_bindings.wgsl"

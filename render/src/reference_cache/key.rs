@@ -12,8 +12,9 @@ use anyhow::Context;
 use super::ReferenceRequest;
 use crate::shader_source::compose;
 
-/// Bump when something a reference depends on changes in a way the key cannot see (a
-/// built-in scene generator, the reference estimator's Rust side).
+/// Bump when something a reference depends on changes in a way the key cannot see (the
+/// reference estimator's Rust side; a built-in scene's generator is seen: its content is
+/// hashed).
 pub const CACHE_VERSION: u32 = 1;
 
 /// FNV-1a, 64 bit: stable across platforms, Rust versions and runs (std's `DefaultHasher`
@@ -62,7 +63,7 @@ impl ReferenceKey {
 }
 
 /// The key of `request`. Reads the scene file (and, for .gltf, the buffers and images it
-/// names) to hash its bytes; built-in scenes are keyed by name and [`CACHE_VERSION`].
+/// names) to hash its bytes; builds a built-in scene to hash its content.
 pub fn key_of(request: &ReferenceRequest) -> anyhow::Result<ReferenceKey> {
     let scene = scene_fingerprint(&request.scene)?;
     let c = &request.camera;
@@ -120,11 +121,14 @@ pub fn key_of(request: &ReferenceRequest) -> anyhow::Result<ReferenceKey> {
     })
 }
 
-/// Hash of the scene's source: the built-in name, or the bytes of the file and of the
-/// external files a .gltf refers to.
+/// Hash of the scene's source: a built-in scene's content (so a changed generator gets
+/// new references; keyed by name alone, a cache once served a city's old references to
+/// its new lights), or the bytes of the file and of the external files a .gltf refers to.
 fn scene_fingerprint(spec: &str) -> anyhow::Result<u64> {
     if let Some(name) = spec.strip_prefix("builtin:") {
-        return Ok(Fnv64::of(format!("builtin:{name}").as_bytes()));
+        let scene = crate::scene::builtin::builtin_scene(name)
+            .with_context(|| format!("{spec}: cannot build the scene to key its reference"))?;
+        return Ok(scene_content_hash(&scene));
     }
     let path = Path::new(spec);
     let bytes = std::fs::read(path)
@@ -145,6 +149,37 @@ fn scene_fingerprint(spec: &str) -> anyhow::Result<u64> {
         }
     }
     Ok(h.finish())
+}
+
+/// Hash of everything a scene renders from: its name, vertices, triangles, materials,
+/// textures, punctual lights, camera and animation (floats by their bits).
+pub fn scene_content_hash(scene: &crate::Scene) -> u64 {
+    let mut h = Fnv64::default();
+    h.write(scene.name.as_bytes());
+    for v in &scene.vertices {
+        for x in [v.position.to_array(), v.normal.to_array()].concat() {
+            h.write(&x.to_bits().to_le_bytes());
+        }
+        for x in v.uv.to_array() {
+            h.write(&x.to_bits().to_le_bytes());
+        }
+    }
+    for t in &scene.triangles {
+        for i in t.indices {
+            h.write(&i.to_le_bytes());
+        }
+        h.write(&t.material.to_le_bytes());
+    }
+    for texture in &scene.textures {
+        h.write(format!("{}:{}x{}", texture.name, texture.width, texture.height).as_bytes());
+        h.write(texture.texels.as_flattened());
+    }
+    // Debug prints every float exactly (shortest round-trip form).
+    h.write(format!("{:?}", scene.materials).as_bytes());
+    h.write(format!("{:?}", scene.punctual_lights).as_bytes());
+    h.write(format!("{:?}", scene.camera).as_bytes());
+    h.write(format!("{:?}", scene.animation).as_bytes());
+    h.finish()
 }
 
 /// The non-`data:` URIs of a .gltf's buffers and images, in file order.
@@ -195,6 +230,25 @@ mod tests {
         assert_eq!(Fnv64::of(b""), 0xcbf2_9ce4_8422_2325);
         assert_eq!(Fnv64::of(b"a"), 0xaf63_dc4c_8601_ec8c);
         assert_eq!(Fnv64::of(b"foobar"), 0x8594_4171_f739_67e8);
+    }
+
+    /// A built-in scene is keyed by what it holds: the same scene twice hashes alike, a
+    /// light moved by a millimetre or a changed emission does not.
+    #[test]
+    fn a_builtin_scene_is_keyed_by_its_content() {
+        let scene = crate::scene::builtin::builtin_scene("city:64").unwrap();
+        let base = scene_content_hash(&scene);
+        assert_eq!(base, scene_content_hash(&crate::scene::builtin::builtin_scene("city:64").unwrap()));
+        assert_eq!(base, scene_fingerprint("builtin:city:64").unwrap());
+        let mut moved = scene.clone();
+        let last = moved.vertices.len() - 1;
+        moved.vertices[last].position.x += 1e-3;
+        assert_ne!(base, scene_content_hash(&moved));
+        let mut brighter = scene.clone();
+        let m = brighter.materials.iter().position(|m| m.is_emissive()).unwrap();
+        brighter.materials[m].emission *= 1.01;
+        assert_ne!(base, scene_content_hash(&brighter));
+        assert_ne!(base, scene_fingerprint("builtin:city:65").unwrap());
     }
 
     #[test]

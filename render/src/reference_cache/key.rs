@@ -238,14 +238,21 @@ mod tests {
     fn a_builtin_scene_is_keyed_by_its_content() {
         let scene = crate::scene::builtin::builtin_scene("city:64").unwrap();
         let base = scene_content_hash(&scene);
-        assert_eq!(base, scene_content_hash(&crate::scene::builtin::builtin_scene("city:64").unwrap()));
+        assert_eq!(
+            base,
+            scene_content_hash(&crate::scene::builtin::builtin_scene("city:64").unwrap())
+        );
         assert_eq!(base, scene_fingerprint("builtin:city:64").unwrap());
         let mut moved = scene.clone();
         let last = moved.vertices.len() - 1;
         moved.vertices[last].position.x += 1e-3;
         assert_ne!(base, scene_content_hash(&moved));
         let mut brighter = scene.clone();
-        let m = brighter.materials.iter().position(|m| m.is_emissive()).unwrap();
+        let m = brighter
+            .materials
+            .iter()
+            .position(|m| m.is_emissive())
+            .unwrap();
         brighter.materials[m].emission *= 1.01;
         assert_ne!(base, scene_content_hash(&brighter));
         assert_ne!(base, scene_fingerprint("builtin:city:65").unwrap());

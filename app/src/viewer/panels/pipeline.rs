@@ -96,7 +96,10 @@ fn stage_ui(ui: &mut Ui, settings: &mut Settings, stage: Stage, context: &Contex
                 .iter()
                 .filter(|p| p.stage == stage && !is_stage_switch(p))
             {
-                let enabled = technique_switch(def).is_none_or(|s| is_on(settings, s));
+                let enabled = technique_switch(def).is_none_or(|s| is_on(settings, s))
+                    && chosen_by(def).is_none_or(|(choice, value)| {
+                        settings.get(choice.name) == Some(ParamValue::Choice(value.to_string()))
+                    });
                 ui.add_enabled_ui(enabled, |ui| {
                     param_widget(ui, settings, def);
                     effective_value(ui, settings, def, context);
@@ -104,6 +107,18 @@ fn stage_ui(ui: &mut Ui, settings: &mut Settings, stage: Stage, context: &Contex
             }
         });
     });
+}
+
+/// The choice whose value `def`'s name starts with, and that value: `regir_grid` belongs
+/// to `light_sampler=regir` and is greyed out while another sampler draws the candidates.
+fn chosen_by(def: &ParamDef) -> Option<(&'static ParamDef, &'static str)> {
+    let (prefix, _) = def.name.split_once('_')?;
+    PARAMS.iter().find_map(|p| match p.kind {
+        ParamKind::Choice(values) if p.stage == def.stage && p.name != def.name => {
+            values.iter().find(|v| **v == prefix).map(|v| (p, *v))
+        }
+        _ => None,
+    })
 }
 
 fn is_on(settings: &Settings, switch: &ParamDef) -> bool {

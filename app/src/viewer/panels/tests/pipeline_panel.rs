@@ -1,6 +1,7 @@
 //! The Pipeline panel: switches, sliders, presets, the mode.
 
 use super::*;
+use restir_render::settings::LightSampler;
 
 #[test]
 fn toggling_reuse_stages_and_moving_a_slider_change_the_settings() {
@@ -199,4 +200,32 @@ fn the_ray_backend_says_what_runs_and_why_ray_queries_cannot() {
         shows(&h, "has no hardware ray queries") && shows(&h, "rendering with software"),
         "the refusal is not shown"
     );
+}
+
+/// ReGIR's rows belong to `light_sampler=regir`: greyed out while another sampler draws the
+/// candidates, live once ReGIR does.
+#[test]
+fn regir_rows_are_greyed_out_unless_regir_draws_the_candidates() {
+    let panel = |sampler: LightSampler| {
+        let mut s = state();
+        s.settings.light_sampler = sampler;
+        harness(
+            |ui, s: &mut ViewerState| {
+                ui.ctx().memory_mut(|m| m.set_everything_is_visible(true));
+                pipeline::ui(ui, s);
+            },
+            s,
+        )
+    };
+    // The row's widgets (a slider and its label) are greyed out together.
+    let greyed = |h: &Harness<'_, ViewerState>, label: &str| {
+        let nodes: Vec<_> = h.get_all_by_label(label).collect();
+        assert!(!nodes.is_empty(), "no widget labelled {label}");
+        nodes.iter().all(|n| n.accesskit_node().is_disabled())
+    };
+    let bvh = panel(LightSampler::Bvh);
+    assert!(greyed(&bvh, "ReGIR jitter") && greyed(&bvh, "ReGIR cells per side"));
+    assert!(!greyed(&bvh, "Light candidates"));
+    let regir = panel(LightSampler::Regir);
+    assert!(!greyed(&regir, "ReGIR jitter") && !greyed(&regir, "ReGIR cells per side"));
 }

@@ -47,6 +47,26 @@ fn render(scene: &str, extra: &[&str], out: &Path) -> Output {
     viewer(&args)
 }
 
+/// `render --compare B --debug-view difference` of the Cornell box with `args`: whether
+/// |A − B| is 0 everywhere, i.e. every pixel is viridis' first stop (heatmap(0) = (0.267,
+/// 0.005, 0.329) linear, sRGB-encoded (141, 16, 155); 2 levels of slack for rounding).
+fn difference_is_zero(dir: &Path, args: &[&str], b: &str) -> bool {
+    let out = dir.join(format!("difference-{b}.png"));
+    let extra = [args, &["--compare", b, "--debug-view", "difference"]].concat();
+    let res = render("builtin:cornell", &extra, &out);
+    assert!(
+        res.status.success(),
+        "{}",
+        String::from_utf8_lossy(&res.stderr)
+    );
+    let zero = [141u8, 16, 155];
+    image::open(&out)
+        .unwrap()
+        .to_rgb8()
+        .pixels()
+        .all(|p| p.0.iter().zip(zero).all(|(a, b)| a.abs_diff(b) <= 2))
+}
+
 const TRIANGLE_BIN: &[f32] = &[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0];
 
 /// A minimal one-triangle glTF whose JSON `tweak` can break.
@@ -393,22 +413,12 @@ fn the_split_image_halves_match_single_configuration_renders() {
     );
     // The difference view: B identical to A (same configuration and seed) is |A − B| = 0
     // everywhere (viridis' first stop), B = nee is not.
-    let difference = |b: &str| {
-        let out = dir.join(format!("difference-{b}.png"));
-        let extra = [&frames[..], &["--compare", b, "--debug-view", "difference"]].concat();
-        let res = render("builtin:cornell", &extra, &out);
-        assert!(
-            res.status.success(),
-            "{}",
-            String::from_utf8_lossy(&res.stderr)
-        );
-        image::open(&out).unwrap().to_rgb8()
-    };
-    let zero = [141u8, 16, 155]; // heatmap(0) = (0.267, 0.005, 0.329) linear, sRGB-encoded
-    let near = |p: &image::Rgb<u8>| p.0.iter().zip(zero).all(|(a, b)| a.abs_diff(b) <= 2);
-    assert!(difference("restir").pixels().all(near), "|A − A| is not 0");
     assert!(
-        !difference("nee").pixels().all(near),
+        difference_is_zero(&dir, &frames, "restir"),
+        "|A − A| is not 0"
+    );
+    assert!(
+        !difference_is_zero(&dir, &frames, "nee"),
         "|A − nee| is 0 everywhere"
     );
     let bad = render("builtin:cornell", &["--compare", "magic"], &png);
@@ -890,25 +900,12 @@ fn denoised_renders_draw_their_views_and_split_against_raw() {
         );
         assert_eq!(image::open(&png).unwrap().to_rgba8().dimensions(), (16, 12));
     }
-    let difference = |b: &str| {
-        let out = dir.join(format!("difference-{b}.png"));
-        let extra = [&frames[..], &["--compare", b, "--debug-view", "difference"]].concat();
-        let res = render("builtin:cornell", &extra, &out);
-        assert!(
-            res.status.success(),
-            "{}",
-            String::from_utf8_lossy(&res.stderr)
-        );
-        image::open(&out).unwrap().to_rgb8()
-    };
-    let zero = [141u8, 16, 155]; // heatmap(0), sRGB-encoded
-    let near = |p: &image::Rgb<u8>| p.0.iter().zip(zero).all(|(a, b)| a.abs_diff(b) <= 2);
     assert!(
-        difference("restir+denoise").pixels().all(near),
+        difference_is_zero(&dir, &frames, "restir+denoise"),
         "|A − A| is not 0"
     );
     assert!(
-        !difference("restir+raw").pixels().all(near),
+        !difference_is_zero(&dir, &frames, "restir+raw"),
         "denoised = raw everywhere"
     );
 }

@@ -30,6 +30,8 @@ pub mod settings;
 pub mod shader_constants;
 pub mod shader_source;
 pub mod stats;
+#[cfg(test)]
+mod test_hash;
 pub mod timeline;
 pub mod tracing;
 pub mod view;

@@ -12,11 +12,7 @@ fn finite_frames(scene: &str, mode: Mode, frames: u32) -> (usize, f64) {
     for _ in 0..frames {
         r.render_frame().unwrap_or_else(|e| panic!("{scene}: {e}"));
         let img = r.read_radiance();
-        let bad = img
-            .pixels
-            .iter()
-            .filter(|p| !p.iter().all(|c| c.is_finite()))
-            .count();
+        let bad = img.non_finite_count();
         assert_eq!(bad, 0, "{scene} ({mode:?}): {bad} non-finite pixels");
         mean = common::indirect::mean_luma(&img);
     }

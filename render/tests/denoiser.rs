@@ -242,14 +242,7 @@ fn the_denoiser_runs_only_when_on_and_restarts_after_a_cut() {
     assert!(passes.contains(&"denoise atrous"), "{passes:?}");
     // The inspector shows the pixel's history: the length the history buffer holds.
     let pixel = (W / 2, H / 2);
-    r.set_inspected_pixel(Some(pixel));
-    frame(&mut r);
-    let inspection = r
-        .collect_reports(true)
-        .into_iter()
-        .rev()
-        .find_map(|f| f.inspection)
-        .expect("an inspected frame");
+    let inspection = common::inspect_next_frame(&mut r, pixel);
     let d = inspection
         .denoise
         .expect("the denoiser ran: its part of the inspection is there");
@@ -385,11 +378,7 @@ fn hard_scenes_stay_finite_with_the_denoiser_on() {
         for n in 0..4 {
             frame(&mut r);
             let img = r.read_radiance();
-            let bad = img
-                .pixels
-                .iter()
-                .filter(|p| !p.iter().all(|c| c.is_finite()))
-                .count();
+            let bad = img.non_finite_count();
             assert_eq!(bad, 0, "{scene} frame {n}: {bad} non-finite pixels");
         }
     }

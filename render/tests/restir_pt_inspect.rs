@@ -96,14 +96,7 @@ fn probe_paths(r: &mut Renderer) -> Vec<Reconnection> {
     let mut outcomes = Vec::new();
     for i in 0..12u32 {
         let pixel = (4 + (i * 13) % (W - 8), 6 + (i * 7) % (H - 12));
-        r.set_inspected_pixel(Some(pixel));
-        r.render_frame().unwrap();
-        let inspection = r
-            .collect_reports(true)
-            .into_iter()
-            .rev()
-            .find_map(|f| f.inspection)
-            .expect("an inspected frame");
+        let inspection = common::inspect_next_frame(r, pixel);
         let pt = inspection
             .pt
             .expect("PT ran: its part of the inspection is there");

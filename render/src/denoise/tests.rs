@@ -4,6 +4,7 @@
 use glam::{Vec2, Vec3, Vec4};
 
 use super::model::{self, Frame, Params, Pixel, Planted};
+use crate::test_hash::hash;
 
 const W: u32 = 48;
 const H: u32 = 32;
@@ -38,17 +39,6 @@ fn wall(depth: impl Fn(u32) -> f32) -> Vec<Pixel> {
         }
     }
     out
-}
-
-/// A deterministic uniform number in [0, 1) per (pixel, frame).
-fn hash(i: u32, frame: u32) -> f32 {
-    let mut h = i.wrapping_mul(0x9E37_79B9) ^ frame.wrapping_mul(0x85EB_CA6B);
-    h ^= h >> 16;
-    h = h.wrapping_mul(0x7FEB_352D);
-    h ^= h >> 15;
-    h = h.wrapping_mul(0x846C_A68B);
-    h ^= h >> 16;
-    (h >> 8) as f32 / (1u32 << 24) as f32
 }
 
 fn spatial_only(f: &Frame, p: &Params, planted: Planted) -> Vec<Vec4> {

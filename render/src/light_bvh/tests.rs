@@ -4,17 +4,7 @@
 use glam::Vec3;
 
 use super::*;
-
-/// A deterministic uniform number in [0, 1) per (index, stream).
-fn hash(i: u32, stream: u32) -> f32 {
-    let mut h = i.wrapping_mul(0x9E37_79B9) ^ stream.wrapping_mul(0x85EB_CA6B);
-    h ^= h >> 16;
-    h = h.wrapping_mul(0x7FEB_352D);
-    h ^= h >> 15;
-    h = h.wrapping_mul(0x846C_A68B);
-    h ^= h >> 16;
-    (h >> 8) as f32 / (1u32 << 24) as f32
-}
+use crate::test_hash::hash;
 
 fn unit(i: u32, stream: u32) -> Vec3 {
     let z = 2.0 * hash(i, stream) - 1.0;

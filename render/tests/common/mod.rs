@@ -57,6 +57,20 @@ pub fn reference(r: &mut Renderer, frames: u32, spp: u32) -> LinearImage {
     img
 }
 
+/// Renders one frame with `pixel` inspected and returns what the inspector captured.
+pub fn inspect_next_frame(
+    r: &mut Renderer,
+    pixel: (u32, u32),
+) -> restir_render::renderer::PixelInspection {
+    r.set_inspected_pixel(Some(pixel));
+    r.render_frame().unwrap_or_else(|e| panic!("{e}"));
+    r.collect_reports(true)
+        .into_iter()
+        .rev()
+        .find_map(|f| f.inspection)
+        .expect("an inspected frame")
+}
+
 /// Settings from `key=value` assignments on top of the defaults.
 pub fn settings(assignments: &[&str]) -> Settings {
     let mut s = Settings::default();

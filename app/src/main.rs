@@ -7,6 +7,7 @@
 //! `params` lists every pipeline parameter; `scenes` lists the built-in scenes.
 
 mod bench;
+mod bias_matrix;
 mod cli;
 mod compare;
 mod probe;
@@ -41,6 +42,10 @@ enum Command {
     Render(cli::render::RenderArgs),
     /// Measure configurations against a cached reference: times, errors, CSV/Markdown/plots.
     Bench(bench::BenchArgs),
+    /// Every scene × every estimator over seeds against a high-spp reference: signed bias
+    /// with its interval and a verdict per cell (`--list-jobs` / `--merge` for a sweep run
+    /// as independent jobs).
+    BiasMatrix(bias_matrix::BiasMatrixArgs),
     /// List every pipeline parameter with its stage, default, range and meaning
     /// (`--markdown`: the book's parameters page).
     Params(cli::params::ParamsArgs),
@@ -65,6 +70,7 @@ fn main() {
         Some(Command::View(a)) => viewer::run(a),
         Some(Command::Render(a)) => cli::render::run(a),
         Some(Command::Bench(a)) => bench::run(a),
+        Some(Command::BiasMatrix(a)) => bias_matrix::run(a),
         Some(Command::Params(a)) => {
             cli::params::run(a);
             Ok(())

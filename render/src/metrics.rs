@@ -7,6 +7,9 @@
 //! [`SequenceReport::non_finite_pixels`] report how many there were, so a skipped pixel is
 //! never silent. Alpha is ignored throughout.
 
+pub mod pixel_moments;
+pub mod seeds;
+
 use crate::image::{LinearImage, luminance};
 
 #[derive(Debug, thiserror::Error, PartialEq, Eq)]

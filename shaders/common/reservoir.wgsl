@@ -114,7 +114,13 @@ fn balance(a: f32, b: f32) -> f32 {
 // c_total in proportion (c_total − c_c)·p̂_j(y) : c_c·p̂_c(y). Mirrors render/src/reservoir.rs.
 fn pairwise_mis_noncanonical(c_total: f32, c_canonical: f32, c_i: f32, p_hat_i_at_y: f32, p_hat_c_at_y: f32) -> f32 {
     let neighbour = max(c_total - c_canonical, 0.0) * p_hat_i_at_y;
+#ifdef PLANTED_DROPPED_ONE_OVER_M
+    // The bias matrix's planted twin (render/tests/bias_matrix.rs): the neighbour's share
+    // c_i / c_total dropped, so the weights no longer sum to one.
+    return balance(neighbour, c_canonical * p_hat_c_at_y);
+#else
     return confidence_share(c_i, c_total) * balance(neighbour, c_canonical * p_hat_c_at_y);
+#endif
 }
 
 // One neighbour's term of the canonical sample's weight c_c / c_total + Σ_j term_j.

@@ -11,6 +11,7 @@ use anyhow::Context;
 use super::BenchInfo;
 use super::events::{EventLag, recovery_cell};
 use super::run_loop::ConfigResult;
+use super::seed_figures;
 
 /// The passes in pipeline order; others (from a newer renderer) follow alphabetically.
 pub const PASS_ORDER: &[&str] = &[
@@ -152,6 +153,7 @@ pub fn write_results(
         "device",
         "timing",
     ]);
+    header.extend(seed_figures::CSV_COLUMNS);
     header.extend(LAG_COLUMNS);
     let mut table = Table::new(&header);
     for r in results {
@@ -200,6 +202,7 @@ pub fn write_results(
             info.device.clone(),
             info.timing_note().to_string(),
         ]);
+        cells.extend(seed_figures::csv_cells(r.over_seeds.as_ref()));
         for lag in lag_rows(info.event_source, &r.lag) {
             let mut row = cells.clone();
             row.extend(lag);

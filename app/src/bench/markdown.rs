@@ -7,6 +7,7 @@ use super::BenchInfo;
 use super::csv::pass_names;
 use super::references::CameraPath;
 use super::run_loop::ConfigResult;
+use super::seed_figures::SeedFigures;
 
 /// A number with 4 significant digits (errors), or "n/a".
 pub fn sig(x: Option<f64>) -> String {
@@ -102,10 +103,26 @@ pub fn results(info: &BenchInfo, results: &[ConfigResult]) -> String {
         md,
         "- Spatial radius: {used} px ({set} px at 1080p, scaled to the image height)."
     );
+    let seeds = if info.seeds > 1 {
+        format!(
+            "Seeds {}..{} ({}); the table below is seed {} alone, the next one states every \
+             image figure over the seeds",
+            info.seed,
+            info.seed.wrapping_add(info.seeds - 1),
+            info.seeds,
+            info.seed
+        )
+    } else {
+        format!(
+            "Seed {} (one seed: every figure below is a single run's, without an interval; \
+             `--seeds K` gives intervals)",
+            info.seed
+        )
+    };
     let _ = writeln!(
         md,
-        "- Seed {}; every configuration starts from a clean history{}. Time per frame = sum of its pass times, median over frames.\n",
-        info.seed,
+        "- {}; every configuration starts from a clean history{}. Time per frame = sum of its pass times, median over frames.\n",
+        seeds,
         if info.warmup > 0 {
             format!(" and renders {} unmeasured warm-up frames", info.warmup)
         } else {
@@ -166,6 +183,7 @@ pub fn results(info: &BenchInfo, results: &[ConfigResult]) -> String {
         })
         .collect();
     table(&mut md, &header, &rows);
+    seeds_table(&mut md, info, results);
     lag_table(&mut md, info, results);
     if let Some(t) = info.budget_ms {
         let _ = writeln!(md, "\n## Equal time: {t} ms[^t] each\n");
@@ -210,6 +228,78 @@ pub fn results(info: &BenchInfo, results: &[ConfigResult]) -> String {
          a tile wide (docs/bench.md, \"How it measures\")."
     );
     md
+}
+
+/// The image figures over the seeds (seed_figures.rs; docs/src/results.md, "Error bars"),
+/// when there are two or more.
+fn seeds_table(md: &mut String, info: &BenchInfo, results: &[ConfigResult]) {
+    if info.seeds < 2 {
+        return;
+    }
+    let _ = writeln!(md, "\n## Over {} seeds: mean ± 95 % interval\n", info.seeds);
+    let rows: Vec<(&str, &SeedFigures)> = results
+        .iter()
+        .filter_map(|r| Some((r.config.name.as_str(), r.over_seeds.as_ref()?)))
+        .collect();
+    seed_figures_table(md, &rows);
+}
+
+/// One row of figures over seeds per named configuration, with the footnotes that define
+/// them (a bench's `results.md` and the merge of its jobs).
+pub fn seed_figures_table(md: &mut String, rows: &[(&str, &SeedFigures)]) {
+    let header: Vec<String> = [
+        "configuration",
+        "per-frame luma RMSE",
+        "accumulated RGB RMSE",
+        "luma ratio",
+        "signed bias",
+        "verdict (±0.5 %)",
+        "squared bias[^b]",
+        "variance[^b]",
+        "effective frames[^e]",
+        "frames to ±0.5 %[^e]",
+        "`bias` view flags",
+    ]
+    .map(String::from)
+    .to_vec();
+    let rows: Vec<Vec<String>> = rows
+        .iter()
+        .map(|(name, f)| {
+            let spread = f.spread.as_ref();
+            vec![
+                format!("`{name}`"),
+                f.frame_luma_rmse.display(4),
+                f.accumulated_rgb_rmse
+                    .map_or("n/a".into(), |i| i.display(4)),
+                f.luma_ratio.display(4),
+                format!(
+                    "{:+.2} % ± {:.2} %",
+                    100.0 * f.signed_bias.mean,
+                    100.0 * f.signed_bias.half_width
+                ),
+                f.verdict.label().to_string(),
+                spread.map_or("n/a".into(), |s| s.squared_bias.display(2)),
+                spread.map_or("n/a".into(), |s| s.variance.display(2)),
+                spread
+                    .and_then(|s| s.effective_frames)
+                    .map_or("n/a".into(), |e| format!("{e:.0} of {}", f.frames)),
+                f.frames_to_half_percent
+                    .map_or("n/a".into(), |n| format!("{n:.0}")),
+                f.bias_view_flagged
+                    .map_or("n/a".into(), |i| format!("{:.2} %", 100.0 * i.mean)),
+            ]
+        })
+        .collect();
+    table(md, &header, &rows);
+    let _ = writeln!(
+        md,
+        "\n[^b]: Of the accumulated image's luminance, per pixel, over the seeds: squared bias = \
+         (mean over seeds − reference)² less the noise of that mean and of the reference; \
+         variance = the spread of one seed's accumulated image. Intervals by jackknife over \
+         seeds.\n\n[^e]: Effective frames = one frame's variance / the accumulated image's: \
+         how many independent frames the accumulated image is worth. Frames to ±0.5 % = how \
+         many frames one seed needs for its mean luminance to lie within ±0.5 % at 95 %."
+    );
 }
 
 /// Per configuration and event: the lag metrics (docs/bench.md, "Lag and ghosting").

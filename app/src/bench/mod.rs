@@ -11,21 +11,24 @@
 
 pub mod bvh_cost;
 mod compile_table;
-mod configs;
-mod csv;
+pub(crate) mod configs;
+pub(crate) mod csv;
 pub mod env_cost;
 mod equal_time;
 mod event_strip;
 mod events;
+mod jobs;
 /// The light-event rule (`event_frames`) is shared with the pixel history (probe.rs).
 pub(crate) mod lag;
 pub mod load_cost;
-mod markdown;
+pub(crate) mod markdown;
 mod plots;
 pub mod ray_cost;
 mod references;
 mod run_loop;
 mod scoring;
+pub mod seed_figures;
+mod seed_maps;
 pub mod shift_cost;
 mod strip;
 mod sweep;
@@ -100,10 +103,25 @@ pub struct BenchArgs {
     /// at T + i/F, and with F > 0 every measured frame has its own reference.
     #[command(flatten)]
     pub time: crate::cli::setup::TimeArgs,
-    /// Runs every configuration K times, seeds S..S+K (S = `--seed`), and averages the lag
-    /// metrics of a dynamic scene's events over them; every other number is seed S's.
+    /// Runs every configuration K times, seeds S..S+K (S = `--seed`): every image figure
+    /// is then stated as a mean with a 95 % interval over the seeds, with the accumulated
+    /// image's squared bias and variance apart (docs/src/results.md, "Error bars"), and the
+    /// lag metrics of a dynamic scene's events are averaged over them. Times, frames and
+    /// the strip are seed S's.
     #[arg(long, default_value_t = 1)]
     pub seeds: u32,
+    /// A job of a sweep: write the tables and figures.json only (no plots, strip or
+    /// seeds.png) and print nothing.
+    #[arg(long)]
+    pub quiet: bool,
+    /// Print one `bench` command per configuration (each writing OUT/jobs/NAME) and run
+    /// nothing: the sweep as independent jobs (docs/src/headless.md).
+    #[arg(long, conflicts_with = "merge")]
+    pub list_jobs: bool,
+    /// Gather the jobs' figures under OUT/jobs into OUT/figures.md and figures.csv and run
+    /// nothing (the same command line as --list-jobs otherwise).
+    #[arg(long)]
+    pub merge: bool,
 }
 
 /// Everything the writers need besides the results.
@@ -127,7 +145,8 @@ pub struct BenchInfo {
     /// The `max_bounces` of the references (one set each; configurations are scored
     /// against the set of their own max_bounces).
     pub reference_bounces: Vec<u32>,
-    /// Seeds the lag metrics are averaged over, and where the events came from.
+    /// Seeds every configuration ran (the image figures over seeds and the lag metrics rest
+    /// on them), and where the events came from.
     pub seeds: u32,
     pub event_source: Option<&'static str>,
 }
@@ -176,6 +195,12 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     if let Some(list) = &args.sweep_lights {
         return sweep::run(&args, list, size, &configs, effects);
     }
+    if args.list_jobs {
+        return jobs::list(&configs, &args.out);
+    }
+    if args.merge {
+        return jobs::merge(&configs, &args.out);
+    }
 
     let started = Instant::now();
     let timeline = args.time.timeline()?;
@@ -198,9 +223,15 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         configs.len(),
         started.elapsed().as_secs_f64()
     );
-    let mut renderers = renderers.into_iter();
-    let mut first = renderers.next().expect("at least one configuration");
-    let mut shot = Shot::of(first.camera(), first.scene_bounds().center(), camera);
+    // The references get a renderer of their own: a configuration's frames then depend on
+    // its seed alone, never on whether its renderer rendered a reference first (so a sweep
+    // split into jobs measures what one process measures; docs/src/headless.md).
+    let mut reference_renderer = Renderer::new(gpu.clone(), &scene, size.0, size.1, base.clone())?;
+    let mut shot = Shot::of(
+        reference_renderer.camera(),
+        reference_renderer.scene_bounds().center(),
+        camera,
+    );
     if animated {
         shot = shot.with_time(timeline);
     }
@@ -222,7 +253,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         max_bounces: 1,
     };
     let ref_sets = ReferenceSets::obtain(
-        &mut first,
+        &mut reference_renderer,
         &reference_plan,
         &shot,
         (args.warmup, measured),
@@ -244,22 +275,19 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     let events = Events::find(&scene, &shot, args.warmup, &refs.images);
     // Light events are found on the first configuration's references; each configuration
     // measures its lag against the references of its own max_bounces.
-    let mut renderers: Vec<Renderer> = std::iter::once(first).chain(renderers).collect();
-    let mut results: Vec<ConfigResult> = Vec::new();
-    let mut per_seed: Vec<Vec<Vec<events::SeedEvent>>> = vec![Vec::new(); configs.len()];
-    // Extra seeds only average the lag metrics: without events they would measure nothing.
-    let seeds = if events.is_some() { args.seeds } else { 1 };
-    if seeds < args.seeds {
-        eprintln!(
-            "--seeds {}: no light events in the measured frames, running seed {} only",
-            args.seeds, args.pipeline.seed
-        );
-    }
-    for k in 0..seeds {
+    drop(reference_renderer);
+    let mut renderers = renderers;
+    // Every seed runs every configuration; the image figures are stated over the seeds
+    // (seed_figures.rs), the lag metrics averaged over them.
+    let mut per_seed: Vec<Vec<ConfigResult>> = vec![Vec::new(); configs.len()];
+    for k in 0..args.seeds {
         let plan = RunPlan {
             seed: args.pipeline.seed.wrapping_add(k),
             ..plan.clone()
         };
+        if args.seeds > 1 {
+            eprintln!("seed {} ({}/{})", plan.seed, k + 1, args.seeds);
+        }
         let runs = configs
             .iter()
             .zip(renderers.drain(..))
@@ -276,13 +304,24 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         let (seed_results, back): (Vec<ConfigResult>, Vec<Renderer>) =
             run_interleaved(runs, &plan)?.into_iter().unzip();
         renderers = back;
-        for (all, r) in per_seed.iter_mut().zip(&seed_results) {
-            all.push(r.seed_events.clone());
-        }
-        if k == 0 {
-            results = seed_results;
+        for (all, r) in per_seed.iter_mut().zip(seed_results) {
+            all.push(r);
         }
     }
+    // Seed S's run carries the times, frames and strip; every seed's goes into the figures.
+    let mut results: Vec<ConfigResult> = per_seed.iter().map(|runs| runs[0].clone()).collect();
+    for ((r, runs), c) in results.iter_mut().zip(&per_seed).zip(&configs) {
+        let own = ref_sets.for_bounces(c.settings.reference_bounces());
+        let runs: Vec<&ConfigResult> = runs.iter().collect();
+        r.over_seeds = seed_figures::of_seeds(&runs, &own.images[0], own.noise_luma_rmse);
+    }
+    if !shot.moves() && args.seeds > 1 && !args.quiet {
+        write_seed_maps(&args.out, &per_seed, &configs, &ref_sets)?;
+    }
+    let per_seed: Vec<Vec<Vec<events::SeedEvent>>> = per_seed
+        .iter()
+        .map(|runs| runs.iter().map(|r| r.seed_events.clone()).collect())
+        .collect();
     if let Some(e) = &events {
         for (r, seeds) in results.iter_mut().zip(&per_seed) {
             r.lag = events::average(e, seeds);
@@ -291,7 +330,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     }
     compare_with_nee(&mut results);
     // One reference for every frame: a still camera on a still (or frozen) scene.
-    if !shot.moves() && args.budget_ms.is_none() {
+    if !shot.moves() && args.budget_ms.is_none() && !args.quiet {
         write_strip(&args.out, &results, &renderers, &ref_sets)?;
     }
     let info = BenchInfo {
@@ -311,10 +350,37 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         reference_noise_rgb: max_noise(&ref_sets, |r| r.noise_rgb_rmse),
         reference_count: refs.images.len(),
         reference_bounces: ref_sets.bounces().map(|(b, _)| b).collect(),
-        seeds,
+        seeds: args.seeds,
         event_source: events.as_ref().map(|e| e.source),
     };
-    write_outputs(&args.out, &info, &results)
+    write_outputs(&args.out, &info, &results, args.quiet)
+}
+
+/// `seeds.png`: each configuration's bias and spread over the seeds (seed_maps.rs), against
+/// the primary reference; configurations of another max_bounces are left out.
+fn write_seed_maps(
+    out: &std::path::Path,
+    per_seed: &[Vec<ConfigResult>],
+    configs: &[configs::Config],
+    sets: &ReferenceSets,
+) -> anyhow::Result<()> {
+    let primary = sets.primary();
+    let primary_bounces = sets.bounces().next().map_or(1, |(b, _)| b);
+    let seed_sets: Vec<seed_maps::SeedSet> = per_seed
+        .iter()
+        .zip(configs)
+        .filter(|(_, c)| c.settings.reference_bounces() == primary_bounces)
+        .map(|(runs, c)| seed_maps::SeedSet {
+            name: &c.name,
+            moments: runs.iter().filter_map(|r| r.moments.as_ref()).collect(),
+        })
+        .collect();
+    seed_maps::write(
+        &out.join("seeds.png"),
+        &seed_sets,
+        &primary.images[0],
+        primary.noise_luma_rmse.unwrap_or(0.0),
+    )
 }
 
 /// The largest estimated own noise among all references.
@@ -386,8 +452,25 @@ fn write_outputs(
     out: &std::path::Path,
     info: &BenchInfo,
     results: &[ConfigResult],
+    quiet: bool,
 ) -> anyhow::Result<()> {
     csv::write_results(&out.join("results.csv"), info, results)?;
+    let rows: Vec<seed_figures::FigureRow> = results
+        .iter()
+        .filter_map(|r| {
+            Some(seed_figures::FigureRow {
+                scene: info.scene.clone(),
+                size: info.size,
+                camera: info.camera.label(),
+                config: r.config.name.clone(),
+                description: r.config.description.clone(),
+                first_seed: info.seed,
+                reference_spp: info.reference_spp,
+                figures: r.over_seeds.clone()?,
+            })
+        })
+        .collect();
+    seed_figures::write_rows(&out.join(seed_figures::FIGURES_FILE), &rows)?;
     csv::write_frames(&out.join("frames.csv"), results)?;
     if results.iter().any(|r| !r.lag.is_empty()) {
         csv::write_events(&out.join("events.csv"), results)?;
@@ -395,10 +478,16 @@ fn write_outputs(
     let md = markdown::results(info, results);
     std::fs::write(out.join("results.md"), &md)
         .with_context(|| format!("{}: cannot write", out.display()))?;
-    let written = plots::write_all(out, info, results)?;
-    println!("{md}");
+    let written = if quiet {
+        Vec::new()
+    } else {
+        plots::write_all(out, info, results)?
+    };
+    if !quiet {
+        println!("{md}");
+    }
     eprintln!(
-        "wrote {}/results.csv, frames.csv, results.md, {}",
+        "wrote {}/results.csv, frames.csv, results.md, figures.json, {}",
         out.display(),
         written.join(", ")
     );

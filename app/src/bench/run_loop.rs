@@ -20,6 +20,8 @@ use super::equal_time::{Budget, BudgetClock};
 use super::events::{EventLag, LagProbe, SeedEvent};
 use super::references::Shot;
 use super::scoring::{FrameRecord, FrameScores, ScoreSummary, Scoring};
+use super::seed_figures::SeedFigures;
+use restir_render::metrics::pixel_moments::PixelMoments;
 
 /// How every configuration is run.
 #[derive(Clone)]
@@ -61,6 +63,10 @@ pub struct ConfigResult {
     pub flicker: Option<f64>,
     /// What traced the configuration's rays (`ray_backend` resolved on the device).
     pub ray_backend: Option<restir_render::tracing::RayBackend>,
+    /// A still camera's per-pixel moments of this seed's frames (seed_figures.rs).
+    pub moments: Option<PixelMoments>,
+    /// Filled in by `mod.rs` once every seed ran: the image figures over the seeds.
+    pub over_seeds: Option<SeedFigures>,
 }
 
 impl ConfigResult {
@@ -201,6 +207,8 @@ impl<'a> ConfigRun<'a> {
             lag: Vec::new(),
             times: StatsSummary::from_reports(&self.reports, 0),
             scores: self.scoring.summary()?,
+            moments: self.scoring.into_moments(),
+            over_seeds: None,
             config: self.config,
             frames: self.records,
             budget: self.clock,

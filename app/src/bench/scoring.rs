@@ -6,6 +6,7 @@
 //! over frames, and the running average is not defined (n/a).
 
 use restir_render::LinearImage;
+use restir_render::metrics::pixel_moments::PixelMoments;
 use restir_render::metrics::{
     LOW_FREQUENCY_TILE, SequenceMetrics, black_pixel_fraction, low_frequency_rmse, luma_ratio,
     luma_rmse, rel_mse,
@@ -65,6 +66,8 @@ pub enum Scoring<'a> {
         reference: &'a LinearImage,
         sequence: SequenceMetrics,
         low_frequency: Vec<f64>,
+        /// Per pixel, what the figures over seeds need (seed_figures.rs).
+        moments: PixelMoments,
     },
     Moving {
         /// One per measured frame.
@@ -85,6 +88,7 @@ impl<'a> Scoring<'a> {
             reference,
             sequence: SequenceMetrics::new(reference.clone()),
             low_frequency: Vec::new(),
+            moments: PixelMoments::new(reference.width, reference.height),
         }
     }
 
@@ -113,8 +117,10 @@ impl<'a> Scoring<'a> {
                 reference,
                 sequence,
                 low_frequency,
+                moments,
             } => {
                 sequence.push(frame)?;
+                moments.push(frame);
                 low_frequency.push(low_frequency_rmse(frame, reference)?);
                 let report = sequence.report();
                 Ok(FrameScores {
@@ -167,6 +173,7 @@ impl<'a> Scoring<'a> {
                 reference,
                 sequence,
                 low_frequency,
+                ..
             } => {
                 let report = sequence.report();
                 Some(ScoreSummary {
@@ -201,6 +208,16 @@ impl<'a> Scoring<'a> {
                 non_finite_pixels: *non_finite,
             }),
         })
+    }
+}
+
+impl Scoring<'_> {
+    /// A still camera's per-pixel moments of the frames scored (None otherwise).
+    pub fn into_moments(self) -> Option<PixelMoments> {
+        match self {
+            Scoring::Still { moments, .. } => Some(moments),
+            _ => None,
+        }
     }
 }
 

@@ -35,6 +35,23 @@ pub fn write(path: &Path, panels: &[Panel]) -> anyhow::Result<()> {
 /// Writes rows of panels (each row left to right, rows top to bottom) to `path`, every
 /// panel at the linear `exposure`.
 pub fn write_grid(path: &Path, rows: &[&[Panel]], exposure: f32) -> anyhow::Result<()> {
+    write_grid_with(path, rows, &|rgb| display_srgb8(rgb, exposure))
+}
+
+/// Writes rows of panels whose images already hold display-ready sRGB values in [0, 1]
+/// (maps and heatmaps, not radiance) to `path`.
+pub fn write_display_grid(path: &Path, rows: &[&[Panel]]) -> anyhow::Result<()> {
+    write_grid_with(path, rows, &|rgb| {
+        rgb.map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8)
+    })
+}
+
+/// Writes rows of panels, each pixel's colour from `color`.
+fn write_grid_with(
+    path: &Path,
+    rows: &[&[Panel]],
+    color: &dyn Fn([f32; 3]) -> [u8; 3],
+) -> anyhow::Result<()> {
     let Some(first) = rows.iter().flat_map(|r| r.iter()).next() else {
         anyhow::bail!("{}: no image for the strip", path.display());
     };
@@ -56,7 +73,7 @@ pub fn write_grid(path: &Path, rows: &[&[Panel]], exposure: f32) -> anyhow::Resu
         for (j, row) in rows.iter().enumerate() {
             let y0 = j as u32 * row_height;
             for (i, panel) in row.iter().enumerate() {
-                draw_panel(area, panel, exposure, (i as u32 * pw, y0, zoom))?;
+                draw_panel(area, panel, color, (i as u32 * pw, y0, zoom))?;
                 let label = Text::new(
                     panel.label.clone(),
                     ((i as u32 * pw + 8) as i32, (y0 + ph + 6) as i32),
@@ -72,13 +89,13 @@ pub fn write_grid(path: &Path, rows: &[&[Panel]], exposure: f32) -> anyhow::Resu
 fn draw_panel(
     area: &super::plots::canvas::Area,
     panel: &Panel,
-    exposure: f32,
+    color: &dyn Fn([f32; 3]) -> [u8; 3],
     (x0, y0, zoom): (u32, u32, u32),
 ) -> DrawResult {
     let img = panel.image;
     for y in 0..img.height {
         for x in 0..img.width {
-            let [r, g, b] = display_srgb8(img.rgb(x, y), exposure);
+            let [r, g, b] = color(img.rgb(x, y));
             let (px, py) = ((x0 + x * zoom) as i32, (y0 + y * zoom) as i32);
             let z = zoom as i32;
             area.draw(&Rectangle::new(

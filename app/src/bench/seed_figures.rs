@@ -1,0 +1,194 @@
+//! Every image figure of a configuration over `--seeds K` (docs/src/results.md, "Error
+//! bars"): each seed's number, then their mean with a 95 % interval, the accumulated
+//! image's error split into squared bias and variance per pixel, how many independent
+//! frames it is worth, and the bias matrix's verdict. One seed gives figures without
+//! intervals, marked "(one seed)" wherever they are printed.
+
+use restir_render::LinearImage;
+use restir_render::metrics::pixel_moments::PixelMoments;
+use restir_render::metrics::seeds::{
+    BIAS_TOLERANCE, Interval, PixelSpread, Verdict, frames_to_tolerance, luminance_of, pixel_spread,
+};
+
+use super::run_loop::ConfigResult;
+use super::scoring::ScoreSummary;
+
+/// One configuration's figures over its seeds.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct SeedFigures {
+    pub seeds: usize,
+    /// Measured frames per seed.
+    pub frames: usize,
+    pub frame_luma_rmse: Interval,
+    pub low_frequency_rmse: Interval,
+    /// RGB RMSE of each seed's running average (still camera only).
+    pub accumulated_rgb_rmse: Option<Interval>,
+    /// Mean luminance of each seed's running average over the reference's (still camera),
+    /// or of its frames averaged (moving camera).
+    pub luma_ratio: Interval,
+    /// luma ratio − 1, the interval widened by the reference's own uncertainty.
+    pub signed_bias: Interval,
+    pub black_pixel_fraction: Interval,
+    /// The accumulated image's squared bias and variance per pixel (still camera, K ≥ 2).
+    pub spread: Option<PixelSpread>,
+    /// Share of pixels the `bias` view flags at the end of a seed's run (still camera).
+    pub bias_view_flagged: Option<Interval>,
+    /// Frames one seed needs for its mean luminance to lie within ±0.5 % at 95 %.
+    pub frames_to_half_percent: Option<f64>,
+    pub verdict: Verdict,
+    /// Non-finite pixels over every seed and frame.
+    pub non_finite_pixels: usize,
+    /// Mean luminance of the reference (the first, for a moving camera).
+    pub reference_mean_luma: f64,
+}
+
+/// Below this mean luminance a reference counts as black: no light reaches the camera
+/// (`hard:no-emitters`), and a ratio to it means nothing.
+const BLACK_REFERENCE: f64 = 1e-9;
+
+/// The figures of one configuration from its runs, one per seed (in seed order), scored
+/// against `reference` (the still camera's, or the first of a moving camera's) whose own
+/// per-pixel luma noise is `reference_noise`.
+pub fn of_seeds(
+    runs: &[&ConfigResult],
+    reference: &LinearImage,
+    reference_noise: Option<f64>,
+) -> Option<SeedFigures> {
+    let scores: Vec<_> = runs.iter().filter_map(|r| r.scores.as_ref()).collect();
+    if scores.is_empty() {
+        return None;
+    }
+    let each = |f: &dyn Fn(&ScoreSummary) -> f64| -> Interval {
+        Interval::of(&scores.iter().map(|s| f(s)).collect::<Vec<_>>())
+    };
+    let ratios: Vec<f64> = scores.iter().map(|s| s.luma_ratio).collect();
+    let luma_ratio = Interval::of(&ratios);
+    let reference_luma = luminance_of(reference);
+    let reference_mean = reference.mean_luminance();
+    let noise = reference_noise.unwrap_or(0.0);
+    // The reference's own noise in its mean luminance, relative: independent pixels of
+    // RMSE σ average to σ/√N.
+    let reference_sd = noise / (reference_luma.len().max(1) as f64).sqrt() / reference_mean;
+    let signed_bias = luma_ratio.shifted(1.0).widened_by(reference_sd);
+    let moments: Vec<&PixelMoments> = runs.iter().filter_map(|r| r.moments.as_ref()).collect();
+    let still = moments.len() == runs.len();
+    let frames = runs.first().map_or(0, |r| r.frames.len());
+    let verdict = if reference_mean < BLACK_REFERENCE {
+        Verdict::NoLight
+    } else {
+        Verdict::of(&signed_bias)
+    };
+    Some(SeedFigures {
+        seeds: scores.len(),
+        frames,
+        frame_luma_rmse: each(&|s| s.mean_luma_rmse),
+        low_frequency_rmse: each(&|s| s.mean_low_frequency_rmse),
+        accumulated_rgb_rmse: scores
+            .iter()
+            .map(|s| s.accumulated_rgb_rmse)
+            .collect::<Option<Vec<f64>>>()
+            .map(|v| Interval::of(&v)),
+        luma_ratio,
+        signed_bias,
+        black_pixel_fraction: each(&|s| s.black_pixel_fraction),
+        spread: still
+            .then(|| pixel_spread(&moments, &reference_luma, noise))
+            .flatten(),
+        bias_view_flagged: still.then(|| {
+            Interval::of(
+                &moments
+                    .iter()
+                    .map(|m| m.flagged_share(&reference_luma, noise))
+                    .collect::<Vec<_>>(),
+            )
+        }),
+        frames_to_half_percent: frames_to_tolerance(&ratios, frames, BIAS_TOLERANCE),
+        verdict,
+        non_finite_pixels: scores.iter().map(|s| s.non_finite_pixels).sum(),
+        reference_mean_luma: reference_mean,
+    })
+}
+
+/// The `results.csv` columns of the figures over seeds (the `_ci95` columns are the 95 %
+/// interval's half-width; empty with one seed).
+pub const CSV_COLUMNS: [&str; 17] = [
+    "image_seeds",
+    "frame_luma_rmse_mean",
+    "frame_luma_rmse_ci95",
+    "accumulated_rgb_rmse_mean",
+    "accumulated_rgb_rmse_ci95",
+    "luma_ratio_mean",
+    "luma_ratio_ci95",
+    "signed_bias_mean",
+    "signed_bias_ci95",
+    "bias_verdict",
+    "squared_bias",
+    "squared_bias_ci95",
+    "variance",
+    "variance_ci95",
+    "effective_frames",
+    "frames_to_half_percent",
+    "bias_view_flagged_share",
+];
+
+/// The `CSV_COLUMNS` cells of one configuration (all empty when it was not scored).
+pub fn csv_cells(f: Option<&SeedFigures>) -> Vec<String> {
+    let Some(f) = f else {
+        return vec![String::new(); CSV_COLUMNS.len()];
+    };
+    let num = |x: Option<f64>| {
+        x.filter(|v| v.is_finite())
+            .map(|v| format!("{v}"))
+            .unwrap_or_default()
+    };
+    let pair = |i: Option<&Interval>| [num(i.map(|i| i.mean)), num(i.map(|i| i.half_width))];
+    let spread = f.spread.as_ref();
+    let mut cells = vec![f.seeds.to_string()];
+    cells.extend(pair(Some(&f.frame_luma_rmse)));
+    cells.extend(pair(f.accumulated_rgb_rmse.as_ref()));
+    cells.extend(pair(Some(&f.luma_ratio)));
+    cells.extend(pair(Some(&f.signed_bias)));
+    cells.push(f.verdict.label().to_string());
+    cells.extend([
+        num(spread.map(|s| s.squared_bias.value)),
+        num(spread.and_then(|s| s.squared_bias.half_width)),
+        num(spread.map(|s| s.variance.value)),
+        num(spread.and_then(|s| s.variance.half_width)),
+        num(spread.and_then(|s| s.effective_frames)),
+        num(f.frames_to_half_percent),
+        num(f.bias_view_flagged.map(|i| i.mean)),
+    ]);
+    cells
+}
+
+/// One configuration's figures as `figures.json` holds them: what a merge of independent
+/// jobs (`bench --list-jobs`, `bias-matrix --list-jobs`; docs/src/headless.md, "Sweeps as
+/// independent jobs") reads back. Deterministic: no times or paths, only what the seeds
+/// rendered.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct FigureRow {
+    pub scene: String,
+    pub size: (u32, u32),
+    pub camera: String,
+    pub config: String,
+    pub description: String,
+    pub first_seed: u32,
+    pub reference_spp: u32,
+    pub figures: SeedFigures,
+}
+
+/// The file every bench writes beside results.csv.
+pub const FIGURES_FILE: &str = "figures.json";
+
+pub fn write_rows(path: &std::path::Path, rows: &[FigureRow]) -> anyhow::Result<()> {
+    use anyhow::Context;
+    let text = serde_json::to_string_pretty(rows)?;
+    std::fs::write(path, text).with_context(|| format!("{}: cannot write", path.display()))
+}
+
+pub fn read_rows(path: &std::path::Path) -> anyhow::Result<Vec<FigureRow>> {
+    use anyhow::Context;
+    let text = std::fs::read_to_string(path)
+        .with_context(|| format!("{}: cannot read", path.display()))?;
+    serde_json::from_str(&text).with_context(|| format!("{}: not a figures file", path.display()))
+}

@@ -1,0 +1,214 @@
+//! `bias-matrix`: every scene × every estimator over K seeds against a high-spp reference,
+//! one verdict per cell (docs/src/results.md, "The bias matrix"). Each cell is one
+//! `bench` run writing `figures.json` under `OUT/cells/SCENE/ESTIMATOR/`, so the same sweep
+//! runs in this process, or as independent jobs (`--list-jobs` prints one command per cell
+//! for GNU parallel, a Slurm array or a Kubernetes indexed Job; `--merge` builds the table
+//! from whatever the jobs wrote; docs/src/headless.md, "Sweeps as independent jobs").
+
+pub mod cells;
+mod table;
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{Context, bail};
+use clap::{Args, Parser};
+
+use crate::bench::{self, BenchArgs};
+use cells::{Cell, ESTIMATORS, all_scenes};
+
+#[derive(Args, Debug)]
+pub struct BiasMatrixArgs {
+    /// Output directory: `cells/` holds each cell's bench output, `bias-matrix.md` and
+    /// `bias-matrix.csv` the table.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Image size of every cell, WxH.
+    #[arg(long, default_value = "48x32")]
+    pub size: String,
+    /// Measured frames per seed.
+    #[arg(long, default_value_t = 64)]
+    pub frames: u32,
+    /// Seeds per cell (the interval needs two; four give a t interval worth having).
+    #[arg(long, default_value_t = 4)]
+    pub seeds: u32,
+    /// Samples per pixel of the references.
+    #[arg(long, default_value_t = 4096)]
+    pub reference_spp: u32,
+    /// Comma-separated scenes (default: every built-in scene, the families at N = 16384 and
+    /// the models; see `cells.rs`).
+    #[arg(long)]
+    pub scenes: Option<String>,
+    /// Comma-separated estimators, bench configuration names (default: the 18 of the book).
+    #[arg(long)]
+    pub estimators: Option<String>,
+    /// Print one command per cell (a `bench` run) and run nothing.
+    #[arg(long, conflicts_with = "merge")]
+    pub list_jobs: bool,
+    /// Build the table from the cells under --out and run nothing.
+    #[arg(long)]
+    pub merge: bool,
+    /// Reference cache directory (default: $RESTIR_CACHE_DIR, else target/restir-cache).
+    #[arg(long)]
+    pub cache_dir: Option<PathBuf>,
+}
+
+/// `bench` on its own, to parse a cell's arguments exactly as its job's command line.
+#[derive(Parser)]
+struct BenchCommand {
+    #[command(flatten)]
+    bench: BenchArgs,
+}
+
+pub fn run(args: BiasMatrixArgs) -> anyhow::Result<()> {
+    crate::cli::setup::parse_size(&args.size)?;
+    if args.frames < 32 {
+        bail!(
+            "--frames {}: the bias view's rule needs two batches of 16 frames; use 32 or more",
+            args.frames
+        );
+    }
+    if args.seeds < 2 {
+        bail!(
+            "--seeds {}: an interval needs two seeds at least",
+            args.seeds
+        );
+    }
+    let scenes = list_or(&args.scenes, all_scenes());
+    let estimators = list_or(&args.estimators, ESTIMATORS.map(String::from).to_vec());
+    let base = restir_render::Settings::default();
+    bench::configs::parse_configs(&estimators.join(","), &base)?;
+    for s in &scenes {
+        if !s.starts_with("builtin:") && !Path::new(s).is_file() {
+            bail!(
+                "scene '{s}' not found (paths are relative to the working directory: run \
+                 from the repository root, or pick scenes with --scenes)"
+            );
+        }
+    }
+    let cells = cells::cells(&scenes, &estimators);
+    if args.list_jobs {
+        let exe = std::env::current_exe()?;
+        for cell in &cells {
+            let argv = bench_argv(&args, cell);
+            println!("{}", shell_line(&exe.to_string_lossy(), &argv));
+        }
+        return Ok(());
+    }
+    if !args.merge {
+        let started = Instant::now();
+        for (i, cell) in cells.iter().enumerate() {
+            eprintln!(
+                "[{}/{}] {} · {} ({:.0} s so far)",
+                i + 1,
+                cells.len(),
+                cell.scene,
+                cell.estimator,
+                started.elapsed().as_secs_f64()
+            );
+            run_cell(&args, cell);
+        }
+        eprintln!(
+            "bias matrix: {} cells in {:.0} s",
+            cells.len(),
+            started.elapsed().as_secs_f64()
+        );
+    }
+    table::merge(&args.out, &cells, &args)
+}
+
+fn list_or(list: &Option<String>, default: Vec<String>) -> Vec<String> {
+    match list {
+        Some(l) => l
+            .split(',')
+            .map(str::trim)
+            .filter(|s| !s.is_empty())
+            .map(String::from)
+            .collect(),
+        None => default,
+    }
+}
+
+/// The `bench` arguments of one cell (after the `bench` subcommand).
+fn bench_argv(args: &BiasMatrixArgs, cell: &Cell) -> Vec<String> {
+    let mut argv: Vec<String> = [
+        "--scene",
+        &cell.scene,
+        "--size",
+        &args.size,
+        "--frames",
+        &args.frames.to_string(),
+        "--seeds",
+        &args.seeds.to_string(),
+        "--reference-spp",
+        &args.reference_spp.to_string(),
+        "--configs",
+        &cell.estimator,
+        // Animated scenes are measured at one moment: an accumulated image of a scene that
+        // moves has no single reference.
+        "--fps",
+        "0",
+        "--quiet",
+        "--out",
+    ]
+    .map(String::from)
+    .to_vec();
+    argv.push(cell_dir(&args.out, cell).to_string_lossy().into_owned());
+    if let Some(c) = &args.cache_dir {
+        argv.push("--cache-dir".into());
+        argv.push(c.to_string_lossy().into_owned());
+    }
+    argv
+}
+
+pub fn cell_dir(out: &Path, cell: &Cell) -> PathBuf {
+    out.join("cells").join(cell.folder())
+}
+
+/// Runs one cell in this process; a cell that fails leaves `error.txt` in its folder (the
+/// table shows it) rather than stopping the sweep.
+fn run_cell(args: &BiasMatrixArgs, cell: &Cell) {
+    let dir = cell_dir(&args.out, cell);
+    let result = (|| -> anyhow::Result<()> {
+        std::fs::create_dir_all(&dir)
+            .with_context(|| format!("{}: cannot create", dir.display()))?;
+        let _ = std::fs::remove_file(dir.join(table::ERROR_FILE));
+        let argv = std::iter::once("bench".to_string()).chain(bench_argv(args, cell));
+        let parsed = BenchCommand::try_parse_from(argv)?;
+        bench::run(parsed.bench)
+    })();
+    if let Err(e) = result {
+        eprintln!("{} · {}: {e:#}", cell.scene, cell.estimator);
+        let _ = std::fs::write(dir.join(table::ERROR_FILE), format!("{e:#}\n"));
+    }
+}
+
+/// A command line a POSIX shell reads back as `program` and `args`.
+pub(crate) fn shell_line(program: &str, args: &[String]) -> String {
+    let quote = |s: &str| {
+        if !s.is_empty()
+            && s.chars()
+                .all(|c| c.is_ascii_alphanumeric() || "-_./:=@+,".contains(c))
+        {
+            s.to_string()
+        } else {
+            format!("'{}'", s.replace('\'', r"'\''"))
+        }
+    };
+    std::iter::once(quote(program))
+        .chain(std::iter::once("bench".to_string()))
+        .chain(args.iter().map(|a| quote(a)))
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn job_lines_quote_what_a_shell_would_split() {
+        let line = shell_line("/bin/x", &["a b".into(), "it's".into(), "c+d@e".into()]);
+        assert_eq!(line, r"/bin/x bench 'a b' 'it'\''s' c+d@e");
+    }
+}

@@ -23,7 +23,8 @@ const SCORED: u64 = 8;
 
 /// The reference image and its own estimated luma RMSE.
 fn reference(r: &mut Renderer, request: &ReferenceRequest) -> (LinearImage, f64) {
-    let (image, meta) = render_reference(r, request, &mut |_| true).unwrap_or_else(|e| panic!("{e:#}"));
+    let (image, meta) =
+        render_reference(r, request, &mut |_| true).unwrap_or_else(|e| panic!("{e:#}"));
     (image, meta.noise_luma_rmse.expect("two halves"))
 }
 

@@ -35,7 +35,6 @@ pub enum After {
     Exit,
 }
 
-
 impl Viewer {
     pub fn new(window: Arc<Window>, launch: Launch, scene: Arc<Scene>) -> anyhow::Result<Viewer> {
         let (surface, gpu) = GpuSurface::new(window.clone())?;

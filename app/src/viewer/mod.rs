@@ -244,9 +244,12 @@ mod tests {
         };
         assert!(launch(&[]).unwrap().settings.jitter);
         assert!(!launch(&["jitter=false"]).unwrap().settings.jitter);
-        let err = launch(&["jitter=maybe"]).err().map(|e| e.to_string());
-        assert!(err.as_deref().is_some_and(|e| e.contains("--set")), "{err:?}");
-        let err = launch(&["no_such_parameter=1"]).err().map(|e| e.to_string());
-        assert!(err.as_deref().is_some_and(|e| e.contains("--set")), "{err:?}");
+        for bad in ["jitter=maybe", "no_such_parameter=1"] {
+            let err = launch(&[bad]).err().map(|e| e.to_string());
+            assert!(
+                err.as_deref().is_some_and(|e| e.contains("--set")),
+                "{bad}: {err:?}"
+            );
+        }
     }
 }

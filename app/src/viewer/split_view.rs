@@ -96,7 +96,11 @@ pub fn show(ui: &mut Ui, rect: Rect, images: Option<Images>, state: &mut ViewerS
 /// with jitter on "RMSE 0.123 per offset": each frame against its own sub-pixel offset's
 /// reference (docs/src/viewer.md, "Accuracy with jitter on").
 fn labels(state: &ViewerState) -> (String, String) {
-    let how = if state.settings.jitter { " per offset" } else { "" };
+    let how = if state.settings.jitter {
+        " per offset"
+    } else {
+        ""
+    };
     let error = |e: Option<f64>| e.map_or(String::new(), |e| format!(" · RMSE {e:.3}{how}"));
     let errors = state.compare.errors;
     (

@@ -90,7 +90,10 @@ fn scored_against_its_phase_a_frame_measures_the_estimator_alone() {
         .map(|p| luma_rmse(&footprint_image(p), &plain).unwrap().powi(2))
         .sum::<f64>()
         / JITTER_PERIOD as f64;
-    assert!(footprint > 0.1, "the model has a footprint: F = {footprint}");
+    assert!(
+        footprint > 0.1,
+        "the model has a footprint: F = {footprint}"
+    );
     assert!(a_plain / b_plain > 0.9, "plain: {a_plain} vs {b_plain}");
     assert!(a / b < 0.4, "matched: {a} vs {b}");
 }

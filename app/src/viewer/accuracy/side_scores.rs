@@ -7,9 +7,9 @@
 use std::time::{Duration, Instant};
 
 use restir_render::LinearImage;
+use restir_render::Renderer;
 use restir_render::metrics::{luma_ratio, luma_rmse};
 use restir_render::phase_references::{PhaseReferences, reference_for_frame};
-use restir_render::Renderer;
 
 /// A few times a second: the labels stay readable, the readbacks cheap.
 pub const INTERVAL: Duration = Duration::from_millis(250);
@@ -59,7 +59,8 @@ impl SideScores {
         // `render_frame` has moved the index past the frame just rendered.
         let frame = renderer.frame_index().saturating_sub(1);
         let plain = references.plain;
-        let Some(reference) = reference_for_frame(references.jitter, frame, plain, references.phases)
+        let Some(reference) =
+            reference_for_frame(references.jitter, frame, plain, references.phases)
         else {
             return s.score;
         };

@@ -141,7 +141,12 @@ impl AccuracyTracker {
         }
         if self.reference.is_some() {
             if self.view.as_ref().is_some_and(|v| v.jitter) {
-                self.update_phases(renderer.gpu(), scene, jitter_phase(renderer.frame_index()), wanted);
+                self.update_phases(
+                    renderer.gpu(),
+                    scene,
+                    jitter_phase(renderer.frame_index()),
+                    wanted,
+                );
                 state.phases = Some(self.phases.status());
             }
             return;

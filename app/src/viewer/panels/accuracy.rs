@@ -124,15 +124,20 @@ fn jitter_note(ui: &mut Ui, settings: &mut Settings, phases: Option<&PhaseStatus
                 p.ready
             ));
             if let Some((phase, progress)) = &p.rendering {
-                ui.add(egui::ProgressBar::new(progress.fraction() as f32).text(format!(
-                    "offset {phase}: {}/{} spp",
-                    progress.samples_done, progress.samples_total
-                )));
+                ui.add(
+                    egui::ProgressBar::new(progress.fraction() as f32).text(format!(
+                        "offset {phase}: {}/{} spp",
+                        progress.samples_done, progress.samples_total
+                    )),
+                );
                 ui.ctx()
                     .request_repaint_after(std::time::Duration::from_millis(250));
             }
             if let Some(e) = &p.failed {
-                ui.colored_label(ui.visuals().error_fg_color, format!("Offset reference failed: {e}"));
+                ui.colored_label(
+                    ui.visuals().error_fg_color,
+                    format!("Offset reference failed: {e}"),
+                );
             }
         }
     }

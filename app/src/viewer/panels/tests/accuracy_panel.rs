@@ -136,7 +136,10 @@ fn jitter_goes_off_in_one_click() {
     });
     let mut h = harness(accuracy::ui, s);
     h.run();
-    assert!(shows(&h, "against the reference of its own sub-pixel offset"));
+    assert!(shows(
+        &h,
+        "against the reference of its own sub-pixel offset"
+    ));
     assert!(shows(&h, "Offsets with a reference: 3 of 64"));
     h.get_by_label("Jitter off for measuring").click();
     h.run();

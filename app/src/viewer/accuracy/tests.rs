@@ -25,6 +25,16 @@ fn gpu() -> Gpu {
     })
 }
 
+/// A tracker with no settle time and the panel open, measuring every frame against
+/// references of `spp`.
+fn measuring(cache: &ReferenceCache, spp: u32) -> (AccuracyTracker, AccuracyState) {
+    let mut state = AccuracyState::new(true);
+    state.panel_open = true;
+    state.every_frame = true;
+    state.reference_spp = spp;
+    (AccuracyTracker::new(cache.clone(), Duration::ZERO), state)
+}
+
 /// Renders frames, handing each to the tracker as the viewer does, until the reference
 /// is there and `FRAMES` frames were measured against it; also says how passes were timed.
 fn measure(cache: &ReferenceCache) -> (AccuracyState, TimingMode) {
@@ -40,11 +50,7 @@ fn measure(cache: &ReferenceCache) -> (AccuracyState, TimingMode) {
         spec: SCENE,
         scene: &scene,
     };
-    let mut tracker = AccuracyTracker::new(cache.clone(), Duration::ZERO);
-    let mut state = AccuracyState::new(true);
-    state.panel_open = true;
-    state.every_frame = true;
-    state.reference_spp = 4;
+    let (mut tracker, mut state) = measuring(cache, 4);
     let deadline = Instant::now() + Duration::from_secs(60);
     let mut measured = 0;
     while measured < FRAMES {
@@ -134,11 +140,7 @@ fn jittered_frames_are_scored_against_their_own_phase() {
         spec: SCENE,
         scene: &scene,
     };
-    let mut tracker = AccuracyTracker::new(cache.clone(), Duration::ZERO);
-    let mut state = AccuracyState::new(true);
-    state.panel_open = true;
-    state.every_frame = true;
-    state.reference_spp = 64;
+    let (mut tracker, mut state) = measuring(&cache, 64);
     let request = restir_render::reference_cache::ReferenceRequest::new(
         SCENE,
         &scene,

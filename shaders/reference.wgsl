@@ -48,7 +48,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         var dir = vec3<f32>(0.0);
         var walk: WalkProgress;
         if camera_ray {
-            var at = vec2<f32>(0.5);
+            // Jitter off: the point the G-buffer was rasterised at (the pixel centre, or a
+            // jitter phase's offset: docs/src/viewer.md, "Accuracy with jitter on").
+            var at = vec2<f32>(0.5) - frame.jitter;
             if jitter {
                 at = rand_vec2(&rng);
             }
@@ -80,7 +82,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
                     sample_value = emission_toward_viewer(hs);
                 } else {
                     // Jitter off: the surface the rasterised G-buffer sees at the pixel
-                    // centre, so a comparison with the real-time modes measures lighting
+                    // centre (or a jitter phase's offset), so a comparison with the real-time modes measures lighting
                     // error alone (a ray and the rasteriser may disagree on a pixel centre
                     // exactly on an edge). Behind glass the G-buffer's own choice of layer
                     // is taken as well, so this averages over that choice only as far as
@@ -91,7 +93,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
                         sum += s.emission;
 #endif
 #ifdef ENVIRONMENT
-                        sum += s.throughput * env_background(camera_ray_direction(vec2<f32>(id.xy) + 0.5));
+                        sum += s.throughput * env_background(camera_ray_direction(vec2<f32>(id.xy) + 0.5 - frame.jitter));
 #endif
                         break;
                     }

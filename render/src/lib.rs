@@ -22,6 +22,7 @@ pub mod load_phases;
 pub mod metrics;
 pub mod passes;
 pub mod path_reuse;
+pub mod phase_references;
 pub mod reference_cache;
 pub mod renderer;
 pub mod reservoir;

@@ -70,6 +70,11 @@ pub struct ReferenceRequest {
     /// Path vertices shaded (`max_bounces`): 1 is direct light only, 2 adds one bounce of
     /// indirect light. A reference is compared with frames that estimate the same integral.
     pub max_bounces: u32,
+    /// With jitter off: rasterise at this jitter phase's sub-pixel offset instead of the
+    /// pixel centres, the reference of the frames of that phase (`None`: pixel centres).
+    /// Jittered frames scored against it measure their estimator, not the pixel footprint
+    /// (docs/src/viewer.md, "Accuracy with jitter on").
+    pub jitter_phase: Option<u32>,
 }
 
 impl ReferenceRequest {
@@ -96,6 +101,17 @@ impl ReferenceRequest {
             environment: scene.environment.as_ref().map(|e| e.fingerprint()),
             scene_time: scene.animation.as_ref().map(|a| a.posed_at),
             max_bounces: 1,
+            jitter_phase: None,
+        }
+    }
+
+    /// The reference of the frames of one jitter phase: jitter off (the G-buffer's
+    /// surfaces), rasterised at that phase's offset.
+    pub fn at_jitter_phase(self, phase: u32) -> ReferenceRequest {
+        ReferenceRequest {
+            jitter: false,
+            jitter_phase: Some(phase % crate::renderer::JITTER_PERIOD as u32),
+            ..self
         }
     }
 
@@ -297,6 +313,34 @@ impl ReferenceCache {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A phase's reference is its own cache entry, jitter off; the pixel centres' key text
+    /// is what it was before phases existed (their cached files stay valid).
+    #[test]
+    fn a_jitter_phase_has_its_own_key() {
+        let scene = crate::scene::builtin::builtin_scene("cornell").unwrap();
+        let request = |jitter| {
+            ReferenceRequest::new(
+                "builtin:cornell",
+                &scene,
+                scene.default_camera(),
+                (8, 6),
+                4,
+                jitter,
+            )
+        };
+        let centres = request(false);
+        assert!(!centres.key().unwrap().description.contains("jitter_phase"));
+        let phase = request(true).at_jitter_phase(5);
+        assert!(!phase.jitter);
+        assert_eq!(phase.jitter_phase, Some(5));
+        let key = phase.key().unwrap();
+        assert!(key.description.contains("jitter_phase=5\n"));
+        assert_ne!(key, centres.key().unwrap());
+        assert_ne!(key, request(false).at_jitter_phase(6).key().unwrap());
+        // Phases wrap with the period, as frames do.
+        assert_eq!(request(false).at_jitter_phase(5 + 64).jitter_phase, Some(5));
+    }
 
     #[test]
     fn progress_fraction_and_eta() {

@@ -4,7 +4,7 @@
 //! What the viewer holds is `window.rs`; the actions and finished loads are `actions.rs`.
 
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use restir_render::reference_cache::ReferenceCache;
 use restir_render::{Renderer, Scene};
@@ -34,9 +34,6 @@ pub enum After {
     Continue,
     Exit,
 }
-
-/// How often the split screen's per-side errors are measured.
-const COMPARE_SCORE_INTERVAL: Duration = Duration::from_millis(250);
 
 impl Viewer {
     pub fn new(window: Arc<Window>, launch: Launch, scene: Arc<Scene>) -> anyhow::Result<Viewer> {
@@ -101,7 +98,6 @@ impl Viewer {
                 AccuracyTracker::SETTLE,
             ),
             compare: None,
-            compare_scored: None,
             loader: SceneLoader::default(),
             startup: Startup::NotStarted,
             warming: None,
@@ -338,16 +334,8 @@ impl Viewer {
             .update(&mut self.renderer, &source, &mut state.accuracy, wanted);
         if rendered {
             self.accuracy.measure(&self.renderer, &mut state.accuracy);
-            // The labels' errors and the tour's numbers: a readback per side, so a few
-            // times a second, not every frame.
-            let now = Instant::now();
-            let due = self
-                .compare_scored
-                .is_none_or(|t| now - t >= COMPARE_SCORE_INTERVAL);
-            if due {
-                self.compare_scored = Some(now);
-                self.score_sides();
-            }
+            // The labels' errors and the tour's numbers (throttled per side inside).
+            self.score_sides();
         }
     }
 }

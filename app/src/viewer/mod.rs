@@ -53,6 +53,10 @@ pub struct ViewArgs {
     /// A preset file (TOML, `name = value` per line) to start from.
     #[arg(long)]
     pub preset: Option<PathBuf>,
+    /// Override a pipeline parameter, `name=value` (see `params`), after the preset;
+    /// repeatable (as `render` and `bench` take it).
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    pub set: Vec<String>,
     /// Window size in logical pixels, WxH [default: 1280x720].
     #[arg(long)]
     pub size: Option<String>,
@@ -145,7 +149,7 @@ impl Launch {
                 .or(args.scene_positional)
                 .or_else(|| first.map(|s| s.scene.clone()))
                 .unwrap_or_else(|| DEFAULT_SCENE.to_string()),
-            settings: settings_from(args.preset.as_ref(), &[])?,
+            settings: settings_from(args.preset.as_ref(), &args.set)?,
             preset: args.preset,
             window_size: parse_size(args.size.as_deref().unwrap_or(DEFAULT_WINDOW_SIZE))?,
             debug_view,
@@ -226,5 +230,26 @@ mod tests {
             })
             .contains("--size")
         );
+    }
+
+    /// `view --set` overrides a parameter as `render --set` does; a bad one is a
+    /// command-line error naming `--set`, before a window opens.
+    #[test]
+    fn set_overrides_a_parameter() {
+        let launch = |set: &[&str]| {
+            Launch::from_args(ViewArgs {
+                set: set.iter().map(|s| s.to_string()).collect(),
+                ..Default::default()
+            })
+        };
+        assert!(launch(&[]).unwrap().settings.jitter);
+        assert!(!launch(&["jitter=false"]).unwrap().settings.jitter);
+        for bad in ["jitter=maybe", "no_such_parameter=1"] {
+            let err = launch(&[bad]).err().map(|e| e.to_string());
+            assert!(
+                err.as_deref().is_some_and(|e| e.contains("--set")),
+                "{bad}: {err:?}"
+            );
+        }
     }
 }

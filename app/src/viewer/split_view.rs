@@ -92,9 +92,16 @@ pub fn show(ui: &mut Ui, rect: Rect, images: Option<Images>, state: &mut ViewerS
     );
 }
 
-/// "A: restir · RMSE 0.123" and "B: ris · RMSE 0.456" (errors once a reference exists).
+/// "A: restir · RMSE 0.123" and "B: ris · RMSE 0.456" (errors once a reference exists);
+/// with jitter on "RMSE 0.123 per offset": each frame against its own sub-pixel offset's
+/// reference (docs/src/viewer.md, "Accuracy with jitter on").
 fn labels(state: &ViewerState) -> (String, String) {
-    let error = |e: Option<f64>| e.map_or(String::new(), |e| format!(" · RMSE {e:.3}"));
+    let how = if state.settings.jitter {
+        " per offset"
+    } else {
+        ""
+    };
+    let error = |e: Option<f64>| e.map_or(String::new(), |e| format!(" · RMSE {e:.3}{how}"));
     let errors = state.compare.errors;
     (
         format!("A: {}{}", state.mode.name(), error(errors.map(|e| e.0))),

@@ -39,8 +39,6 @@ pub struct Viewer {
     pub(super) accuracy: AccuracyTracker,
     /// Configuration B of the split screen, while the Compare section has it on.
     pub(super) compare: Option<CompareSide>,
-    /// When the two sides were last scored (each score reads both images back).
-    pub(super) compare_scored: Option<Instant>,
     pub(super) loader: SceneLoader,
     pub(super) startup: Startup,
     /// A change's pipelines warming beside the window (CPU adapters): the effect set and

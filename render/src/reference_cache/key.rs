@@ -115,6 +115,10 @@ pub fn key_of(request: &ReferenceRequest) -> anyhow::Result<ReferenceKey> {
     if request.max_bounces != 1 {
         description.push_str(&format!("max_bounces={}\n", request.max_bounces));
     }
+    // And only for a jitter phase's reference (the pixel centres' keys stay as they were).
+    if let Some(phase) = request.jitter_phase {
+        description.push_str(&format!("jitter_phase={phase}\n"));
+    }
     Ok(ReferenceKey {
         hash: Fnv64::of(description.as_bytes()),
         description,

@@ -59,11 +59,14 @@ pub fn render_reference(
     renderer.set_camera(request.camera);
     renderer.set_seed(request.seed);
     renderer.force_effects(Some(request.effects.clone()));
+    renderer.set_reference_phase(request.jitter_phase);
     // Per-pass timing would only slow it down (one submission per pass on CPU adapters).
     let timing = renderer.timing_mode();
     renderer.set_timing_mode(TimingMode::Off);
     let result = accumulate(renderer, spp, per_frame, frames, progress);
     renderer.set_timing_mode(timing);
+    // Any later `Mode::Reference` frame on this renderer rasterises at the pixel centres again.
+    renderer.set_reference_phase(None);
     let (image, half, seconds) = result?;
     let half_frames = frames / 2;
     // RMSE(f) ≈ RMSE(a, f)·√(k/(n−k)) (module docs).

@@ -31,6 +31,7 @@ pub use inspect_pt::{PtInspection, PtStagePath, PtVertex};
 pub use prepare::{PreparedScene, ScenePreparer};
 pub use ray_bench::{RayKind, RayRate};
 pub use setup::check_size;
+pub use uniforms::{JITTER_PERIOD, jitter_offset, jitter_phase};
 pub use window::TemporalWindow;
 
 use std::collections::HashMap;
@@ -98,6 +99,8 @@ pub struct Renderer {
     window: window::WindowState,
     /// Every frame draws frame 0's random numbers (`freeze_noise`).
     frozen_noise: bool,
+    /// `Mode::Reference` rasterises at this jitter phase's offset (`set_reference_phase`).
+    reference_phase: Option<u32>,
 }
 
 impl Renderer {
@@ -289,6 +292,13 @@ impl Renderer {
 
     pub fn frame_index(&self) -> u64 {
         self.frame_index
+    }
+
+    /// `Mode::Reference` with jitter off shades the surfaces rasterised at this jitter
+    /// phase's sub-pixel offset (`None`: the pixel centres), the reference the frames of that
+    /// phase are scored against (docs/src/viewer.md, "Accuracy with jitter on").
+    pub fn set_reference_phase(&mut self, phase: Option<u32>) {
+        self.reference_phase = phase;
     }
 
     /// Treats the next frame as a camera cut: the previous surfaces are invalid.

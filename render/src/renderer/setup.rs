@@ -159,6 +159,7 @@ impl Renderer {
             last_update: Default::default(),
             window: Default::default(),
             frozen_noise: false,
+            reference_phase: None,
             gpu,
         })
     }

@@ -8,6 +8,22 @@ use crate::settings::Settings;
 use crate::shader_constants::{MAX_SPATIAL_NEIGHBOURS, MAX_SPATIAL_PASSES, NO_INSPECT_PIXEL};
 use crate::view::Mode;
 
+/// Frames before the sub-pixel offsets repeat: frame `i` and frame `i + JITTER_PERIOD` are
+/// rasterised at the same offset (docs/src/viewer.md, "Accuracy with jitter on").
+pub const JITTER_PERIOD: u64 = 64;
+
+/// The jitter phase of a frame: which of the `JITTER_PERIOD` sub-pixel offsets it uses.
+pub fn jitter_phase(frame_index: u64) -> u32 {
+    (frame_index % JITTER_PERIOD) as u32
+}
+
+/// The sub-pixel offset (pixels, each axis in [−½, ½)) of jitter phase `phase`:
+/// Halton(2, 3). Pixel p of such a frame samples the point p + ½ − offset.
+pub fn jitter_offset(phase: u32) -> Vec2 {
+    let i = phase % JITTER_PERIOD as u32 + 1;
+    Vec2::new(halton(i, 2), halton(i, 3)) - 0.5
+}
+
 /// Radical inverse in base b (Halton sequence) for sub-pixel jitter.
 fn halton(mut index: u32, base: u32) -> f32 {
     let mut f = 1.0;
@@ -28,11 +44,13 @@ impl Renderer {
         let aspect = width as f32 / height as f32;
         let near = (self.scene.scale * 1e-5).max(1e-30);
         let view_proj = camera.projection_matrix(aspect, near) * camera.view_matrix();
-        let jitter = if settings.jitter && self.mode != Mode::Reference {
-            let i = (self.frame_index % 64) as u32 + 1;
-            Vec2::new(halton(i, 2), halton(i, 3)) - 0.5
-        } else {
-            Vec2::ZERO
+        let jitter = match (self.mode, self.reference_phase) {
+            // A reference of one jitter phase rasterises the surfaces that phase's frames
+            // see (docs/src/viewer.md, "Accuracy with jitter on").
+            (Mode::Reference, Some(phase)) => jitter_offset(phase),
+            (Mode::Reference, None) => Vec2::ZERO,
+            _ if settings.jitter => jitter_offset(jitter_phase(self.frame_index)),
+            _ => Vec2::ZERO,
         };
         let frame = GpuFrame {
             view_proj: view_proj.to_cols_array_2d(),
@@ -108,7 +126,7 @@ impl Renderer {
 
 #[cfg(test)]
 mod tests {
-    use super::halton;
+    use super::*;
 
     #[test]
     fn halton_is_in_unit_interval_and_low_discrepancy() {
@@ -118,5 +136,20 @@ mod tests {
         assert!((mean - 0.5).abs() < 0.02);
         assert_eq!(halton(1, 2), 0.5);
         assert_eq!(halton(2, 3), 2.0 / 3.0);
+    }
+
+    /// The phase of a frame repeats with the period, and its offset is the one frames
+    /// have always used (frame 0: Halton index 1 = (½, ⅓) − ½).
+    #[test]
+    fn a_frame_and_its_phase_share_one_offset() {
+        assert_eq!(jitter_phase(0), 0);
+        assert_eq!(jitter_phase(JITTER_PERIOD + 5), 5);
+        assert_eq!(jitter_offset(0), Vec2::new(0.0, 1.0 / 3.0 - 0.5));
+        let offsets: Vec<Vec2> = (0..JITTER_PERIOD as u32).map(jitter_offset).collect();
+        assert!(offsets.iter().all(|o| o.abs().max_element() <= 0.5));
+        // 64 distinct offsets: a reference of one phase serves only that phase's frames.
+        for (i, a) in offsets.iter().enumerate() {
+            assert!(offsets[..i].iter().all(|b| b != a), "phase {i} repeats");
+        }
     }
 }

@@ -7,9 +7,14 @@
 //! - this file: the plain state the panel shows and edits (no GPU, testable);
 //! - `curves.rs`: curves, points and how a change of configuration is labelled;
 //! - `tracker.rs`: the GPU side: the background reference job, the upload for the
-//!   error view, the per-frame readback and metrics, and their throttle.
+//!   error view, the per-frame readback and metrics, and their throttle;
+//! - `phases.rs`: with jitter on, the reference of each jitter phase, which each frame's
+//!   per-frame error is measured against (docs/src/viewer.md, "Accuracy with jitter on");
+//! - `side_scores.rs`: the split screen's and the tour's live numbers per side.
 
 pub mod curves;
+pub mod phases;
+pub mod side_scores;
 pub mod tracker;
 
 #[cfg(test)]
@@ -41,6 +46,9 @@ pub struct AccuracyState {
     pub measure_ms: Option<f64>,
     /// Frames rendered between the last two measurements, minus one (0 = every frame).
     pub frames_skipped: u64,
+    /// With jitter on and the reference there: the jitter phases' references (None with
+    /// jitter off, where the one reference serves every frame).
+    pub phases: Option<PhaseStatus>,
 }
 
 impl AccuracyState {
@@ -55,6 +63,7 @@ impl AccuracyState {
             curves: Curves::default(),
             measure_ms: None,
             frames_skipped: 0,
+            phases: None,
         }
     }
 }
@@ -80,4 +89,16 @@ pub struct ReferenceInfo {
     pub meta: ReferenceMeta,
     pub from_cache: bool,
     pub path: PathBuf,
+}
+
+/// How far the references of the jitter phases are (docs/src/viewer.md, "Accuracy with
+/// jitter on"): a frame is scored only once its phase has one.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PhaseStatus {
+    /// Phases with a reference, of `restir_render::renderer::JITTER_PERIOD`.
+    pub ready: usize,
+    /// The phase being rendered and its progress.
+    pub rendering: Option<(u32, Progress)>,
+    /// Why the last phase failed (no further phase is started until the view changes).
+    pub failed: Option<String>,
 }

@@ -1,18 +1,24 @@
 //! The GPU side of the accuracy measurement: follows the view, gets its reference with a
 //! background `ReferenceJob` (cached on disk), uploads it for the error view, and scores
-//! displayed frames against it with `SequenceMetrics`. Owned by the viewer's frame loop,
-//! never by the UI; it writes what the panel shows into `AccuracyState`.
+//! displayed frames against it with `SequenceMetrics`. With jitter on, each frame's
+//! per-frame error is measured against its jitter phase's reference instead (`phases.rs`;
+//! docs/src/viewer.md, "Accuracy with jitter on"). Owned by the viewer's frame loop, never
+//! by the UI; it writes what the panel shows into `AccuracyState`.
 
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use restir_render::LinearImage;
-use restir_render::metrics::SequenceMetrics;
+use restir_render::metrics::{SequenceMetrics, luma_rmse};
+use restir_render::phase_references::reference_for_frame;
 use restir_render::reference_cache::{
     JobState, Reference, ReferenceCache, ReferenceJob, ReferenceRequest,
 };
+use restir_render::renderer::jitter_phase;
 use restir_render::{Camera, Gpu, Renderer, Scene};
 
+use super::phases::PhaseJobs;
+use super::side_scores::{References, Score, SideScores};
 use super::{AccuracyState, Config, CurvePoint, ReferenceInfo, ReferenceStatus};
 
 /// The scene the renderer shows, as a reference job needs it.
@@ -84,6 +90,10 @@ pub struct AccuracyTracker {
     last_measured: Option<u64>,
     /// Whether the renderer holds an uploaded reference (to clear when it goes stale).
     uploaded: bool,
+    /// With jitter on: the jitter phases' references, rendered after `reference`.
+    phases: PhaseJobs,
+    /// The split screen's and the tour's numbers per side.
+    sides: SideScores,
 }
 
 impl AccuracyTracker {
@@ -103,6 +113,8 @@ impl AccuracyTracker {
             throttle: Throttle::default(),
             last_measured: None,
             uploaded: false,
+            phases: PhaseJobs::default(),
+            sides: SideScores::default(),
         }
     }
 
@@ -128,6 +140,15 @@ impl AccuracyTracker {
             self.view_changed(renderer, state, key, now);
         }
         if self.reference.is_some() {
+            if self.view.as_ref().is_some_and(|v| v.jitter) {
+                self.update_phases(
+                    renderer.gpu(),
+                    scene,
+                    jitter_phase(renderer.frame_index()),
+                    wanted,
+                );
+                state.phases = Some(self.phases.status());
+            }
             return;
         }
         let Some(job) = &mut self.job else {
@@ -136,7 +157,9 @@ impl AccuracyTracker {
             } else if now - self.view_since < self.settle {
                 ReferenceStatus::WaitingForStill
             } else {
-                self.start(renderer.gpu(), scene)
+                let request = self.request(scene);
+                self.job = Some(self.spawn(renderer.gpu(), scene, request));
+                ReferenceStatus::Starting
             };
             return;
         };
@@ -154,14 +177,20 @@ impl AccuracyTracker {
         };
     }
 
-    /// Per-frame luma RMSE and signed bias ((mean luma − reference's) / reference's) of
-    /// `renderer`'s last frame, from one readback (the tour's live numbers).
-    pub fn scores(&self, renderer: &Renderer) -> Option<(f64, f64)> {
-        let reference = self.reference.as_ref()?;
-        let frame = renderer.read_radiance();
-        let rmse = restir_render::metrics::luma_rmse(&frame, reference).ok()?;
-        let ratio = restir_render::metrics::luma_ratio(&frame, reference).ok()?;
-        Some((rmse, ratio - 1.0))
+    /// The live numbers of side `side` (0: A, 1: B) rendered by `renderer`: per-frame luma
+    /// RMSE and signed bias of a recent frame (see `side_scores.rs`).
+    pub fn side_score(&mut self, side: usize, renderer: &Renderer) -> Option<Score> {
+        let (Some(plain), Some(view)) = (&self.reference, &self.view) else {
+            self.sides.clear();
+            return None;
+        };
+        let references = References {
+            plain,
+            phases: &self.phases.references,
+            jitter: view.jitter,
+        };
+        self.sides
+            .update(side, renderer, &references, Instant::now())
     }
 
     /// The reference's luminance at `pixel` (the pixel history's reference line).
@@ -178,11 +207,18 @@ impl AccuracyTracker {
         let Some(reference) = &self.reference else {
             return;
         };
-        if !state.panel_open || !(state.every_frame || self.throttle.due(start)) {
-            return;
-        }
         // `render_frame` has moved the index past the frame just rendered.
         let frame = renderer.frame_index().saturating_sub(1);
+        let jitter = renderer.settings().jitter;
+        // With jitter on a frame is measured against its phase's reference (None until it
+        // is rendered): docs/src/viewer.md, "Accuracy with jitter on".
+        let own = reference_for_frame(jitter, frame, reference, &self.phases.references);
+        let due = state.every_frame || self.throttle.due(start);
+        // A frame whose phase has its reference is always scored: while few phases have
+        // one, the throttle would otherwise rarely meet them.
+        if !state.panel_open || !(due || (jitter && own.is_some())) {
+            return;
+        }
         let config = Config {
             mode: renderer.mode(),
             settings: renderer.settings().clone(),
@@ -194,12 +230,24 @@ impl AccuracyTracker {
         let Some((_, metrics)) = &mut self.metrics else {
             unreachable!("set above")
         };
-        if let Err(e) = metrics.push(&renderer.read_radiance()) {
+        let image = renderer.read_radiance();
+        // The accumulated figures average the throttled frames, whatever their phase.
+        if due && let Err(e) = metrics.push(&image) {
             // Cannot happen while the view key holds the size; never worth a panic.
             log::warn!("accuracy: {e}");
             return;
         }
         let report = metrics.report();
+        let per_frame = match own {
+            Some(own) if jitter => luma_rmse(&image, own).ok(),
+            Some(_) => report.per_frame_luma_rmse.last().copied(),
+            None => None,
+        };
+        // No point before the accumulated figures have a frame, nor for a frame whose
+        // phase has no reference yet (its error would be mostly the pixel footprint).
+        let (Some(per_frame_rmse), true) = (per_frame, report.frames > 0) else {
+            return;
+        };
         let first = state
             .curves
             .current
@@ -208,8 +256,12 @@ impl AccuracyTracker {
         state.curves.push(CurvePoint {
             x: frame - first + 1,
             frame,
-            luma_rmse: report.per_frame_luma_rmse.last().copied().unwrap_or(0.0),
-            stability: report.per_frame_stability_rmse.last().copied(),
+            luma_rmse: per_frame_rmse,
+            stability: report
+                .per_frame_stability_rmse
+                .last()
+                .copied()
+                .filter(|_| due),
             accumulated_rgb_rmse: report.accumulated_rgb_rmse,
             luma_ratio: report.accumulated_luma_ratio,
             signed_bias: report.mean_signed_bias,
@@ -242,6 +294,9 @@ impl AccuracyTracker {
         self.reference = None;
         self.metrics = None;
         self.last_measured = None;
+        self.phases = PhaseJobs::default();
+        self.sides.clear();
+        state.phases = None;
         if std::mem::take(&mut self.uploaded) {
             // A stale reference would draw a plausible but wrong heatmap; black makes the
             // error view show |frame| until the new reference arrives (its legend says so).
@@ -252,9 +307,10 @@ impl AccuracyTracker {
         self.view_since = now;
     }
 
-    fn start(&mut self, gpu: &Gpu, scene: &SceneSource) -> ReferenceStatus {
+    /// The request of the current view's (antialiased, with jitter on) reference.
+    fn request(&self, scene: &SceneSource) -> ReferenceRequest {
         let key = self.view.as_ref().expect("set by update");
-        let request = ReferenceRequest::new(
+        ReferenceRequest::new(
             scene.spec,
             scene.scene,
             key.camera,
@@ -262,7 +318,21 @@ impl AccuracyTracker {
             key.spp,
             key.jitter,
         )
-        .with_max_bounces(key.max_bounces);
+        .with_max_bounces(key.max_bounces)
+    }
+
+    /// Polls the jitter phase in flight and starts the next, from `next_phase` (the phase
+    /// of the frame about to be rendered).
+    fn update_phases(&mut self, gpu: &Gpu, scene: &SceneSource, next_phase: u32, wanted: bool) {
+        let base = self.request(scene);
+        let mut phases = std::mem::take(&mut self.phases);
+        phases.update(&base, next_phase, wanted, |request| {
+            self.spawn(gpu, scene, request)
+        });
+        self.phases = phases;
+    }
+
+    fn spawn(&mut self, gpu: &Gpu, scene: &SceneSource, request: ReferenceRequest) -> ReferenceJob {
         let device = self
             .device
             .get_or_insert_with(|| {
@@ -274,13 +344,7 @@ impl AccuracyTracker {
                 })
             })
             .clone();
-        self.job = Some(ReferenceJob::spawn(
-            self.cache.clone(),
-            request,
-            device,
-            scene.scene.clone(),
-        ));
-        ReferenceStatus::Starting
+        ReferenceJob::spawn(self.cache.clone(), request, device, scene.scene.clone())
     }
 
     fn accept(&mut self, renderer: &mut Renderer, reference: Reference) -> ReferenceStatus {

@@ -6,7 +6,7 @@ use egui::Ui;
 use restir_render::Settings;
 
 use super::accuracy_plots::{self, significant};
-use crate::viewer::accuracy::{AccuracyState, Curve, ReferenceStatus, SPP_CHOICES};
+use crate::viewer::accuracy::{AccuracyState, Curve, PhaseStatus, ReferenceStatus, SPP_CHOICES};
 use crate::viewer::state::ViewerState;
 
 pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
@@ -31,7 +31,7 @@ pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
         .response
         .on_hover_text("Samples per pixel of the reference (light + BSDF MIS, cached on disk). More: less of its own noise in every number below, a longer first render");
     reference_status(ui, accuracy);
-    jitter_note(ui, &mut state.settings);
+    jitter_note(ui, &mut state.settings, state.accuracy.phases.as_ref());
     ui.separator();
     let accuracy = &mut state.accuracy;
     match &accuracy.curves.current {
@@ -103,20 +103,47 @@ pub fn reference_status(ui: &mut Ui, accuracy: &AccuracyState) {
     }
 }
 
-/// Per-frame errors include anti-aliasing while jitter is on: each frame samples one
-/// sub-pixel position, the reference the whole pixel. The bench measures with it off.
-fn jitter_note(ui: &mut Ui, settings: &mut Settings) {
+/// With jitter on each frame shades one sub-pixel offset; against the antialiased
+/// reference its error would be mostly the pixel footprint, the same for every estimator.
+/// So per-frame errors are measured against the reference of the frame's own offset
+/// (docs/src/viewer.md, "Accuracy with jitter on"), rendered one offset after another.
+fn jitter_note(ui: &mut Ui, settings: &mut Settings, phases: Option<&PhaseStatus>) {
     if !settings.jitter {
         ui.weak("Jitter off: frames and reference shade the same rasterised surfaces, so the errors measure lighting alone (as the bench does)");
         return;
     }
-    ui.colored_label(
-        ui.visuals().warn_fg_color,
-        "Jitter is on: per-frame errors include anti-aliasing (each frame shades one sub-pixel position, the reference the whole pixel)",
-    );
+    ui.label("Jitter is on: each frame's per-frame error is measured against the reference of its own sub-pixel offset, so it measures the estimator, not the pixel footprint; accumulated errors against the antialiased reference");
+    let period = restir_render::renderer::JITTER_PERIOD;
+    match phases {
+        None => {
+            ui.weak("Per-offset references start once the antialiased reference is there");
+        }
+        Some(p) => {
+            ui.label(format!(
+                "Offsets with a reference: {} of {period} (frames at the others are not scored yet)",
+                p.ready
+            ));
+            if let Some((phase, progress)) = &p.rendering {
+                ui.add(
+                    egui::ProgressBar::new(progress.fraction() as f32).text(format!(
+                        "offset {phase}: {}/{} spp",
+                        progress.samples_done, progress.samples_total
+                    )),
+                );
+                ui.ctx()
+                    .request_repaint_after(std::time::Duration::from_millis(250));
+            }
+            if let Some(e) = &p.failed {
+                ui.colored_label(
+                    ui.visuals().error_fg_color,
+                    format!("Offset reference failed: {e}"),
+                );
+            }
+        }
+    }
     if ui
         .button("Jitter off for measuring")
-        .on_hover_text("Sets the jitter parameter off, as the bench measures; the reference is then fetched again without jitter")
+        .on_hover_text("Sets the jitter parameter off, as the bench measures: one reference serves every frame, instead of one per sub-pixel offset")
         .clicked()
     {
         settings.jitter = false;

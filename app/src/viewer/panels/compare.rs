@@ -7,6 +7,7 @@ use restir_render::Mode;
 use crate::viewer::state::ViewerState;
 
 pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
+    let state_jitter = state.settings.jitter;
     let compare = &mut state.compare;
     ui.checkbox(&mut compare.enabled, "Split screen: A | B")
         .on_hover_text("Render configuration B beside the current one (A) every frame, same camera, each with its own history. Drag the divider; X swaps the sides.");
@@ -35,6 +36,9 @@ pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
         match compare.errors {
             Some((a, b)) => {
                 ui.label(format!("Per-frame luma RMSE: A {a:.4} · B {b:.4}"));
+                if state_jitter {
+                    ui.weak("Jitter on: each frame against the reference of its own sub-pixel offset (see the Accuracy panel)");
+                }
             }
             None => {
                 ui.weak("Per-frame errors appear once the Accuracy reference of this view is ready (the camera must stand still).");

@@ -49,13 +49,15 @@ impl Viewer {
             .is_some_and(|t| t.shows(LiveNumber::Rmse) || t.shows(LiveNumber::Bias))
     }
 
-    /// The split screen's labels and the tour's rmse and bias: one readback per side.
+    /// The split screen's labels and the tour's rmse and bias.
+    /// Each side is read back a few times a second, and with jitter on only on frames whose
+    /// phase has its reference (`accuracy/side_scores.rs`); meanwhile the last numbers stay.
     pub(in crate::viewer) fn score_sides(&mut self) {
-        let a = self.accuracy.scores(&self.renderer);
-        let b = self
-            .compare
-            .as_ref()
-            .and_then(|c| self.accuracy.scores(&c.renderer));
+        let a = self.accuracy.side_score(0, &self.renderer);
+        let b = match &self.compare {
+            Some(c) => self.accuracy.side_score(1, &c.renderer),
+            None => None,
+        };
         let state = &mut self.state;
         state.compare.errors = match (self.compare.is_some(), a, b) {
             (true, Some(a), Some(b)) => Some((a.0, b.0)),

@@ -7,7 +7,7 @@ use std::time::Duration;
 use restir_render::reference_cache::{Progress, ReferenceMeta};
 
 use super::*;
-use crate::viewer::accuracy::{Config, CurvePoint, ReferenceInfo, ReferenceStatus};
+use crate::viewer::accuracy::{Config, CurvePoint, PhaseStatus, ReferenceInfo, ReferenceStatus};
 
 pub(super) fn ready() -> ReferenceStatus {
     ReferenceStatus::Ready(ReferenceInfo {
@@ -129,9 +129,18 @@ fn a_parameter_change_starts_a_new_curve_and_keeps_the_previous_one() {
 fn jitter_goes_off_in_one_click() {
     let mut s = state();
     s.settings.jitter = true;
+    s.accuracy.phases = Some(PhaseStatus {
+        ready: 3,
+        rendering: None,
+        failed: None,
+    });
     let mut h = harness(accuracy::ui, s);
     h.run();
-    assert!(shows(&h, "per-frame errors include anti-aliasing"));
+    assert!(shows(
+        &h,
+        "against the reference of its own sub-pixel offset"
+    ));
+    assert!(shows(&h, "Offsets with a reference: 3 of 64"));
     h.get_by_label("Jitter off for measuring").click();
     h.run();
     assert!(!h.state().settings.jitter);

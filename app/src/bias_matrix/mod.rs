@@ -14,6 +14,7 @@ use std::time::Instant;
 use anyhow::{Context, bail};
 use clap::{Args, Parser};
 
+use crate::bench::seed_figures::FIGURES_FILE;
 use crate::bench::{self, BenchArgs};
 use cells::{Cell, ESTIMATORS, all_scenes};
 
@@ -48,6 +49,10 @@ pub struct BiasMatrixArgs {
     /// Build the table from the cells under --out and run nothing.
     #[arg(long)]
     pub merge: bool,
+    /// Skip the cells that already wrote their figures under --out (a sweep stopped
+    /// halfway goes on where it stopped; the cells must have been run with these settings).
+    #[arg(long)]
+    pub resume: bool,
     /// Reference cache directory (default: $RESTIR_CACHE_DIR, else target/restir-cache).
     #[arg(long)]
     pub cache_dir: Option<PathBuf>,
@@ -98,6 +103,9 @@ pub fn run(args: BiasMatrixArgs) -> anyhow::Result<()> {
     if !args.merge {
         let started = Instant::now();
         for (i, cell) in cells.iter().enumerate() {
+            if args.resume && cell_dir(&args.out, cell).join(FIGURES_FILE).is_file() {
+                continue;
+            }
             eprintln!(
                 "[{}/{}] {} · {} ({:.0} s so far)",
                 i + 1,

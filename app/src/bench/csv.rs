@@ -124,6 +124,7 @@ pub fn write_results(
     header.extend(pass_headers.iter().map(String::as_str));
     header.extend([
         "mean_luma_rmse",
+        "mean_luma_rmse_antialiased",
         "mean_stability_rmse",
         "mean_low_frequency_rmse",
         "error_correlation",
@@ -170,6 +171,7 @@ pub fn write_results(
         cells.extend(pass_cells(&passes, r));
         cells.extend([
             num(scored.then_some(s.mean_luma_rmse)),
+            num(s.antialiased_luma_rmse),
             num(scored.then_some(s.mean_stability)),
             num(scored.then_some(s.mean_low_frequency_rmse)),
             num(scored.then_some(s.error_correlation())),

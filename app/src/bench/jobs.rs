@@ -1,7 +1,7 @@
 //! A bench as independent jobs (docs/src/headless.md, "Sweeps as independent jobs"):
 //! `--list-jobs` prints one `bench` command per configuration, each writing its own folder
 //! under `OUT/jobs/`, and `--merge` (the same command line otherwise) gathers their
-//! `figures.json` into `OUT/figures.md` and `OUT/figures.csv`. The figures hold no time or
+//! `figures.json` into the output folder's `figures.md` and `figures.csv`. The figures hold no time or
 //! path, so the merged table is the one a single process writes; times from separate jobs
 //! are not comparable (each ran under its own load), which is why the merge leaves them out.
 

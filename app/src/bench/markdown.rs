@@ -98,6 +98,15 @@ pub fn results(info: &BenchInfo, results: &[ConfigResult]) -> String {
         info.reference_spp,
         on_off(info.jitter)
     );
+    if info.jitter && info.camera == CameraPath::Static {
+        let _ = writeln!(
+            md,
+            "- Jitter on: every per-frame error is measured against the reference of the \
+             frame's own sub-pixel offset (docs/src/viewer.md, \"Accuracy with jitter on\"); \
+             against the antialiased reference, which the running average is scored against, \
+             it would measure the pixel footprint (`mean_luma_rmse_antialiased` in results.csv)."
+        );
+    }
     let (set, used) = info.radius;
     let _ = writeln!(
         md,

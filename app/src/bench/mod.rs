@@ -118,7 +118,7 @@ pub struct BenchArgs {
     /// nothing: the sweep as independent jobs (docs/src/headless.md).
     #[arg(long, conflicts_with = "merge")]
     pub list_jobs: bool,
-    /// Gather the jobs' figures under OUT/jobs into OUT/figures.md and figures.csv and run
+    /// Gather the jobs' figures under OUT's jobs folder into its figures.md and figures.csv and run
     /// nothing (the same command line as --list-jobs otherwise).
     #[arg(long)]
     pub merge: bool,
@@ -251,6 +251,15 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         jitter: base.jitter,
         effects: effects.clone(),
         max_bounces: 1,
+        phases: if base.jitter {
+            references::measured_phases(
+                args.seeds,
+                args.warmup,
+                args.budget_ms.is_none().then_some(measured),
+            )
+        } else {
+            Vec::new()
+        },
     };
     let ref_sets = ReferenceSets::obtain(
         &mut reference_renderer,
@@ -424,7 +433,7 @@ fn scoring_for<'a>(refs: &'a References, shot: &Shot) -> Scoring<'a> {
     if shot.moves() {
         Scoring::moving(&refs.images)
     } else {
-        Scoring::still(&refs.images[0])
+        Scoring::still(&refs.images[0], refs.phases.as_ref())
     }
 }
 

@@ -7,7 +7,9 @@ use std::io::Write;
 use anyhow::{Context, bail};
 use glam::Vec3;
 use restir_render::effects::EffectSet;
+use restir_render::phase_references::PhaseReferences;
 use restir_render::reference_cache::{Progress, ReferenceCache, ReferenceRequest};
+use restir_render::renderer::{JITTER_PERIOD, jitter_phase};
 use restir_render::timeline::{AnimatedScene, Timeline};
 use restir_render::{Camera, LinearImage, Renderer, Scene};
 
@@ -108,11 +110,19 @@ pub struct References {
     pub loaded: usize,
     pub rendered: usize,
     pub render_seconds: f64,
+    /// A still camera with jitter on: the reference of each jitter phase the measured
+    /// frames use; their per-frame error is measured against it (docs/src/viewer.md,
+    /// "Accuracy with jitter on"). `images[0]` stays the antialiased reference that the
+    /// running average converges to.
+    pub phases: Option<PhaseReferences>,
 }
 
 /// What the references are rendered with.
 #[derive(Clone)]
 pub struct ReferencePlan<'a> {
+    /// With jitter on, the jitter phases whose references a still shot needs
+    /// ([`measured_phases`]); empty otherwise.
+    pub phases: Vec<u32>,
     pub cache: &'a ReferenceCache,
     pub scene_spec: &'a str,
     pub scene: &'a Scene,
@@ -126,7 +136,8 @@ pub struct ReferencePlan<'a> {
 
 /// Loads or renders the references of frames `first..first + count` of `shot` (one for a
 /// still shot). An animated scene's `clock` poses the scene (and `renderer`) at each
-/// frame's time first: a reference of one moment, keyed by that time.
+/// frame's time first: a reference of one moment, keyed by that time. A still, jittered
+/// shot also gets the reference of each of `plan.phases`.
 pub fn obtain(
     renderer: &mut Renderer,
     plan: &ReferencePlan,
@@ -148,67 +159,31 @@ pub fn obtain(
         loaded: 0,
         rendered: 0,
         render_seconds: 0.0,
+        phases: None,
     };
-    let size = renderer.size();
+    let bounces = match plan.max_bounces {
+        1 => String::new(),
+        n => format!(", {n} bounces"),
+    };
     for (i, &frame) in frames.iter().enumerate() {
         if let Some(clock) = clock.as_deref_mut() {
             clock.set_time(renderer, shot.time(frame));
         }
         let scene = clock.as_deref().map_or(plan.scene, |c| c.scene());
-        let mut request = ReferenceRequest::new(
-            plan.scene_spec,
-            scene,
-            shot.camera(frame),
-            size,
-            plan.spp,
-            plan.jitter,
-        );
-        if let Some(e) = &plan.effects {
-            request.effects = e.clone();
-        }
-        let request = request.with_max_bounces(plan.max_bounces);
-        let bounces = match plan.max_bounces {
-            1 => String::new(),
-            n => format!(", {n} bounces"),
-        };
+        let request = request_of(plan, scene, shot.camera(frame), renderer.size());
         let label = format!("reference {}/{}{bounces}", i + 1, frames.len());
-        let mut progress = |p: &Progress| {
-            let eta = p
-                .eta()
-                .map(|d| format!(", ~{:.0} s left", d.as_secs_f64()))
-                .unwrap_or_default();
-            eprint!(
-                "\r{label}: {}/{} spp ({:.1} s{eta})   ",
-                p.samples_done,
-                p.samples_total,
-                p.elapsed.as_secs_f64()
-            );
-            let _ = std::io::stderr().flush();
-            true
-        };
-        let reference = plan
-            .cache
-            .get_or_render(renderer, &request, &mut progress)?;
-        if reference.from_cache {
-            refs.loaded += 1;
-        } else {
-            eprintln!();
-            refs.rendered += 1;
-            refs.render_seconds += reference.meta.render_seconds;
+        let image = fetch(plan, renderer, &request, &label, &mut refs)?;
+        refs.images.push(image);
+    }
+    if !plan.phases.is_empty() && !shot.moves() {
+        let mut phases = PhaseReferences::default();
+        for &phase in &plan.phases {
+            let request = request_of(plan, plan.scene, shot.camera(first), renderer.size())
+                .at_jitter_phase(phase);
+            let label = format!("reference of jitter phase {phase}{bounces}");
+            phases.insert(phase, fetch(plan, renderer, &request, &label, &mut refs)?);
         }
-        let max = |a: Option<f64>, b: Option<f64>| match (a, b) {
-            (Some(a), Some(b)) => Some(a.max(b)),
-            (a, b) => a.or(b),
-        };
-        refs.noise_luma_rmse = max(refs.noise_luma_rmse, reference.meta.noise_luma_rmse);
-        refs.noise_rgb_rmse = max(refs.noise_rgb_rmse, reference.meta.noise_rgb_rmse);
-        if reference.image.non_finite_count() > 0 {
-            bail!(
-                "{}: the reference has non-finite pixels",
-                reference.path.display()
-            );
-        }
-        refs.images.push(reference.image);
+        refs.phases = Some(phases);
     }
     eprintln!(
         "references ({} bounce{}): {} loaded from {}, {} rendered ({:.1} s), {} spp each, \
@@ -223,6 +198,85 @@ pub fn obtain(
         refs.images.first().map_or(0.0, LinearImage::mean_luminance),
     );
     Ok(refs)
+}
+
+/// The request for one reference of `plan` seen from `camera`.
+fn request_of(
+    plan: &ReferencePlan,
+    scene: &Scene,
+    camera: Camera,
+    size: (u32, u32),
+) -> ReferenceRequest {
+    let mut request =
+        ReferenceRequest::new(plan.scene_spec, scene, camera, size, plan.spp, plan.jitter);
+    if let Some(e) = &plan.effects {
+        request.effects = e.clone();
+    }
+    request.with_max_bounces(plan.max_bounces)
+}
+
+/// Loads or renders one reference with progress on stderr, and counts it into `refs`.
+fn fetch(
+    plan: &ReferencePlan,
+    renderer: &mut Renderer,
+    request: &ReferenceRequest,
+    label: &str,
+    refs: &mut References,
+) -> anyhow::Result<LinearImage> {
+    let mut progress = |p: &Progress| {
+        let eta = p
+            .eta()
+            .map(|d| format!(", ~{:.0} s left", d.as_secs_f64()))
+            .unwrap_or_default();
+        eprint!(
+            "\r{label}: {}/{} spp ({:.1} s{eta})   ",
+            p.samples_done,
+            p.samples_total,
+            p.elapsed.as_secs_f64()
+        );
+        let _ = std::io::stderr().flush();
+        true
+    };
+    let reference = plan.cache.get_or_render(renderer, request, &mut progress)?;
+    if reference.from_cache {
+        refs.loaded += 1;
+    } else {
+        eprintln!();
+        refs.rendered += 1;
+        refs.render_seconds += reference.meta.render_seconds;
+    }
+    let max = |a: Option<f64>, b: Option<f64>| match (a, b) {
+        (Some(a), Some(b)) => Some(a.max(b)),
+        (a, b) => a.or(b),
+    };
+    refs.noise_luma_rmse = max(refs.noise_luma_rmse, reference.meta.noise_luma_rmse);
+    refs.noise_rgb_rmse = max(refs.noise_rgb_rmse, reference.meta.noise_rgb_rmse);
+    if reference.image.non_finite_count() > 0 {
+        bail!(
+            "{}: the reference has non-finite pixels",
+            reference.path.display()
+        );
+    }
+    Ok(reference.image)
+}
+
+/// The jitter phases of the measured frames of every configuration when every seed runs
+/// `measured` frames after `warmup` (ConfigRun::start renders two compile frames and the
+/// warm-up on each configuration's own renderer, which renders nothing else), or every
+/// phase when the frame count is not known in advance (equal time).
+pub fn measured_phases(seeds: u32, warmup: u32, measured: Option<u32>) -> Vec<u32> {
+    let Some(measured) = measured else {
+        return (0..JITTER_PERIOD as u32).collect();
+    };
+    let per_seed = (2 + warmup + measured) as u64;
+    let mut phases: Vec<u32> = (0..seeds as u64)
+        .flat_map(|k| {
+            (0..measured as u64).map(move |i| jitter_phase(k * per_seed + 2 + warmup as u64 + i))
+        })
+        .collect();
+    phases.sort_unstable();
+    phases.dedup();
+    phases
 }
 
 /// The references of a bench: one set per `max_bounces` its configurations use, so each
@@ -286,6 +340,15 @@ impl ReferenceSets {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_measured_frames_phases_follow_each_renderers_frame_count() {
+        // Two compile frames, then 3 measured: frames 2, 3, 4; the next seed starts at 5.
+        assert_eq!(measured_phases(2, 0, Some(3)), vec![2, 3, 4, 7, 8, 9]);
+        // 62 warm-up frames: the measured frames 64..67 wrap to phases 0..3.
+        assert_eq!(measured_phases(1, 62, Some(4)), vec![0, 1, 2, 3]);
+        assert_eq!(measured_phases(1, 0, None).len(), JITTER_PERIOD as usize);
+    }
 
     #[test]
     fn bench_camera_paths_parse() {

@@ -182,7 +182,8 @@ impl<'a> ConfigRun<'a> {
             if let Some(reference) = reference_of(&self.scoring, index) {
                 self.flicker.push(&image, reference)?;
             }
-            self.scoring.push(index, &image)?
+            let frame_index = self.renderer.frame_index() - 1;
+            self.scoring.push(index, frame_index, &image)?
         } else {
             FrameScores::default()
         };

@@ -11,6 +11,7 @@ use restir_render::metrics::{
     LOW_FREQUENCY_TILE, SequenceMetrics, black_pixel_fraction, low_frequency_rmse, luma_ratio,
     luma_rmse, rel_mse,
 };
+use restir_render::phase_references::PhaseReferences;
 
 /// One frame's numbers.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -35,8 +36,12 @@ pub struct FrameRecord {
 /// A run's numbers (docs/bench.md, "How it measures").
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ScoreSummary {
-    /// Per-frame accuracy: luma RMSE vs the reference, mean over frames.
+    /// Per-frame accuracy: luma RMSE vs the reference (with jitter on, each frame's jitter
+    /// phase's), mean over frames.
     pub mean_luma_rmse: f64,
+    /// Jitter on: the same against the antialiased reference, which measures the pixel
+    /// footprint more than the estimator (docs/src/viewer.md, "Accuracy with jitter on").
+    pub antialiased_luma_rmse: Option<f64>,
     /// Frame-to-frame luma RMSE (of the error images with a moving camera), mean.
     pub mean_stability: f64,
     /// RGB RMSE of the running average (still camera only).
@@ -68,6 +73,10 @@ pub enum Scoring<'a> {
         low_frequency: Vec<f64>,
         /// Per pixel, what the figures over seeds need (seed_figures.rs).
         moments: PixelMoments,
+        /// Jitter on: each frame's per-frame error is measured against its jitter phase's
+        /// reference (docs/src/viewer.md, "Accuracy with jitter on"), kept here.
+        phases: Option<&'a PhaseReferences>,
+        phase_luma: Vec<f64>,
     },
     Moving {
         /// One per measured frame.
@@ -83,12 +92,16 @@ pub enum Scoring<'a> {
 }
 
 impl<'a> Scoring<'a> {
-    pub fn still(reference: &'a LinearImage) -> Scoring<'a> {
+    /// A still camera's scoring against `reference`; with `phases` (jitter on) each
+    /// frame's per-frame error against its jitter phase's reference instead.
+    pub fn still(reference: &'a LinearImage, phases: Option<&'a PhaseReferences>) -> Scoring<'a> {
         Scoring::Still {
             reference,
             sequence: SequenceMetrics::new(reference.clone()),
             low_frequency: Vec::new(),
             moments: PixelMoments::new(reference.width, reference.height),
+            phases,
+            phase_luma: Vec::new(),
         }
     }
 
@@ -109,8 +122,14 @@ impl<'a> Scoring<'a> {
         !matches!(self, Scoring::Off)
     }
 
-    /// Scores measured frame `index`.
-    pub fn push(&mut self, index: usize, frame: &LinearImage) -> anyhow::Result<FrameScores> {
+    /// Scores measured frame `index`, which the renderer rendered as its frame
+    /// `frame_index` (its jitter phase's).
+    pub fn push(
+        &mut self,
+        index: usize,
+        frame_index: u64,
+        frame: &LinearImage,
+    ) -> anyhow::Result<FrameScores> {
         match self {
             Scoring::Off => Ok(FrameScores::default()),
             Scoring::Still {
@@ -118,13 +137,24 @@ impl<'a> Scoring<'a> {
                 sequence,
                 low_frequency,
                 moments,
+                phases,
+                phase_luma,
             } => {
                 sequence.push(frame)?;
                 moments.push(frame);
+                if let Some(phases) = phases {
+                    let own = phases.for_frame(frame_index).ok_or_else(|| {
+                        anyhow::anyhow!("no reference for jitter phase of frame {frame_index}")
+                    })?;
+                    phase_luma.push(luma_rmse(frame, own)?);
+                }
                 low_frequency.push(low_frequency_rmse(frame, reference)?);
                 let report = sequence.report();
                 Ok(FrameScores {
-                    luma_rmse: report.per_frame_luma_rmse.last().copied(),
+                    luma_rmse: match phases {
+                        Some(_) => phase_luma.last().copied(),
+                        None => report.per_frame_luma_rmse.last().copied(),
+                    },
                     stability: report
                         .per_frame_stability_rmse
                         .get(index.wrapping_sub(1))
@@ -173,11 +203,17 @@ impl<'a> Scoring<'a> {
                 reference,
                 sequence,
                 low_frequency,
+                phases,
+                phase_luma,
                 ..
             } => {
                 let report = sequence.report();
                 Some(ScoreSummary {
-                    mean_luma_rmse: report.mean_luma_rmse,
+                    mean_luma_rmse: match phases {
+                        Some(_) => mean(phase_luma),
+                        None => report.mean_luma_rmse,
+                    },
+                    antialiased_luma_rmse: phases.map(|_| report.mean_luma_rmse),
                     mean_stability: report.mean_stability_rmse,
                     accumulated_rgb_rmse: Some(report.accumulated_rgb_rmse),
                     accumulated_rel_mse: Some(rel_mse(&sequence.accumulated(), reference)?),
@@ -198,6 +234,7 @@ impl<'a> Scoring<'a> {
                 ..
             } => Some(ScoreSummary {
                 mean_luma_rmse: mean(luma),
+                antialiased_luma_rmse: None,
                 mean_stability: mean(stability),
                 accumulated_rgb_rmse: None,
                 accumulated_rel_mse: None,
@@ -271,7 +308,7 @@ mod tests {
         let refs = [flat(1.0), flat(2.0), flat(3.0)];
         let mut s = Scoring::moving(&refs);
         for (i, r) in refs.iter().enumerate() {
-            s.push(i, &flat(r.pixels[0][0] + 0.1)).unwrap();
+            s.push(i, i as u64, &flat(r.pixels[0][0] + 0.1)).unwrap();
         }
         let summary = s.summary().unwrap().unwrap();
         assert!((summary.mean_luma_rmse - 0.1).abs() < 1e-6);
@@ -282,9 +319,9 @@ mod tests {
     #[test]
     fn bench_still_scores_match_sequence_metrics() {
         let reference = flat(1.0);
-        let mut s = Scoring::still(&reference);
-        let a = s.push(0, &flat(1.5)).unwrap();
-        let b = s.push(1, &flat(0.5)).unwrap();
+        let mut s = Scoring::still(&reference, None);
+        let a = s.push(0, 0, &flat(1.5)).unwrap();
+        let b = s.push(1, 1, &flat(0.5)).unwrap();
         assert_eq!(a.stability, None);
         assert!((b.stability.unwrap() - 1.0).abs() < 1e-6);
         // The running average is exact after two frames.

@@ -68,7 +68,11 @@ pub fn of_seeds(
     let noise = reference_noise.unwrap_or(0.0);
     // The reference's own noise in its mean luminance, relative: independent pixels of
     // RMSE σ average to σ/√N.
-    let reference_sd = noise / (reference_luma.len().max(1) as f64).sqrt() / reference_mean;
+    let reference_sd = if reference_mean > 0.0 {
+        noise / (reference_luma.len().max(1) as f64).sqrt() / reference_mean
+    } else {
+        0.0
+    };
     let signed_bias = luma_ratio.shifted(1.0).widened_by(reference_sd);
     let moments: Vec<&PixelMoments> = runs.iter().filter_map(|r| r.moments.as_ref()).collect();
     let still = moments.len() == runs.len();

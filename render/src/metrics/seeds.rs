@@ -43,8 +43,12 @@ pub fn t95(df: usize) -> f64 {
 /// A mean over independent samples with its 95 % interval, `mean ± half_width`.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Interval {
+    /// NaN without a finite sample (written as null in JSON, which has no NaN).
+    #[serde(with = "null_is_nan")]
     pub mean: f64,
-    /// Half the interval's width; infinite with one sample (no spread to measure).
+    /// Half the interval's width; infinite with one sample (no spread to measure; null in
+    /// JSON).
+    #[serde(with = "null_is_infinite")]
     pub half_width: f64,
     /// How many samples (seeds) it rests on.
     pub samples: usize,
@@ -120,6 +124,40 @@ impl Interval {
         } else {
             format!("{:.*} (one seed)", decimals, self.mean)
         }
+    }
+}
+
+/// JSON has no NaN or infinity: a non-finite mean is written as null and read back as NaN.
+mod null_is_nan {
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    pub fn serialize<S: Serializer>(x: &f64, s: S) -> Result<S::Ok, S::Error> {
+        super::finite_or_null(*x, s)
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+        Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::NAN))
+    }
+}
+
+/// … and a non-finite half-width (one seed) as null, read back as infinite.
+mod null_is_infinite {
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    pub fn serialize<S: Serializer>(x: &f64, s: S) -> Result<S::Ok, S::Error> {
+        super::finite_or_null(*x, s)
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+        Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::INFINITY))
+    }
+}
+
+fn finite_or_null<S: serde::Serializer>(x: f64, s: S) -> Result<S::Ok, S::Error> {
+    if x.is_finite() {
+        s.serialize_f64(x)
+    } else {
+        s.serialize_none()
     }
 }
 

@@ -77,6 +77,24 @@ fn intervals_display_and_widen() {
 }
 
 #[test]
+fn one_seeds_interval_survives_json() {
+    // A one-seed figure (infinite half-width) and a black scene's (NaN mean) are written
+    // by one job and read by the merge: JSON has neither, so they travel as null.
+    for interval in [Interval::of(&[0.97]), Interval::of(&[])] {
+        let text = serde_json::to_string(&interval).unwrap();
+        let back: Interval = serde_json::from_str(&text).unwrap();
+        assert_eq!(back.samples, interval.samples, "{text}");
+        assert!(back.half_width.is_infinite(), "{text}");
+        assert_eq!(back.mean.is_nan(), interval.mean.is_nan(), "{text}");
+    }
+    let two = Interval::of(&[1.0, 2.0]);
+    assert_eq!(
+        serde_json::from_str::<Interval>(&serde_json::to_string(&two).unwrap()).unwrap(),
+        two
+    );
+}
+
+#[test]
 fn verdicts_are_an_equivalence_test_at_half_a_percent() {
     let at = |mean: f64, half_width: f64| {
         Verdict::of(&Interval {

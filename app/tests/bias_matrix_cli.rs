@@ -8,14 +8,9 @@ use std::path::Path;
 use std::process::Command;
 
 mod bench_support;
+mod cli_support;
 use bench_support::{bench, csv, temp};
-
-fn viewer(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_restir-viewer"))
-        .args(args)
-        .output()
-        .expect("the restir-viewer binary runs")
-}
+use cli_support::viewer;
 
 fn stdout_of(args: &[&str]) -> String {
     let out = viewer(args);

@@ -227,7 +227,8 @@ fn a_merge_before_the_jobs_ran_names_the_missing_cells_and_bad_values_get_one_li
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
-        err.contains("1 of 1 cells have no output") && err.contains("builtin_cornell/ris"),
+        err.contains("1 of 1 cells (or their confirmations) have no output")
+            && err.contains("builtin_cornell/ris"),
         "{err}"
     );
     for (flag, value, needle) in [

@@ -7,6 +7,8 @@
 //! [`SequenceReport::non_finite_pixels`] report how many there were, so a skipped pixel is
 //! never silent. Alpha is ignored throughout.
 
+pub mod detail;
+pub mod motion_masks;
 pub mod pixel_moments;
 pub mod seeds;
 

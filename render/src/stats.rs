@@ -93,6 +93,9 @@ pub struct StatsSummary {
     /// The share of DI's light candidates with a non-zero unshadowed contribution: how much
     /// of the light sampler's work can pay (docs/src/light-samplers.md).
     pub useful_candidate_share: f64,
+    /// DI's initial light candidates per surface pixel and frame: with the shadow rays, the
+    /// hardware-neutral cost of a configuration (docs/bench.md, "Equal error").
+    pub light_candidates_per_pixel: f64,
 }
 
 /// What an indirect technique (ReSTIR GI or PT) counted: its block of `--stats`, under
@@ -233,6 +236,7 @@ impl StatsSummary {
             shadow_rays_per_pixel: rays.clone(),
             // From +0: an empty f64 sum is −0, which the CSV would print as "-0".
             shadow_rays_per_pixel_total: rays.values().fold(0.0, |a, b| a + b),
+            light_candidates_per_pixel: fraction(total.get(STAT_LIGHT_CANDIDATES)),
             useful_candidate_share: {
                 let candidates = total.get(STAT_LIGHT_CANDIDATES);
                 if candidates > 0 {

@@ -185,13 +185,62 @@ fn split_denoise(name: &str) -> (&str, bool) {
     }
 }
 
+/// `ris[light_candidates=8;m_cap=4]`: the configuration `ris` with these parameters set
+/// last (over its own and `--set`'s): one point of a cost curve (`--knob`), or one
+/// estimator's own denoiser settings. Returns the name without them and the assignments.
+fn split_overrides(item: &str) -> anyhow::Result<(&str, Vec<&str>)> {
+    let Some(open) = item.find('[') else {
+        return Ok((item, Vec::new()));
+    };
+    let inner = item[open + 1..].strip_suffix(']').with_context(|| {
+        format!("--configs: '{item}': parameters go in brackets at the end, NAME[key=value;...]")
+    })?;
+    let sets: Vec<&str> = inner
+        .split(';')
+        .map(str::trim)
+        .filter(|s| !s.is_empty())
+        .collect();
+    Ok((&item[..open], sets))
+}
+
+/// `--knob NAME=V1,V2,...`: each configuration of `list` once per value, as
+/// `CONFIG[NAME=V]` (a configuration name `--configs` parses back, so the points run as
+/// jobs too).
+pub fn expand_knob(list: &str, knob: &str) -> anyhow::Result<String> {
+    let (name, values) = knob
+        .split_once('=')
+        .filter(|(n, v)| !n.trim().is_empty() && !v.trim().is_empty())
+        .with_context(|| format!("--knob '{knob}': expected NAME=V1,V2,..."))?;
+    let values: Vec<&str> = values
+        .split(',')
+        .map(str::trim)
+        .filter(|v| !v.is_empty())
+        .collect();
+    if values.len() < 2 {
+        bail!("--knob '{knob}': a cost curve needs two values at least");
+    }
+    let items: Vec<String> = list
+        .split(',')
+        .map(str::trim)
+        .filter(|s| !s.is_empty())
+        .flat_map(|c| {
+            values
+                .iter()
+                .map(move |v| format!("{c}[{}={v}]", name.trim()))
+        })
+        .collect();
+    Ok(items.join(","))
+}
+
 /// Parses `--configs`: comma-separated built-in names (each optionally `+denoise`, then
 /// `@power`, `@tiles`, `@regir`, `@bvh` or `@auto`, then `:software`, `:ray-query` or
-/// `:auto`) and preset files (`.toml`; the configuration is named after the
-/// file stem and runs in `restir` mode).
+/// `:auto`, then `[key=value;...]`) and preset files (`.toml`; the configuration is named
+/// after the file stem and runs in `restir` mode).
 pub fn parse_configs(list: &str, base: &Settings) -> anyhow::Result<Vec<Config>> {
     let mut configs: Vec<Config> = Vec::new();
     for item in list.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+        let full = item;
+        let (item, overrides) = split_overrides(item)?;
         let (named, backend) = split_backend(item);
         let (named, sampler) = split_sampler(named);
         let (builtin, denoise) = split_denoise(named);
@@ -239,6 +288,16 @@ pub fn parse_configs(list: &str, base: &Settings) -> anyhow::Result<Vec<Config>>
                 config.name.push_str(DENOISE_SUFFIX); // a preset, named after its file
             }
             config.description.push_str(", denoised (SVGF)");
+        }
+        if !overrides.is_empty() {
+            config
+                .settings
+                .apply_assignments(overrides.iter().copied())
+                .with_context(|| format!("--configs: '{full}'"))?;
+            config.name = full.to_string();
+            config
+                .description
+                .push_str(&format!(", with {}", overrides.join(", ")));
         }
         if configs.iter().any(|c| c.name == config.name) {
             bail!("--configs: '{}' is listed twice", config.name);
@@ -298,6 +357,32 @@ mod tests {
         assert_eq!(denoised[1].name, "restir-pairwise+denoise:software");
         assert!(denoised[2].settings.temporal && !denoised[2].settings.spatial);
         assert!(!configs.iter().any(|c| c.settings.denoise));
+        // Parameters in brackets come last and name the configuration.
+        let tuned = parse_configs(
+            "ris[light_candidates=8],restir-pairwise+denoise@bvh[m_cap=4;denoise_iterations=2]",
+            &Settings::default(),
+        )
+        .unwrap();
+        assert_eq!(tuned[0].name, "ris[light_candidates=8]");
+        assert_eq!(tuned[0].settings.light_candidates, 8);
+        assert!(tuned[1].settings.denoise && tuned[1].settings.m_cap == 4.0);
+        assert_eq!(
+            tuned[1].settings.light_sampler,
+            restir_render::settings::LightSampler::Bvh
+        );
+        for bad in ["ris[light_candidates=8", "ris[nope=1]", "ris[m_cap=x]"] {
+            let e = format!(
+                "{:#}",
+                parse_configs(bad, &Settings::default()).unwrap_err()
+            );
+            assert!(e.contains("--configs"), "{bad}: {e}");
+        }
+        assert_eq!(
+            expand_knob("ris,restir", "light_candidates=2,8").unwrap(),
+            "ris[light_candidates=2],ris[light_candidates=8],restir[light_candidates=2],restir[light_candidates=8]"
+        );
+        assert!(expand_knob("ris", "light_candidates=2").is_err());
+        assert!(expand_knob("ris", "=2,3").is_err());
         assert!(parse_configs("+denoise", &Settings::default()).is_err());
         assert!(parse_configs("ris,ris", &Settings::default()).is_err());
         // `restir` keeps the 1/M weights its published figures were measured with;

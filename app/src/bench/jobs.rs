@@ -31,8 +31,11 @@ pub fn job_argv(args: &[String], config: &str, out: &Path) -> Vec<String> {
         }
         match a.as_str() {
             "--list-jobs" | "--merge" => {}
-            "--configs" | "--out" => skip_value = true,
-            _ if a.starts_with("--configs=") || a.starts_with("--out=") => {}
+            // A job runs one configuration, a `--knob` point already named in it.
+            "--configs" | "--out" | "--knob" => skip_value = true,
+            _ if a.starts_with("--configs=")
+                || a.starts_with("--out=")
+                || a.starts_with("--knob=") => {}
             _ => kept.push(a.clone()),
         }
     }

@@ -14,6 +14,7 @@ mod compile_table;
 pub(crate) mod configs;
 pub(crate) mod csv;
 pub mod env_cost;
+mod equal_error;
 mod equal_time;
 mod event_strip;
 mod events;
@@ -22,6 +23,7 @@ mod jobs;
 pub(crate) mod lag;
 pub mod load_cost;
 pub(crate) mod markdown;
+mod motion;
 mod plots;
 pub mod ray_cost;
 mod references;
@@ -38,6 +40,7 @@ use std::time::Instant;
 
 use anyhow::{Context, bail};
 use clap::Args;
+use restir_render::metrics::motion_masks::MotionMasks;
 use restir_render::reference_cache::ReferenceCache;
 use restir_render::scene::animation::ClipChoice;
 use restir_render::timeline::AnimatedScene;
@@ -63,12 +66,22 @@ pub struct BenchArgs {
     /// Measured frames per configuration (not with --budget-ms).
     #[arg(long, required_unless_present = "budget_ms")]
     pub frames: Option<u32>,
-    /// static, or orbit:DEG (turn DEG degrees per frame about the scene centre).
+    /// static; orbit:DEG (turn DEG degrees per frame about the scene centre); pan:DEG (turn
+    /// in place); walk:M (move M scene units per frame along the view).
     #[arg(long, default_value = "static")]
     pub camera: String,
     /// Comma-separated configurations and preset files (.toml).
     #[arg(long, default_value = DEFAULT_CONFIGS)]
     pub configs: String,
+    /// A cost curve per configuration: each runs once per value of this parameter
+    /// (`light_candidates=1,2,4,8,16`), and results.md states the cost at which each
+    /// reaches the target error (docs/bench.md, "Equal error").
+    #[arg(long, value_name = "NAME=V1,V2,...")]
+    pub knob: Option<String>,
+    /// The per-frame luma RMSE the equal-error table reads costs at (default: the first
+    /// configuration's at the middle knob value).
+    #[arg(long, requires = "knob")]
+    pub target_rmse: Option<f64>,
     /// Equal-time mode: each configuration accumulates frames until its measured time
     /// reaches this many milliseconds (still camera only).
     #[arg(long)]
@@ -188,7 +201,16 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     }
     let base = args.pipeline.settings(BASE_ASSIGNMENTS)?;
     let radius = (base.spatial_radius, base.effective_spatial_radius(size.1));
-    let configs = parse_configs(&args.configs, &base)?;
+    let config_list = match &args.knob {
+        Some(knob) => configs::expand_knob(&args.configs, knob)?,
+        None => args.configs.clone(),
+    };
+    if let Some(t) = args.target_rmse {
+        if !(t.is_finite() && t > 0.0) {
+            bail!("--target-rmse {t}: expected a positive error");
+        }
+    }
+    let configs = parse_configs(&config_list, &base)?;
     let effects = args.pipeline.effects()?;
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("--out {}: cannot create", args.out.display()))?;
@@ -282,6 +304,13 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         effects,
     };
     let events = Events::find(&scene, &shot, args.warmup, &refs.images);
+    // A moving shot's disoccluded and near-moving pixels, frame by frame (the same for
+    // every configuration and seed).
+    let masks = if shot.moves() && args.budget_ms.is_none() {
+        motion::shot_masks(&scene, &shot, args.warmup, measured, size)
+    } else {
+        Vec::new()
+    };
     // Light events are found on the first configuration's references; each configuration
     // measures its lag against the references of its own max_bounces.
     drop(reference_renderer);
@@ -305,7 +334,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
                 let probe = events
                     .as_ref()
                     .map(|e| LagProbe::new(e, &own.images, k == 0));
-                let scoring = scoring_for(own, &shot);
+                let scoring = scoring_for(own, &shot, &masks);
                 let run = ConfigRun::start(r, c, &plan, scoring, clock(), probe)?;
                 Ok((c.name.clone(), run))
             })
@@ -362,7 +391,32 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         seeds: args.seeds,
         event_source: events.as_ref().map(|e| e.source),
     };
-    write_outputs(&args.out, &info, &results, args.quiet)
+    write_outputs(&args.out, &info, &results, args.quiet)?;
+    if let Some(knob) = &args.knob {
+        let name = knob
+            .split_once('=')
+            .map_or(knob.as_str(), |(n, _)| n.trim());
+        let note = format!("{} · {}", plots::subtitle(&info), info.timing_note());
+        let noise: Vec<f64> = configs
+            .iter()
+            .map(|c| {
+                ref_sets
+                    .for_bounces(c.settings.reference_bounces())
+                    .noise_luma_rmse
+                    .unwrap_or(0.0)
+            })
+            .collect();
+        let section =
+            equal_error::write(&args.out, &results, &noise, name, args.target_rmse, &note)?;
+        let path = args.out.join("results.md");
+        let mut md = std::fs::read_to_string(&path)?;
+        md.push_str(&section);
+        std::fs::write(&path, md).with_context(|| format!("{}: cannot write", path.display()))?;
+        if !args.quiet {
+            println!("{section}");
+        }
+    }
+    Ok(())
 }
 
 /// `seeds.png`: each configuration's bias and spread over the seeds (seed_maps.rs), against
@@ -429,11 +483,12 @@ fn write_strip(
     strip::write(&out.join("strip.png"), &panels)
 }
 
-fn scoring_for<'a>(refs: &'a References, shot: &Shot) -> Scoring<'a> {
+fn scoring_for<'a>(refs: &'a References, shot: &Shot, masks: &'a [MotionMasks]) -> Scoring<'a> {
+    let noise = refs.noise_luma_rmse.unwrap_or(0.0);
     if shot.moves() {
-        Scoring::moving(&refs.images)
+        Scoring::moving(&refs.images, masks, noise)
     } else {
-        Scoring::still(&refs.images[0], refs.phases.as_ref())
+        Scoring::still(&refs.images[0], refs.phases.as_ref(), noise)
     }
 }
 

@@ -13,32 +13,60 @@ use restir_render::renderer::{JITTER_PERIOD, jitter_phase};
 use restir_render::timeline::{AnimatedScene, Timeline};
 use restir_render::{Camera, LinearImage, Renderer, Scene};
 
-use crate::cli::camera_path::orbit;
+use crate::cli::camera_path::{orbit, pan, walk};
 
-/// `--camera static|orbit:DEG`.
+/// `--camera static|orbit:DEG|pan:DEG|walk:M`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum CameraPath {
     Static,
     /// Turns about the vertical axis through the scene centre by this many degrees per frame.
     Orbit(f32),
+    /// Turns in place about the vertical axis by this many degrees per frame: new surfaces
+    /// enter at one edge of the image, without parallax.
+    Pan(f32),
+    /// Moves forward along the view direction by this many scene units per frame: parallax,
+    /// and surfaces disoccluded behind every edge that slides.
+    Walk(f32),
 }
+
+/// The largest per-frame step a path takes: beyond it a frame shares nothing with the last
+/// (a camera cut, `render --cut-at`, is the tool for that).
+const MAX_DEGREES_PER_FRAME: f32 = 90.0;
 
 impl CameraPath {
     pub fn parse(text: &str) -> anyhow::Result<CameraPath> {
         if text == "static" {
             return Ok(CameraPath::Static);
         }
-        let degrees = text
-            .strip_prefix("orbit:")
-            .and_then(|d| d.parse::<f32>().ok())
+        let usage = || {
+            format!(
+                "--camera '{text}': expected static, orbit:DEGREES_PER_FRAME, \
+                 pan:DEGREES_PER_FRAME or walk:UNITS_PER_FRAME"
+            )
+        };
+        let (kind, amount) = text.split_once(':').with_context(usage)?;
+        let amount = amount
+            .parse::<f32>()
+            .ok()
             .filter(|d| d.is_finite())
-            .with_context(|| {
-                format!("--camera '{text}': expected static or orbit:DEGREES_PER_FRAME")
-            })?;
-        Ok(if degrees == 0.0 {
-            CameraPath::Static
-        } else {
-            CameraPath::Orbit(degrees)
+            .with_context(usage)?;
+        if amount == 0.0 {
+            return Ok(CameraPath::Static);
+        }
+        let degrees = |d: f32| {
+            if d.abs() > MAX_DEGREES_PER_FRAME {
+                bail!(
+                    "--camera '{text}': {d}° per frame leaves nothing to reuse; use at most \
+                     {MAX_DEGREES_PER_FRAME}°"
+                );
+            }
+            Ok(d)
+        };
+        Ok(match kind {
+            "orbit" => CameraPath::Orbit(degrees(amount)?),
+            "pan" => CameraPath::Pan(degrees(amount)?),
+            "walk" => CameraPath::Walk(amount),
+            _ => bail!(usage()),
         })
     }
 
@@ -46,6 +74,8 @@ impl CameraPath {
         match self {
             CameraPath::Static => "static".into(),
             CameraPath::Orbit(d) => format!("orbit {d}°/frame"),
+            CameraPath::Pan(d) => format!("pan {d}°/frame"),
+            CameraPath::Walk(m) => format!("walk {m}/frame"),
         }
     }
 }
@@ -95,6 +125,8 @@ impl Shot {
         match self.path {
             CameraPath::Static => self.start,
             CameraPath::Orbit(d) => orbit(self.start, self.center, d * frame as f32),
+            CameraPath::Pan(d) => pan(self.start, d * frame as f32),
+            CameraPath::Walk(m) => walk(self.start, m * frame as f32),
         }
     }
 }
@@ -361,5 +393,15 @@ mod tests {
         assert!(CameraPath::parse("orbit").is_err());
         assert!(CameraPath::parse("orbit:nan").is_err());
         assert!(CameraPath::parse("spin:3").is_err());
+        assert_eq!(CameraPath::parse("pan:-1").unwrap(), CameraPath::Pan(-1.0));
+        assert_eq!(
+            CameraPath::parse("walk:0.02").unwrap(),
+            CameraPath::Walk(0.02)
+        );
+        assert_eq!(CameraPath::parse("walk:0").unwrap(), CameraPath::Static);
+        for bad in ["pan:inf", "walk:", "pan:200", "orbit:-91"] {
+            let e = CameraPath::parse(bad).unwrap_err().to_string();
+            assert!(e.contains(bad), "{bad}: {e}");
+        }
     }
 }

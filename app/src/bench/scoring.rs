@@ -6,6 +6,8 @@
 //! over frames, and the running average is not defined (n/a).
 
 use restir_render::LinearImage;
+use restir_render::metrics::detail::{DetailFigures, Edges};
+use restir_render::metrics::motion_masks::{MaskedError, MotionMasks};
 use restir_render::metrics::pixel_moments::PixelMoments;
 use restir_render::metrics::{
     LOW_FREQUENCY_TILE, SequenceMetrics, black_pixel_fraction, low_frequency_rmse, luma_ratio,
@@ -62,6 +64,65 @@ pub struct ScoreSummary {
     pub mean_low_frequency_rmse: f64,
     /// Non-finite pixels seen (each skipped by the metrics).
     pub non_finite_pixels: usize,
+    /// Moving shot: the error in each frame's disoccluded pixels and in those near moving
+    /// triangles (`metrics::motion_masks`; docs/bench.md, "Errors where the view moves").
+    pub disoccluded: Option<MaskedFigures>,
+    pub near_moving: Option<MaskedFigures>,
+    /// Within the reference's strong edges (`metrics::detail`; docs/bench.md, "Shadow
+    /// detail"), means over frames: their share of the pixels, the luma RMSE there and the
+    /// detail each frame keeps (1 = as sharp as the reference). None without edges.
+    pub detail: Option<DetailSummary>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DetailSummary {
+    pub share: f64,
+    pub luma_rmse: f64,
+    pub kept: f64,
+}
+
+/// Per-frame detail figures, averaged at the end.
+#[derive(Clone, Debug, Default)]
+pub struct DetailTrack {
+    share: Vec<f64>,
+    frames: Vec<DetailFigures>,
+}
+
+impl DetailTrack {
+    fn push(&mut self, edges: &Edges, frame: &LinearImage, reference: &LinearImage) {
+        if let Some(f) = edges.figures(frame, reference) {
+            self.share.push(edges.share());
+            self.frames.push(f);
+        }
+    }
+
+    fn summary(&self) -> Option<DetailSummary> {
+        (!self.frames.is_empty()).then(|| DetailSummary {
+            share: mean(&self.share),
+            luma_rmse: mean(&self.frames.iter().map(|f| f.luma_rmse).collect::<Vec<_>>()),
+            kept: mean(&self.frames.iter().map(|f| f.kept).collect::<Vec<_>>()),
+        })
+    }
+}
+
+/// One mask's numbers over a run's frames (pooled over its pixels).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MaskedFigures {
+    /// Marked pixels over all pixels of the measured frames.
+    pub share: f64,
+    /// None where no pixel was marked.
+    pub luma_rmse: Option<f64>,
+    pub signed_bias: Option<f64>,
+}
+
+impl MaskedFigures {
+    fn of(e: &MaskedError) -> MaskedFigures {
+        MaskedFigures {
+            share: e.share(),
+            luma_rmse: e.luma_rmse(),
+            signed_bias: e.signed_bias(),
+        }
+    }
 }
 
 pub enum Scoring<'a> {
@@ -77,10 +138,19 @@ pub enum Scoring<'a> {
         /// reference (docs/src/viewer.md, "Accuracy with jitter on"), kept here.
         phases: Option<&'a PhaseReferences>,
         phase_luma: Vec<f64>,
+        edges: Edges,
+        detail: DetailTrack,
     },
     Moving {
         /// One per measured frame.
         references: &'a [LinearImage],
+        /// One per measured frame, or none (no masks asked for).
+        masks: &'a [MotionMasks],
+        /// The references' own per-pixel luma noise.
+        noise: f64,
+        disoccluded: MaskedError,
+        near_moving: MaskedError,
+        detail: DetailTrack,
         previous_error: Option<LinearImage>,
         luma: Vec<f64>,
         stability: Vec<f64>,
@@ -94,7 +164,13 @@ pub enum Scoring<'a> {
 impl<'a> Scoring<'a> {
     /// A still camera's scoring against `reference`; with `phases` (jitter on) each
     /// frame's per-frame error against its jitter phase's reference instead.
-    pub fn still(reference: &'a LinearImage, phases: Option<&'a PhaseReferences>) -> Scoring<'a> {
+    /// `noise`: the reference's own per-pixel luma noise (the detail figures' edges stand
+    /// above it).
+    pub fn still(
+        reference: &'a LinearImage,
+        phases: Option<&'a PhaseReferences>,
+        noise: f64,
+    ) -> Scoring<'a> {
         Scoring::Still {
             reference,
             sequence: SequenceMetrics::new(reference.clone()),
@@ -102,12 +178,25 @@ impl<'a> Scoring<'a> {
             moments: PixelMoments::new(reference.width, reference.height),
             phases,
             phase_luma: Vec::new(),
+            edges: Edges::of(reference, noise),
+            detail: DetailTrack::default(),
         }
     }
 
-    pub fn moving(references: &'a [LinearImage]) -> Scoring<'a> {
+    /// A moving shot's scoring, each measured frame against its own reference and, where
+    /// `masks` are given (one per measured frame), also within them.
+    pub fn moving(
+        references: &'a [LinearImage],
+        masks: &'a [MotionMasks],
+        noise: f64,
+    ) -> Scoring<'a> {
         Scoring::Moving {
             references,
+            noise,
+            masks,
+            disoccluded: MaskedError::default(),
+            near_moving: MaskedError::default(),
+            detail: DetailTrack::default(),
             previous_error: None,
             luma: Vec::new(),
             stability: Vec::new(),
@@ -139,9 +228,12 @@ impl<'a> Scoring<'a> {
                 moments,
                 phases,
                 phase_luma,
+                edges,
+                detail,
             } => {
                 sequence.push(frame)?;
                 moments.push(frame);
+                detail.push(edges, frame, reference);
                 if let Some(phases) = phases {
                     let own = phases.for_frame(frame_index).ok_or_else(|| {
                         anyhow::anyhow!("no reference for jitter phase of frame {frame_index}")
@@ -164,6 +256,11 @@ impl<'a> Scoring<'a> {
             }
             Scoring::Moving {
                 references,
+                masks,
+                noise,
+                disoccluded,
+                near_moving,
+                detail,
                 previous_error,
                 luma,
                 stability,
@@ -175,6 +272,11 @@ impl<'a> Scoring<'a> {
                 let reference = references
                     .get(index)
                     .ok_or_else(|| anyhow::anyhow!("no reference for measured frame {index}"))?;
+                if let Some(m) = masks.get(index) {
+                    disoccluded.push(frame, reference, &m.disoccluded);
+                    near_moving.push(frame, reference, &m.near_moving);
+                }
+                detail.push(&Edges::of(reference, *noise), frame, reference);
                 let error = difference(frame, reference);
                 *non_finite += frame.non_finite_count();
                 luma.push(luma_rmse(frame, reference)?);
@@ -205,6 +307,7 @@ impl<'a> Scoring<'a> {
                 low_frequency,
                 phases,
                 phase_luma,
+                detail,
                 ..
             } => {
                 let report = sequence.report();
@@ -222,9 +325,16 @@ impl<'a> Scoring<'a> {
                     black_pixel_fraction: report.mean_black_pixel_fraction,
                     mean_low_frequency_rmse: mean(low_frequency),
                     non_finite_pixels: report.non_finite_pixels,
+                    disoccluded: None,
+                    near_moving: None,
+                    detail: detail.summary(),
                 })
             }
             Scoring::Moving {
+                masks,
+                disoccluded,
+                near_moving,
+                detail,
                 luma,
                 stability,
                 ratios,
@@ -233,6 +343,9 @@ impl<'a> Scoring<'a> {
                 non_finite,
                 ..
             } => Some(ScoreSummary {
+                disoccluded: (!masks.is_empty()).then(|| MaskedFigures::of(disoccluded)),
+                near_moving: (!masks.is_empty()).then(|| MaskedFigures::of(near_moving)),
+                detail: detail.summary(),
                 mean_luma_rmse: mean(luma),
                 antialiased_luma_rmse: None,
                 mean_stability: mean(stability),
@@ -306,7 +419,7 @@ mod tests {
     fn bench_moving_stability_ignores_the_true_change_of_the_image() {
         // Each frame is its reference + 0.1: the error never changes.
         let refs = [flat(1.0), flat(2.0), flat(3.0)];
-        let mut s = Scoring::moving(&refs);
+        let mut s = Scoring::moving(&refs, &[], 0.0);
         for (i, r) in refs.iter().enumerate() {
             s.push(i, i as u64, &flat(r.pixels[0][0] + 0.1)).unwrap();
         }
@@ -319,7 +432,7 @@ mod tests {
     #[test]
     fn bench_still_scores_match_sequence_metrics() {
         let reference = flat(1.0);
-        let mut s = Scoring::still(&reference, None);
+        let mut s = Scoring::still(&reference, None, 0.0);
         let a = s.push(0, 0, &flat(1.5)).unwrap();
         let b = s.push(1, 1, &flat(0.5)).unwrap();
         assert_eq!(a.stability, None);

@@ -40,6 +40,16 @@ pub struct SeedFigures {
     pub non_finite_pixels: usize,
     /// Mean luminance of the reference (the first, for a moving camera).
     pub reference_mean_luma: f64,
+    /// Moving shot: luma RMSE in the disoccluded pixels and near moving triangles
+    /// (scoring.rs, `MaskedFigures`), over the seeds.
+    #[serde(default)]
+    pub disoccluded_luma_rmse: Option<Interval>,
+    #[serde(default)]
+    pub near_moving_luma_rmse: Option<Interval>,
+    /// The detail each frame keeps across the reference's edges, over the seeds (scoring.rs,
+    /// `DetailSummary`).
+    #[serde(default)]
+    pub detail_kept: Option<Interval>,
 }
 
 /// Below this mean luminance a reference counts as black: no light reaches the camera
@@ -60,6 +70,14 @@ pub fn of_seeds(
     }
     let each = |f: &dyn Fn(&ScoreSummary) -> f64| -> Interval {
         Interval::of(&scores.iter().map(|s| f(s)).collect::<Vec<_>>())
+    };
+    // A masked figure over the seeds, where every seed has one.
+    let masked = |f: &dyn Fn(&ScoreSummary) -> Option<f64>| -> Option<Interval> {
+        scores
+            .iter()
+            .map(|s| f(s))
+            .collect::<Option<Vec<f64>>>()
+            .map(|v| Interval::of(&v))
     };
     let ratios: Vec<f64> = scores.iter().map(|s| s.luma_ratio).collect();
     let luma_ratio = Interval::of(&ratios);
@@ -110,12 +128,15 @@ pub fn of_seeds(
         verdict,
         non_finite_pixels: scores.iter().map(|s| s.non_finite_pixels).sum(),
         reference_mean_luma: reference_mean,
+        disoccluded_luma_rmse: masked(&|s| s.disoccluded.and_then(|m| m.luma_rmse)),
+        near_moving_luma_rmse: masked(&|s| s.near_moving.and_then(|m| m.luma_rmse)),
+        detail_kept: masked(&|s| s.detail.map(|d| d.kept)),
     })
 }
 
 /// The `results.csv` columns of the figures over seeds (the `_ci95` columns are the 95 %
 /// interval's half-width; empty with one seed).
-pub const CSV_COLUMNS: [&str; 17] = [
+pub const CSV_COLUMNS: [&str; 23] = [
     "image_seeds",
     "frame_luma_rmse_mean",
     "frame_luma_rmse_ci95",
@@ -133,6 +154,12 @@ pub const CSV_COLUMNS: [&str; 17] = [
     "effective_frames",
     "frames_to_half_percent",
     "bias_view_flagged_share",
+    "disoccluded_luma_rmse_mean",
+    "disoccluded_luma_rmse_ci95",
+    "near_moving_luma_rmse_mean",
+    "near_moving_luma_rmse_ci95",
+    "detail_kept_mean",
+    "detail_kept_ci95",
 ];
 
 /// The `CSV_COLUMNS` cells of one configuration (all empty when it was not scored).
@@ -162,6 +189,9 @@ pub fn csv_cells(f: Option<&SeedFigures>) -> Vec<String> {
         num(f.frames_to_half_percent),
         num(f.bias_view_flagged.map(|i| i.mean)),
     ]);
+    cells.extend(pair(f.disoccluded_luma_rmse.as_ref()));
+    cells.extend(pair(f.near_moving_luma_rmse.as_ref()));
+    cells.extend(pair(f.detail_kept.as_ref()));
     cells
 }
 

@@ -4,6 +4,12 @@
 //! runs in this process, or as independent jobs (`--list-jobs` prints one command per cell
 //! for GNU parallel, a Slurm array or a Kubernetes indexed Job; `--merge` builds the table
 //! from whatever the jobs wrote; docs/src/headless.md, "Sweeps as independent jobs").
+//!
+//! A cell found biased is run again with `--confirm` times the frames before the table
+//! calls it biased: a real bias keeps its size as frames grow, while the shortfall of an
+//! unbiased estimator with heavy tails (rare huge samples that K seeds of a few frames
+//! never drew) shrinks or widens into an undecided interval (docs/src/results.md, "The
+//! bias matrix").
 
 pub mod cells;
 mod table;
@@ -17,6 +23,7 @@ use clap::{Args, Parser};
 use crate::bench::seed_figures::FIGURES_FILE;
 use crate::bench::{self, BenchArgs};
 use cells::{Cell, ESTIMATORS, all_scenes};
+use restir_render::metrics::seeds::Verdict;
 
 #[derive(Args, Debug)]
 pub struct BiasMatrixArgs {
@@ -56,6 +63,10 @@ pub struct BiasMatrixArgs {
     /// Reference cache directory (default: $RESTIR_CACHE_DIR, else target/restir-cache).
     #[arg(long)]
     pub cache_dir: Option<PathBuf>,
+    /// A cell found biased runs again with this many times the frames (under
+    /// `cells/SCENE/ESTIMATOR/confirm/`); its verdict is the table's. 0 or 1: no confirmation.
+    #[arg(long, default_value_t = 4)]
+    pub confirm: u32,
 }
 
 /// `bench` on its own, to parse a cell's arguments exactly as its job's command line.
@@ -93,17 +104,12 @@ pub fn run(args: BiasMatrixArgs) -> anyhow::Result<()> {
     }
     let cells = cells::cells(&scenes, &estimators);
     if args.list_jobs {
-        let exe = std::env::current_exe()?;
-        for cell in &cells {
-            let argv = bench_argv(&args, cell);
-            println!("{}", shell_line(&exe.to_string_lossy(), &argv));
-        }
-        return Ok(());
+        return list_jobs(&args, &cells);
     }
     if !args.merge {
         let started = Instant::now();
         for (i, cell) in cells.iter().enumerate() {
-            if args.resume && cell_dir(&args.out, cell).join(FIGURES_FILE).is_file() {
+            if args.resume && done(&args, cell, Stage::First) {
                 continue;
             }
             eprintln!(
@@ -114,15 +120,111 @@ pub fn run(args: BiasMatrixArgs) -> anyhow::Result<()> {
                 cell.estimator,
                 started.elapsed().as_secs_f64()
             );
-            run_cell(&args, cell);
+            run_cell(&args, cell, Stage::First);
+        }
+        let confirming = to_confirm(&args, &cells)?;
+        for (i, cell) in confirming.iter().enumerate() {
+            if args.resume && done(&args, cell, Stage::Confirm) {
+                continue;
+            }
+            eprintln!(
+                "[confirm {}/{}] {} · {} at {} frames ({:.0} s so far)",
+                i + 1,
+                confirming.len(),
+                cell.scene,
+                cell.estimator,
+                Stage::Confirm.frames(&args),
+                started.elapsed().as_secs_f64()
+            );
+            run_cell(&args, cell, Stage::Confirm);
         }
         eprintln!(
-            "bias matrix: {} cells in {:.0} s",
+            "bias matrix: {} cells, {} confirmed, in {:.0} s",
             cells.len(),
+            confirming.len(),
             started.elapsed().as_secs_f64()
         );
     }
     table::merge(&args.out, &cells, &args)
+}
+
+/// A cell's first run, or its confirmation at `--confirm` times the frames.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stage {
+    First,
+    Confirm,
+}
+
+impl Stage {
+    pub fn frames(self, args: &BiasMatrixArgs) -> u32 {
+        match self {
+            Stage::First => args.frames,
+            Stage::Confirm => args.frames * args.confirm.max(1),
+        }
+    }
+
+    pub fn dir(self, args: &BiasMatrixArgs, cell: &Cell) -> PathBuf {
+        match self {
+            Stage::First => cell_dir(&args.out, cell),
+            Stage::Confirm => cell_dir(&args.out, cell).join(CONFIRM_DIR),
+        }
+    }
+}
+
+/// Where a cell's confirmation run writes, inside the cell's folder.
+pub const CONFIRM_DIR: &str = "confirm";
+
+fn done(args: &BiasMatrixArgs, cell: &Cell, stage: Stage) -> bool {
+    stage.dir(args, cell).join(FIGURES_FILE).is_file()
+}
+
+/// The cells whose first run reads biased (those that have run), to run again at
+/// `--confirm` times the frames; none when confirmation is off.
+fn to_confirm(args: &BiasMatrixArgs, cells: &[Cell]) -> anyhow::Result<Vec<Cell>> {
+    if args.confirm <= 1 {
+        return Ok(Vec::new());
+    }
+    let mut biased = Vec::new();
+    for cell in cells {
+        if table::first_verdict(&args.out, cell)? == Some(Verdict::Biased) {
+            biased.push(cell.clone());
+        }
+    }
+    Ok(biased)
+}
+
+/// Prints one command per cell still to run: every cell's first run (only those without
+/// output under `--resume`), then a confirmation for each cell whose first run reads
+/// biased. A job runner lists with `--resume` until nothing is printed (two rounds: the
+/// confirmations can be listed only once the first runs are done).
+fn list_jobs(args: &BiasMatrixArgs, cells: &[Cell]) -> anyhow::Result<()> {
+    let exe = std::env::current_exe()?;
+    let exe = exe.to_string_lossy();
+    let mut waiting = 0;
+    for cell in cells {
+        if !(args.resume && done(args, cell, Stage::First)) {
+            println!(
+                "{}",
+                shell_line(&exe, &bench_argv(args, cell, Stage::First))
+            );
+            waiting += 1;
+        }
+    }
+    for cell in to_confirm(args, cells)? {
+        if !(args.resume && done(args, &cell, Stage::Confirm)) {
+            println!(
+                "{}",
+                shell_line(&exe, &bench_argv(args, &cell, Stage::Confirm))
+            );
+        }
+    }
+    if waiting > 0 && args.confirm > 1 {
+        eprintln!(
+            "{waiting} cells have not run yet: once their jobs are done, list again with \
+             --resume for the confirmations of the cells that read biased"
+        );
+    }
+    Ok(())
 }
 
 fn list_or(list: &Option<String>, default: Vec<String>) -> Vec<String> {
@@ -137,15 +239,15 @@ fn list_or(list: &Option<String>, default: Vec<String>) -> Vec<String> {
     }
 }
 
-/// The `bench` arguments of one cell (after the `bench` subcommand).
-fn bench_argv(args: &BiasMatrixArgs, cell: &Cell) -> Vec<String> {
+/// The `bench` arguments of one cell's run (after the `bench` subcommand).
+fn bench_argv(args: &BiasMatrixArgs, cell: &Cell, stage: Stage) -> Vec<String> {
     let mut argv: Vec<String> = [
         "--scene",
         &cell.scene,
         "--size",
         &args.size,
         "--frames",
-        &args.frames.to_string(),
+        &stage.frames(args).to_string(),
         "--seeds",
         &args.seeds.to_string(),
         "--reference-spp",
@@ -161,7 +263,7 @@ fn bench_argv(args: &BiasMatrixArgs, cell: &Cell) -> Vec<String> {
     ]
     .map(String::from)
     .to_vec();
-    argv.push(cell_dir(&args.out, cell).to_string_lossy().into_owned());
+    argv.push(stage.dir(args, cell).to_string_lossy().into_owned());
     if let Some(c) = &args.cache_dir {
         argv.push("--cache-dir".into());
         argv.push(c.to_string_lossy().into_owned());
@@ -175,13 +277,13 @@ pub fn cell_dir(out: &Path, cell: &Cell) -> PathBuf {
 
 /// Runs one cell in this process; a cell that fails leaves `error.txt` in its folder (the
 /// table shows it) rather than stopping the sweep.
-fn run_cell(args: &BiasMatrixArgs, cell: &Cell) {
-    let dir = cell_dir(&args.out, cell);
+fn run_cell(args: &BiasMatrixArgs, cell: &Cell, stage: Stage) {
+    let dir = stage.dir(args, cell);
     let result = (|| -> anyhow::Result<()> {
         std::fs::create_dir_all(&dir)
             .with_context(|| format!("{}: cannot create", dir.display()))?;
         let _ = std::fs::remove_file(dir.join(table::ERROR_FILE));
-        let argv = std::iter::once("bench".to_string()).chain(bench_argv(args, cell));
+        let argv = std::iter::once("bench".to_string()).chain(bench_argv(args, cell, stage));
         let parsed = BenchCommand::try_parse_from(argv)?;
         bench::run(parsed.bench)
     })();
@@ -209,6 +311,9 @@ pub(crate) fn shell_line(program: &str, args: &[String]) -> String {
         .collect::<Vec<_>>()
         .join(" ")
 }
+
+#[cfg(test)]
+mod confirm_tests;
 
 #[cfg(test)]
 mod tests {

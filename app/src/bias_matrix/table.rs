@@ -1,5 +1,6 @@
 //! The bias matrix's table from its cells' outputs: `bias-matrix.csv` (one row per cell)
 //! and `bias-matrix.md` (scenes × estimators, then the biased and undecided cells listed).
+//! A cell's verdict is its confirmation run's where it has one (`mod.rs`, `Stage`).
 //! Only what the seeds rendered goes in, never a time or a path, so the table of a sweep
 //! run as independent jobs equals the one run in a single process.
 
@@ -18,13 +19,77 @@ use crate::bench::seed_figures::{FIGURES_FILE, FigureRow, read_rows};
 pub const ERROR_FILE: &str = "error.txt";
 
 enum Outcome {
-    Done(Box<FigureRow>),
+    Done(Box<Runs>),
     Failed(String),
     Missing,
 }
 
-fn outcome(out: &Path, cell: &Cell) -> anyhow::Result<Outcome> {
+/// A cell's first run and, where it read biased, its confirmation's outcome.
+struct Runs {
+    first: FigureRow,
+    confirm: Outcome,
+}
+
+impl Runs {
+    /// The figures the table states: the confirmation's where it ran, else the first run's.
+    fn last(&self) -> &FigureRow {
+        match &self.confirm {
+            Outcome::Done(c) => &c.first,
+            _ => &self.first,
+        }
+    }
+
+    fn confirmed(&self) -> Option<&FigureRow> {
+        match &self.confirm {
+            Outcome::Done(c) => Some(&c.first),
+            _ => None,
+        }
+    }
+
+    /// Whether a first run and its confirmation both read biased, but on opposite sides:
+    /// then neither interval was honest (tails the seeds did not sample), and nothing is
+    /// concluded.
+    fn disagree(&self) -> bool {
+        self.confirmed().is_some_and(|c| {
+            let (a, b) = (&self.first.figures, &c.figures);
+            a.verdict == Verdict::Biased
+                && b.verdict == Verdict::Biased
+                && a.signed_bias.mean.signum() != b.signed_bias.mean.signum()
+        })
+    }
+
+    /// The verdict the table states: the confirmation's where it ran (undecided where the
+    /// two runs disagree), else the first run's.
+    fn verdict(&self) -> Verdict {
+        if self.disagree() {
+            Verdict::Undecided
+        } else {
+            self.last().figures.verdict
+        }
+    }
+}
+
+/// The first run's verdict of a cell that ran (None before it did or when it failed).
+pub fn first_verdict(out: &Path, cell: &Cell) -> anyhow::Result<Option<Verdict>> {
+    Ok(match outcome(&super::cell_dir(out, cell), cell)? {
+        Outcome::Done(r) => Some(r.first.figures.verdict),
+        _ => None,
+    })
+}
+
+fn cell_outcome(out: &Path, cell: &Cell) -> anyhow::Result<Outcome> {
     let dir = super::cell_dir(out, cell);
+    let mut o = outcome(&dir, cell)?;
+    if let Outcome::Done(runs) = &mut o {
+        if runs.first.figures.verdict == Verdict::Biased {
+            runs.confirm = outcome(&dir.join(super::CONFIRM_DIR), cell)?;
+        }
+    }
+    Ok(o)
+}
+
+/// One run's outcome from the folder it wrote (a confirmation not looked for yet: Missing).
+fn outcome(dir: &Path, cell: &Cell) -> anyhow::Result<Outcome> {
     let figures = dir.join(FIGURES_FILE);
     if figures.is_file() {
         let rows = read_rows(&figures)?;
@@ -32,7 +97,10 @@ fn outcome(out: &Path, cell: &Cell) -> anyhow::Result<Outcome> {
             .into_iter()
             .find(|r| r.config == cell.estimator)
             .with_context(|| format!("{}: no row for {}", figures.display(), cell.estimator))?;
-        return Ok(Outcome::Done(Box::new(row)));
+        return Ok(Outcome::Done(Box::new(Runs {
+            first: row,
+            confirm: Outcome::Missing,
+        })));
     }
     if let Ok(text) = std::fs::read_to_string(dir.join(ERROR_FILE)) {
         return Ok(Outcome::Failed(
@@ -47,7 +115,7 @@ fn outcome(out: &Path, cell: &Cell) -> anyhow::Result<Outcome> {
 pub fn merge(out: &Path, cells: &[Cell], args: &BiasMatrixArgs) -> anyhow::Result<()> {
     let outcomes: Vec<Outcome> = cells
         .iter()
-        .map(|c| outcome(out, c))
+        .map(|c| cell_outcome(out, c))
         .collect::<anyhow::Result<_>>()?;
     write_csv(&out.join("bias-matrix.csv"), cells, &outcomes)?;
     let md = markdown(cells, &outcomes, args);
@@ -58,12 +126,21 @@ pub fn merge(out: &Path, cells: &[Cell], args: &BiasMatrixArgs) -> anyhow::Resul
     let missing: Vec<String> = cells
         .iter()
         .zip(&outcomes)
-        .filter(|(_, o)| matches!(o, Outcome::Missing))
-        .map(|(c, _)| c.folder())
+        .filter_map(|(c, o)| match o {
+            Outcome::Missing => Some(c.folder()),
+            Outcome::Done(r)
+                if args.confirm > 1
+                    && r.first.figures.verdict == Verdict::Biased
+                    && matches!(r.confirm, Outcome::Missing) =>
+            {
+                Some(format!("{}/{}", c.folder(), super::CONFIRM_DIR))
+            }
+            _ => None,
+        })
         .collect();
     if !missing.is_empty() {
         bail!(
-            "{} of {} cells have no output yet under {}: {}",
+            "{} of {} cells (or their confirmations) have no output yet under {}: {}",
             missing.len(),
             cells.len(),
             out.join("cells").display(),
@@ -74,7 +151,7 @@ pub fn merge(out: &Path, cells: &[Cell], args: &BiasMatrixArgs) -> anyhow::Resul
 }
 
 fn write_csv(path: &Path, cells: &[Cell], outcomes: &[Outcome]) -> anyhow::Result<()> {
-    let mut table = Table::new(&[
+    const COLUMNS: [&str; 23] = [
         "scene",
         "estimator",
         "status",
@@ -93,7 +170,13 @@ fn write_csv(path: &Path, cells: &[Cell], outcomes: &[Outcome]) -> anyhow::Resul
         "variance",
         "frame_luma_rmse_mean",
         "non_finite_pixels",
-    ]);
+        "confirm_frames",
+        "confirm_signed_bias_mean",
+        "confirm_signed_bias_ci95",
+        "confirm_verdict",
+        "final_verdict",
+    ];
+    let mut table = Table::new(&COLUMNS);
     let num = |x: Option<f64>| {
         x.filter(|v| v.is_finite())
             .map(|v| format!("{v}"))
@@ -102,7 +185,8 @@ fn write_csv(path: &Path, cells: &[Cell], outcomes: &[Outcome]) -> anyhow::Resul
     for (cell, o) in cells.iter().zip(outcomes) {
         let mut row = vec![scene_label(&cell.scene), cell.estimator.clone()];
         match o {
-            Outcome::Done(r) => {
+            Outcome::Done(runs) => {
+                let r = &runs.first;
                 let f = &r.figures;
                 let spread = f.spread.as_ref();
                 row.extend([
@@ -123,19 +207,50 @@ fn write_csv(path: &Path, cells: &[Cell], outcomes: &[Outcome]) -> anyhow::Resul
                     num(Some(f.frame_luma_rmse.mean)),
                     f.non_finite_pixels.to_string(),
                 ]);
+                match &runs.confirm {
+                    Outcome::Done(c) => {
+                        let c = &c.first.figures;
+                        row.extend([
+                            c.frames.to_string(),
+                            num(Some(c.signed_bias.mean)),
+                            num(Some(c.signed_bias.half_width)),
+                            c.verdict.label().to_string(),
+                        ]);
+                    }
+                    other => {
+                        let status = match other {
+                            Outcome::Failed(e) => format!("error: {e}"),
+                            _ if f.verdict == Verdict::Biased => "missing".into(),
+                            _ => String::new(),
+                        };
+                        row.extend([String::new(), String::new(), String::new(), status]);
+                    }
+                }
+                row.push(final_verdict(runs).to_string());
             }
             Outcome::Failed(e) => {
                 row.push(format!("error: {e}"));
-                row.extend(std::iter::repeat_n(String::new(), 15));
+                row.extend(std::iter::repeat_n(String::new(), COLUMNS.len() - 3));
             }
             Outcome::Missing => {
                 row.push("missing".into());
-                row.extend(std::iter::repeat_n(String::new(), 15));
+                row.extend(std::iter::repeat_n(String::new(), COLUMNS.len() - 3));
             }
         }
         table.row(row);
     }
     table.write(path)
+}
+
+/// The verdict the table states: the confirmation's where it ran; a first run that read
+/// biased and whose confirmation is missing or failed stays "biased (unconfirmed)".
+fn final_verdict(runs: &Runs) -> &'static str {
+    match (runs.first.figures.verdict, &runs.confirm) {
+        _ if runs.disagree() => "undecided (the runs disagree)",
+        (_, Outcome::Done(_)) => runs.verdict().label(),
+        (Verdict::Biased, _) => "biased (unconfirmed)",
+        (v, _) => v.label(),
+    }
 }
 
 /// The mark of a verdict in the matrix.
@@ -149,18 +264,25 @@ fn mark(v: Verdict) -> &'static str {
     }
 }
 
+/// A cell of the matrix: the last run's verdict and signed bias, marked ᶜ where it is the
+/// confirmation's.
 fn cell_text(o: &Outcome) -> String {
     match o {
-        Outcome::Done(r) => {
-            let f = &r.figures;
+        Outcome::Done(runs) => {
+            let f = &runs.last().figures;
             if f.verdict == Verdict::NoLight {
                 return format!("{} black", mark(f.verdict));
             }
             format!(
-                "{} {:+.1}±{:.1}",
-                mark(f.verdict),
+                "{} {:+.1}±{:.1}{}",
+                mark(runs.verdict()),
                 100.0 * f.signed_bias.mean,
-                100.0 * f.signed_bias.half_width
+                100.0 * f.signed_bias.half_width,
+                if runs.confirmed().is_some() {
+                    "ᶜ"
+                } else {
+                    ""
+                }
             )
         }
         Outcome::Failed(_) => "error".into(),
@@ -193,9 +315,13 @@ fn markdown(cells: &[Cell], outcomes: &[Outcome], args: &BiasMatrixArgs) -> Stri
     let count = |v: Verdict| {
         outcomes
             .iter()
-            .filter(|o| matches!(o, Outcome::Done(r) if r.figures.verdict == v))
+            .filter(|o| matches!(o, Outcome::Done(r) if r.verdict() == v))
             .count()
     };
+    let confirmations = outcomes
+        .iter()
+        .filter(|o| matches!(o, Outcome::Done(r) if r.confirmed().is_some()))
+        .count();
     let failed = outcomes
         .iter()
         .filter(|o| matches!(o, Outcome::Failed(_)))
@@ -210,19 +336,26 @@ fn markdown(cells: &[Cell], outcomes: &[Outcome], args: &BiasMatrixArgs) -> Stri
          in %, mean ± 95 % interval over the seeds (the reference's own uncertainty included). \
          ✓ consistent with 0 (the interval lies within ±{tol} %), ✗ biased (it lies beyond \
          ±{tol} %), ? undecided (more seeds or frames needed), · black (no light reaches the \
-         camera). Animated scenes are measured at time 0.\n",
-        tol = 100.0 * BIAS_TOLERANCE
+         camera). A cell that read biased ran again with {confirm}× the frames ({long} per \
+         seed) and states that run's figures, marked ᶜ: a real bias keeps its size, the \
+         shortfall of rare huge samples does not. Animated scenes are measured at time 0.\n",
+        tol = 100.0 * BIAS_TOLERANCE,
+        confirm = args.confirm.max(1),
+        long = args.frames * args.confirm.max(1),
     );
     let _ = writeln!(
         md,
-        "**{} consistent with 0, {} biased, {} undecided, {} black, {} failed, {} missing** of {} cells.\n",
+        "**{} consistent with 0, {} biased, {} undecided, {} black, {} failed, {} missing** of {} \
+         cells ({} confirmed at {}× the frames).\n",
         count(Verdict::Unbiased),
         count(Verdict::Biased),
         count(Verdict::Undecided),
         count(Verdict::NoLight),
         failed,
         missing,
-        cells.len()
+        cells.len(),
+        confirmations,
+        args.confirm.max(1)
     );
     let mut header = vec!["scene".to_string()];
     header.extend(estimators.iter().map(|e| format!("`{e}`")));
@@ -241,14 +374,20 @@ fn markdown(cells: &[Cell], outcomes: &[Outcome], args: &BiasMatrixArgs) -> Stri
         })
         .collect();
     crate::bench::markdown::table(&mut md, &header, &rows);
-    list_cells(&mut md, "Biased cells", cells, outcomes, Verdict::Biased);
+    list_cells(&mut md, "Biased cells", cells, outcomes, |r| {
+        r.verdict() == Verdict::Biased
+    });
     list_cells(
         &mut md,
-        "Undecided cells",
+        "Biased at first, not at more frames (rare large samples, a bias below the tolerance, \
+         or runs that disagree in sign)",
         cells,
         outcomes,
-        Verdict::Undecided,
+        |r| r.confirmed().is_some() && r.verdict() != Verdict::Biased,
     );
+    list_cells(&mut md, "Undecided cells", cells, outcomes, |r| {
+        r.confirmed().is_none() && r.first.figures.verdict == Verdict::Undecided
+    });
     let errors: Vec<String> = cells
         .iter()
         .zip(outcomes)
@@ -267,28 +406,48 @@ fn markdown(cells: &[Cell], outcomes: &[Outcome], args: &BiasMatrixArgs) -> Stri
     md
 }
 
-/// The cells with verdict `v`, each with its size, the share of pixels the `bias` view
-/// flags and how many frames one seed needs to resolve ±0.5 %.
-fn list_cells(md: &mut String, title: &str, cells: &[Cell], outcomes: &[Outcome], v: Verdict) {
+/// The cells `pick` chooses, each with its signed bias (first run, then the confirmation's
+/// where it ran), the share of pixels the `bias` view flags, its effective frames and how
+/// many frames one seed needs to resolve ±0.5 %.
+fn list_cells(
+    md: &mut String,
+    title: &str,
+    cells: &[Cell],
+    outcomes: &[Outcome],
+    pick: impl Fn(&Runs) -> bool,
+) {
+    let bias = |f: &restir_render::metrics::seeds::Interval| {
+        format!("{:+.2} % ± {:.2} %", 100.0 * f.mean, 100.0 * f.half_width)
+    };
     let lines: Vec<String> = cells
         .iter()
         .zip(outcomes)
         .filter_map(|(c, o)| match o {
-            Outcome::Done(r) if r.figures.verdict == v => {
-                let f = &r.figures;
+            Outcome::Done(runs) if pick(runs) => {
+                let f = &runs.first.figures;
+                let confirmed = runs.confirmed().map_or(String::new(), |c| {
+                    let c = &c.figures;
+                    format!(
+                        "; at {} frames {} ({})",
+                        c.frames,
+                        bias(&c.signed_bias),
+                        c.verdict.label()
+                    )
+                });
+                let last = &runs.last().figures;
                 Some(format!(
-                    "- `{}` · `{}`: {:+.2} % ± {:.2} %, `bias` view flags {}, effective frames {}, \
-                     frames to ±0.5 % {}",
+                    "- `{}` · `{}`: at {} frames {}{confirmed}; `bias` view flags {}, effective \
+                     frames {}, frames to ±0.5 % {}",
                     scene_label(&c.scene),
                     c.estimator,
-                    100.0 * f.signed_bias.mean,
-                    100.0 * f.signed_bias.half_width,
-                    f.bias_view_flagged
+                    f.frames,
+                    bias(&f.signed_bias),
+                    last.bias_view_flagged
                         .map_or("n/a".into(), |i| format!("{:.1} %", 100.0 * i.mean)),
-                    f.spread
+                    last.spread
                         .and_then(|s| s.effective_frames)
-                        .map_or("n/a".into(), |e| format!("{e:.0} of {}", f.frames)),
-                    f.frames_to_half_percent
+                        .map_or("n/a".into(), |e| format!("{e:.0} of {}", last.frames)),
+                    last.frames_to_half_percent
                         .map_or("n/a".into(), |n| format!("{n:.0}")),
                 ))
             }

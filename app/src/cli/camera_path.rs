@@ -1,6 +1,7 @@
 //! Reproducible camera motion for headless experiments: `--orbit DEG` turns the camera
 //! about the vertical axis through the scene centre by DEG per frame; `--cut-at FRAME`
-//! jumps to a distant viewpoint at that frame (a camera cut).
+//! jumps to a distant viewpoint at that frame (a camera cut); the bench's `pan` turns it
+//! in place and its `walk` moves it forward.
 
 use glam::{Quat, Vec3};
 use restir_render::Camera;
@@ -14,6 +15,23 @@ pub fn orbit(camera: Camera, center: Vec3, degrees: f32) -> Camera {
         position: pivot + q * (camera.position - pivot),
         rotation: (q * camera.rotation).normalize(),
         yfov: camera.yfov,
+    }
+}
+
+/// The camera turned in place by `degrees` about the vertical axis (a pan: no parallax).
+pub fn pan(camera: Camera, degrees: f32) -> Camera {
+    let q = Quat::from_rotation_y(degrees.to_radians());
+    Camera {
+        rotation: (q * camera.rotation).normalize(),
+        ..camera
+    }
+}
+
+/// The camera moved `distance` along its view direction (negative: backwards).
+pub fn walk(camera: Camera, distance: f32) -> Camera {
+    Camera {
+        position: camera.position + camera.forward() * distance,
+        ..camera
     }
 }
 
@@ -38,5 +56,17 @@ mod tests {
         assert!((o.forward() - Vec3::NEG_X).length() < 1e-5);
         let full = orbit(c, Vec3::ZERO, 360.0);
         assert!((full.position - c.position).length() < 1e-4);
+    }
+
+    #[test]
+    fn a_pan_turns_in_place_and_a_walk_moves_along_the_view() {
+        let c = Camera::look_at(Vec3::new(0.0, 1.0, 4.0), Vec3::new(0.0, 1.0, 0.0), 0.7);
+        let p = pan(c, 90.0);
+        assert_eq!(p.position, c.position);
+        // Looking down -z, a positive turn about +y looks down -x (as the orbit's).
+        assert!((p.forward() - Vec3::NEG_X).length() < 1e-5);
+        let w = walk(c, 1.5);
+        assert!((w.position - Vec3::new(0.0, 1.0, 2.5)).length() < 1e-5);
+        assert!((w.forward() - c.forward()).length() < 1e-6);
     }
 }

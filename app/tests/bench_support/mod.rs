@@ -29,6 +29,32 @@ pub fn bench(args: &[&str]) -> String {
     stderr
 }
 
+/// A bench of `scene` at `size` with `args` added, quiet, its references cached in its own
+/// output folder `temp(name)`: the rows of its results.csv.
+pub fn quick_bench(
+    name: &str,
+    scene: &str,
+    size: &str,
+    args: &[&str],
+) -> Vec<std::collections::HashMap<String, String>> {
+    let out = temp(name);
+    let cache = out.join("cache");
+    let mut all = vec![
+        "--scene",
+        scene,
+        "--size",
+        size,
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+        "--cache-dir",
+        cache.to_str().unwrap(),
+    ];
+    all.extend(args);
+    bench(&all);
+    csv(&out.join("results.csv"))
+}
+
 /// Splits one CSV line, honouring quotes ("" inside quotes is a quote).
 pub fn split_csv(line: &str) -> Vec<String> {
     let (mut cells, mut cell, mut quoted) = (Vec::new(), String::new(), false);

@@ -5,6 +5,7 @@
 mod city;
 mod concourse;
 mod cornell;
+mod detail;
 pub mod dynamic;
 mod glossy;
 mod hard;
@@ -43,6 +44,7 @@ const SCENES: &[(&str, Generator)] = &[
     ("plane-light", plane_light::plane_light),
     ("lamps", lamps::lamps),
     ("glossy", glossy::glossy_room),
+    ("detail", detail::detail),
     ("hard:tiny-bright", hard::tiny_bright),
     ("hard:touching", hard::touching),
     ("hard:back-facing", hard::back_facing),

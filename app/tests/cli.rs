@@ -268,6 +268,17 @@ fn scenes_and_params_list_everything() {
         );
     }
     assert!(text.lines().all(|l| l.starts_with("builtin:")));
+    // The families too, so that a newcomer finds the city.
+    for family in [
+        "builtin:city:N",
+        "builtin:city-traffic:N",
+        "builtin:many-lights:N",
+    ] {
+        assert!(
+            text.lines().any(|l| l.starts_with(&format!("{family} ("))),
+            "{family} missing from `scenes`: {text}"
+        );
+    }
     let params = viewer(&["params"]);
     assert!(params.status.success());
     let text = String::from_utf8_lossy(&params.stdout);

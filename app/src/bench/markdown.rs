@@ -106,6 +106,14 @@ pub fn results(info: &BenchInfo, results: &[ConfigResult]) -> String {
              against the antialiased reference, which the running average is scored against, \
              it would measure the pixel footprint (`mean_luma_rmse_antialiased` in results.csv)."
         );
+    } else if info.jitter {
+        let _ = writeln!(
+            md,
+            "- **Jitter on with a moving camera**: each frame is scored against its camera's \
+             antialiased reference, so the per-frame errors include the pixel footprint, the \
+             same for every configuration (docs/src/viewer.md, \"Accuracy with jitter on\"); \
+             compare configurations with the bench's default, jitter off."
+        );
     }
     let (set, used) = info.radius;
     let _ = writeln!(

@@ -167,7 +167,8 @@ fn write_param(w: &mut String, p: &ParamDef) {
     let _ = writeln!(w, "{}", p.doc);
 }
 
-/// One `builtin:NAME` per line; the viewer's default is marked ` (default)`.
+/// One `builtin:NAME` per line, the viewer's default marked ` (default)`; then the
+/// families, `builtin:NAME:N` with the range of N.
 pub fn print_scenes() {
     for name in builtin_names() {
         let mark = if name == DEFAULT_SCENE {
@@ -176,5 +177,11 @@ pub fn print_scenes() {
             ""
         };
         println!("{name}{mark}");
+    }
+    for family in restir_render::scene::builtin::family_names() {
+        println!(
+            "{family} (N lights, 1 to {})",
+            restir_render::scene::builtin::MAX_LIGHT_COUNT
+        );
     }
 }

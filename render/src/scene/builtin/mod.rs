@@ -141,6 +141,14 @@ pub fn builtin_names() -> Vec<String> {
         .collect()
 }
 
+/// The families, each as `builtin:PREFIX:N` (N lights, 1..=[`MAX_LIGHT_COUNT`]).
+pub fn family_names() -> Vec<String> {
+    FAMILIES
+        .iter()
+        .map(|(prefix, _)| format!("builtin:{prefix}N"))
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

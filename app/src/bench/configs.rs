@@ -204,8 +204,8 @@ fn split_overrides(item: &str) -> anyhow::Result<(&str, Vec<&str>)> {
 }
 
 /// `--knob NAME=V1,V2,...`: each configuration of `list` once per value, as
-/// `CONFIG[NAME=V]` (a configuration name `--configs` parses back, so the points run as
-/// jobs too).
+/// `CONFIG[NAME=V]`, or `CONFIG[its own;NAME=V]` where it has parameters already (a
+/// configuration name `--configs` parses back, so the points run as jobs too).
 pub fn expand_knob(list: &str, knob: &str) -> anyhow::Result<String> {
     let (name, values) = knob
         .split_once('=')
@@ -224,9 +224,10 @@ pub fn expand_knob(list: &str, knob: &str) -> anyhow::Result<String> {
         .map(str::trim)
         .filter(|s| !s.is_empty())
         .flat_map(|c| {
-            values
-                .iter()
-                .map(move |v| format!("{c}[{}={v}]", name.trim()))
+            values.iter().map(move |v| match c.strip_suffix(']') {
+                Some(own) => format!("{own};{}={v}]", name.trim()),
+                None => format!("{c}[{}={v}]", name.trim()),
+            })
         })
         .collect();
     Ok(items.join(","))
@@ -380,6 +381,10 @@ mod tests {
         assert_eq!(
             expand_knob("ris,restir", "light_candidates=2,8").unwrap(),
             "ris[light_candidates=2],ris[light_candidates=8],restir[light_candidates=2],restir[light_candidates=8]"
+        );
+        assert_eq!(
+            expand_knob("restir[m_cap=4]", "light_candidates=2,8").unwrap(),
+            "restir[m_cap=4;light_candidates=2],restir[m_cap=4;light_candidates=8]"
         );
         assert!(expand_knob("ris", "light_candidates=2").is_err());
         assert!(expand_knob("ris", "=2,3").is_err());

@@ -121,15 +121,10 @@ pub fn without_reference_noise(rmse: f64, noise: f64) -> f64 {
 /// `noise[i]` is the own noise of result i's reference.
 pub fn curves(results: &[ConfigResult], noise: &[f64], knob_name: &str) -> Vec<Curve> {
     let mut curves: Vec<Curve> = Vec::new();
-    let marker = format!("[{knob_name}=");
     for (r, &noise) in results.iter().zip(noise) {
-        let Some(at) = r.config.name.rfind(&marker) else {
+        let Some((name, knob)) = split_knob(&r.config.name, knob_name) else {
             continue;
         };
-        let name = r.config.name[..at].to_string();
-        let knob = r.config.name[at + marker.len()..]
-            .trim_end_matches(']')
-            .to_string();
         let (rmse, rmse_ci95) = match (&r.over_seeds, &r.scores) {
             (Some(f), _) => (f.frame_luma_rmse.mean, f.frame_luma_rmse.half_width),
             (None, Some(s)) => (s.mean_luma_rmse, f64::INFINITY),
@@ -152,6 +147,30 @@ pub fn curves(results: &[ConfigResult], noise: &[f64], knob_name: &str) -> Vec<C
         }
     }
     curves
+}
+
+/// `CONFIG[a=1;NAME=V;b=2]` → (`CONFIG[a=1;b=2]`, `V`): a point's curve and knob value.
+pub fn split_knob(config: &str, knob_name: &str) -> Option<(String, String)> {
+    let open = config.find('[')?;
+    let inner = config[open + 1..].strip_suffix(']')?;
+    let mut value = None;
+    let rest: Vec<&str> = inner
+        .split(';')
+        .filter(|a| match a.split_once('=') {
+            Some((k, v)) if k.trim() == knob_name => {
+                value = Some(v.trim().to_string());
+                false
+            }
+            _ => true,
+        })
+        .collect();
+    let base = &config[..open];
+    let name = if rest.is_empty() {
+        base.to_string()
+    } else {
+        format!("{base}[{}]", rest.join(";"))
+    };
+    Some((name, value?))
 }
 
 /// The target error: `--target-rmse`, else the first curve's error at its middle knob
@@ -358,6 +377,21 @@ mod tests {
         assert_eq!(cost_at(&[point(0.0, 0.2)], 0.1), None);
         // A point whose error the reference's noise swallows gives no reading.
         assert_eq!(cost_at(&[point(1.0, f64::NAN)], 0.1), None);
+    }
+
+    #[test]
+    fn a_points_curve_is_its_name_without_the_knob() {
+        let split = |c: &str| split_knob(c, "light_candidates");
+        assert_eq!(
+            split("ris+denoise[light_candidates=8]"),
+            Some(("ris+denoise".into(), "8".into()))
+        );
+        assert_eq!(
+            split("restir[m_cap=4;light_candidates=2]"),
+            Some(("restir[m_cap=4]".into(), "2".into()))
+        );
+        assert_eq!(split("restir[m_cap=4]"), None);
+        assert_eq!(split("restir"), None);
     }
 
     #[test]

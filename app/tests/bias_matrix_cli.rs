@@ -236,6 +236,7 @@ fn a_merge_before_the_jobs_ran_names_the_missing_cells_and_bad_values_get_one_li
         ("--frames", "8", "two batches"),
         ("--estimators", "octree", "neither a configuration"),
         ("--scenes", "nowhere.gltf", "not found"),
+        ("--confirm", "4000000000", "at most 64"),
     ] {
         let out = viewer(&["bias-matrix", "--out", dir.to_str().unwrap(), flag, value]);
         let err = String::from_utf8_lossy(&out.stderr);

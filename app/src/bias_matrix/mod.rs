@@ -90,6 +90,13 @@ pub fn run(args: BiasMatrixArgs) -> anyhow::Result<()> {
             args.seeds
         );
     }
+    if args.confirm > MAX_CONFIRM {
+        bail!(
+            "--confirm {}: at most {MAX_CONFIRM} times the frames (a confirmation is one more \
+             run of the cell, that many times as long)",
+            args.confirm
+        );
+    }
     let scenes = list_or(&args.scenes, all_scenes());
     let estimators = list_or(&args.estimators, ESTIMATORS.map(String::from).to_vec());
     let base = restir_render::Settings::default();
@@ -159,7 +166,7 @@ impl Stage {
     pub fn frames(self, args: &BiasMatrixArgs) -> u32 {
         match self {
             Stage::First => args.frames,
-            Stage::Confirm => args.frames * args.confirm.max(1),
+            Stage::Confirm => args.frames.saturating_mul(args.confirm.max(1)),
         }
     }
 
@@ -170,6 +177,9 @@ impl Stage {
         }
     }
 }
+
+/// The largest `--confirm`: 64 × 64 frames already take a heavy cell hours.
+const MAX_CONFIRM: u32 = 64;
 
 /// Where a cell's confirmation run writes, inside the cell's folder.
 pub const CONFIRM_DIR: &str = "confirm";

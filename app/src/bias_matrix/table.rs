@@ -80,10 +80,10 @@ pub fn first_verdict(out: &Path, cell: &Cell) -> anyhow::Result<Option<Verdict>>
 fn cell_outcome(out: &Path, cell: &Cell) -> anyhow::Result<Outcome> {
     let dir = super::cell_dir(out, cell);
     let mut o = outcome(&dir, cell)?;
-    if let Outcome::Done(runs) = &mut o {
-        if runs.first.figures.verdict == Verdict::Biased {
-            runs.confirm = outcome(&dir.join(super::CONFIRM_DIR), cell)?;
-        }
+    if let Outcome::Done(runs) = &mut o
+        && runs.first.figures.verdict == Verdict::Biased
+    {
+        runs.confirm = outcome(&dir.join(super::CONFIRM_DIR), cell)?;
     }
     Ok(o)
 }

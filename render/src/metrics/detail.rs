@@ -86,9 +86,13 @@ impl Edges {
     }
 
     /// The frame's luma RMSE within the edge pixels and the detail it keeps (above); None
-    /// without edges. Non-finite pixels are left out.
+    /// without edges or for images of another size. Non-finite pixels are left out.
     pub fn figures(&self, frame: &LinearImage, reference: &LinearImage) -> Option<DetailFigures> {
-        if self.pairs.is_empty() {
+        let size = (self.width, self.height);
+        if self.pairs.is_empty()
+            || (frame.width, frame.height) != size
+            || (reference.width, reference.height) != size
+        {
             return None;
         }
         let luma = |img: &LinearImage, p: usize| {
@@ -182,6 +186,11 @@ mod tests {
     fn a_flat_or_black_reference_has_no_edges() {
         let flat = LinearImage::from_fn(8, 8, |_, _| [0.5, 0.5, 0.5, 1.0]);
         assert!(Edges::of(&flat, 0.0).figures(&flat, &flat).is_none());
+        let r = stripes(16, 4);
+        assert!(
+            Edges::of(&r, 0.0).figures(&flat, &r).is_none(),
+            "another size"
+        );
         let black = LinearImage::from_fn(8, 8, |x, _| {
             let v = if x % 2 == 0 { 0.0 } else { 1e-6 };
             [v, v, v, 1.0]

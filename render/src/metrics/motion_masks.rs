@@ -115,7 +115,7 @@ impl MaskTracer {
     }
 
     /// The masks of frame `current`, which follows `previous` (both with positions in scene
-    /// order, as many as the tracer was built with).
+    /// order, as many as the tracer was built with; otherwise nothing is marked).
     pub fn masks(
         &mut self,
         previous: Posed,
@@ -124,6 +124,10 @@ impl MaskTracer {
         height: u32,
     ) -> MotionMasks {
         let n = (width * height) as usize;
+        let triangles = self.ordered.len();
+        if previous.positions.len() != triangles || current.positions.len() != triangles {
+            return MotionMasks::empty(width, height);
+        }
         let moved: Vec<bool> = previous
             .positions
             .iter()

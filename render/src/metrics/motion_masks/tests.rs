@@ -116,6 +116,14 @@ fn an_empty_scene_marks_nothing_and_does_not_panic() {
     };
     let m = tracer.masks(posed, posed, 4, 3);
     assert_eq!(m, MotionMasks::empty(4, 3));
+    // Positions of another scene than the tracer's: nothing marked, no panic.
+    let s = scene(0.0);
+    let mut tracer = MaskTracer::new(&s);
+    let short = Posed {
+        camera: camera(0.0),
+        positions: &s[..2],
+    };
+    assert_eq!(tracer.masks(short, short, 4, 3), MotionMasks::empty(4, 3));
 }
 
 #[test]

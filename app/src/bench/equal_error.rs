@@ -54,11 +54,12 @@ impl Reach {
         }
     }
 
-    fn label(&self) -> &'static str {
+    /// The `reach` column of `equal_error.csv`.
+    fn code(&self) -> &'static str {
         match self {
             Reach::At(_) => "interpolated",
-            Reach::AtMost(_) => "at most (the cheapest point is below the target)",
-            Reach::Beyond(_) => "more than (no point reaches the target)",
+            Reach::AtMost(_) => "at_most",
+            Reach::Beyond(_) => "beyond",
         }
     }
 }
@@ -261,7 +262,7 @@ pub fn write(
         table.row(vec![
             c.name.clone(),
             num(target),
-            reach.label().split(' ').next().unwrap_or("").to_string(),
+            reach.code().to_string(),
             num(cost.ms),
             num(ratio),
             num(cost.rays_per_pixel),

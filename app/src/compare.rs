@@ -22,8 +22,8 @@ impl CompareTarget {
     /// `reference`, `nee`, `ris` or `restir` (A's settings in that mode), optionally with
     /// `+denoise` or `+raw` (the denoiser on or off: `restir+raw` beside a denoised A is
     /// raw | denoised; `ris+denoise` beside it is two configurations, both denoised), or a
-    /// preset file (defaults plus the preset, `restir` mode: the preset *is* the
-    /// configuration).
+    /// preset, built in (`restir-denoised`) or a file (defaults plus the preset, `restir`
+    /// mode: the preset *is* the configuration).
     pub fn parse(spec: &str, a_settings: &Settings) -> anyhow::Result<CompareTarget> {
         let spec = spec.trim();
         let (mode_name, denoise) = match spec.split_once('+') {
@@ -39,6 +39,15 @@ impl CompareTarget {
             return Ok(CompareTarget {
                 label: spec.to_string(),
                 mode,
+                settings,
+            });
+        }
+        if let Some(assignments) = preset::builtin(spec) {
+            let mut settings = Settings::default();
+            settings.apply_assignments(assignments.iter().copied())?;
+            return Ok(CompareTarget {
+                label: spec.to_string(),
+                mode: Mode::Restir,
                 settings,
             });
         }
@@ -61,7 +70,7 @@ impl CompareTarget {
         }
         anyhow::bail!(
             "--compare '{spec}': expected reference, nee, ris or restir (each optionally \
-             +denoise or +raw) or a preset .toml file"
+             +denoise or +raw), restir-denoised or a preset .toml file"
         )
     }
 }

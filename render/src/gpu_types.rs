@@ -373,7 +373,11 @@ pub struct GpuParams {
     pub regir_cell_size: f32,
     pub regir_build_samples: u32,
     pub regir_jitter: f32,
-    pub _regir_pad: [u32; 3],
+    /// MCMC mutations per pixel after DI's reuse (0 = off) and the local step in
+    /// barycentric units (docs/src/mcmc-mutation.md).
+    pub mutations: u32,
+    pub mutation_step: f32,
+    pub _pad: u32,
 }
 
 /// What the display pass shows and how (view settings, not pipeline parameters).

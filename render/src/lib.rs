@@ -23,6 +23,7 @@ pub mod metrics;
 pub mod passes;
 pub mod path_reuse;
 pub mod phase_references;
+pub mod planted;
 pub mod reference_cache;
 pub mod renderer;
 pub mod reservoir;

@@ -389,6 +389,10 @@ parameter_table! {
             "Animated scenes, pairwise MIS: evaluate this pixel's own (canonical) sample at the previous pixel with last frame's lights — positions, emission, punctual records — as unbiasedness requires. Off: with the current lights, a common shortcut; then a light switched on stays too dark for a few frames (its new samples are weighted as if the history could have found them). Static scenes: no difference.";
         previous_geometry: bool = true, ParamKind::Bool, "Previous-frame geometry",
             "Animated scenes, pairwise MIS with MIS visibility: trace the visibility of this pixel's own sample at the previous pixel against last frame's geometry (last frame's TLAS with ray queries, last frame's BVH boxes and triangles with the software backend), as unbiasedness requires. Off: against this frame's geometry, a common shortcut; then a moving occluder credits the previous pixel with samples it could not see (builtin:dynamic:moving-occluder 2 % dark). Static scenes: no difference.";
+        mutations: u32 = 0, ParamKind::Int { min: 0, max: MAX_MUTATIONS as i64 }, "MCMC mutations",
+            "Metropolis–Hastings steps applied to each pixel's light sample after the last reuse pass, toward the pixel's own target (Sawhney et al. 2024; docs/src/mcmc-mutation.md). Each step slides the point on its triangle light or proposes a fresh power-table sample; W is rescaled by T(y)/T(y'), so the image stays unbiased while neighbours and frames stop sharing one sample. Runs only where reuse is on. 0 = off. Each step costs one target evaluation, and with MIS visibility a shadow ray when the step could be accepted.";
+        mutation_step: f32 = 0.1, ParamKind::Float { min: 1e-4, max: 1.0 }, "Mutation step",
+            "Largest slide of a local mutation in barycentric units of the triangle light (0.1: a tenth of the triangle). Any value is unbiased; small steps are accepted more often and move less.";
     }
     Shading {
         jitter: bool = true, ParamKind::Bool, "Sub-pixel jitter",
@@ -695,7 +699,9 @@ impl Settings {
             regir_cell_size: self.regir_cell_size,
             regir_build_samples: self.regir_build_samples.max(1),
             regir_jitter: self.regir_jitter,
-            _regir_pad: [0; 3],
+            mutations: self.mutations.min(MAX_MUTATIONS),
+            mutation_step: self.mutation_step,
+            _pad: 0,
         }
     }
 

@@ -127,14 +127,17 @@ wgsl_constants! {
     pub const PASS_SPATIAL: u32 = 3;
     pub const PASS_SHADE: u32 = 4;
     pub const PASS_REFERENCE: u32 = 5;
+    /// The MCMC mutation of DI's samples (mutation.wgsl; docs/src/mcmc-mutation.md).
+    pub const PASS_MUTATION: u32 = 6;
 }
-pub const GUARDED_PASS_NAMES: [&str; 6] = [
+pub const GUARDED_PASS_NAMES: [&str; 7] = [
     "gbuffer",
     "initial",
     "temporal",
     "spatial",
     "shade",
     "reference",
+    "mutation",
 ];
 
 wgsl_constants! {
@@ -178,7 +181,11 @@ wgsl_constants! {
     /// (docs/src/light-samplers.md).
     pub const STAT_LIGHT_CANDIDATES: u32 = STAT_SHADOW_RAYS + GUARDED_PASS_NAMES.len() as u32;
     pub const STAT_USEFUL_CANDIDATES: u32 = STAT_LIGHT_CANDIDATES + 1;
-    pub const STAT_COUNT: u32 = STAT_USEFUL_CANDIDATES + 1;
+    /// MCMC mutation steps tried and accepted (their ratio is the acceptance rate the
+    /// mutation step is tuned by; docs/src/mcmc-mutation.md).
+    pub const STAT_MUTATIONS_TRIED: u32 = STAT_USEFUL_CANDIDATES + 1;
+    pub const STAT_MUTATIONS_ACCEPTED: u32 = STAT_MUTATIONS_TRIED + 1;
+    pub const STAT_COUNT: u32 = STAT_MUTATIONS_ACCEPTED + 1;
 
     /// The indirect passes that count non-finite values (at STAT_INDIRECT_NONFINITE + id),
     /// named in `--stats` after the technique that ran ("gi initial", "pt initial", ...).
@@ -218,6 +225,9 @@ wgsl_constants! {
     /// `rng_seed` mixes frame_index × STREAM_COUNT + stream: a stream ≥ STREAM_COUNT would
     /// replay another stream of a later frame (GI once drew DI's next-frame numbers).
     pub const STREAM_COUNT: u32 = 16;
+    /// The MCMC mutation's numbers: the initial stream's seed rehashed with this salt, a
+    /// chain of its own without renumbering the streams (which would change every image).
+    pub const MUTATION_STREAM_SALT: u32 = 0x6d757461;
 
     /// `bench-rays` (ray_bench.wgsl): rays per surface pixel and dispatch, and the two kinds
     /// (the dispatch's `PassInfo` slot). 16 rays keep one dispatch far above its fixed cost on
@@ -260,6 +270,8 @@ wgsl_constants! {
 
     /// Upper bound of `spatial_neighbours` (the shader keeps accepted ones in an array).
     pub const MAX_SPATIAL_NEIGHBOURS: u32 = 32;
+    /// Upper bound of `mutations` (MCMC steps per pixel and frame).
+    pub const MAX_MUTATIONS: u32 = 16;
 }
 /// Spatial passes a frame runs at most (the `spatial_passes` range).
 pub const MAX_SPATIAL_PASSES: u32 = 8;
@@ -520,6 +532,8 @@ mod stream_tests {
             (STAT_SHADOW_RAYS, GUARDED_PASS_NAMES.len() as u32),
             (STAT_LIGHT_CANDIDATES, 1),
             (STAT_USEFUL_CANDIDATES, 1),
+            (STAT_MUTATIONS_TRIED, 1),
+            (STAT_MUTATIONS_ACCEPTED, 1),
         ];
         let mut next = 0;
         for (start, size) in blocks {

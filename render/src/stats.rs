@@ -96,6 +96,10 @@ pub struct StatsSummary {
     /// DI's initial light candidates per surface pixel and frame: with the shadow rays, the
     /// hardware-neutral cost of a configuration (docs/bench.md, "Equal error").
     pub light_candidates_per_pixel: f64,
+    /// MCMC mutation steps per surface pixel and frame, and the share accepted (0 with
+    /// none tried; docs/src/mcmc-mutation.md).
+    pub mutations_per_pixel: f64,
+    pub mutation_acceptance: f64,
 }
 
 /// What an indirect technique (ReSTIR GI or PT) counted: its block of `--stats`, under
@@ -126,6 +130,15 @@ fn median(mut v: Vec<f64>) -> Option<f64> {
     } else {
         0.5 * (v[n / 2 - 1] + v[n / 2])
     })
+}
+
+/// `part / whole`, 0 when there is no whole.
+fn share_of(part: u64, whole: u64) -> f64 {
+    if whole > 0 {
+        part as f64 / whole as f64
+    } else {
+        0.0
+    }
 }
 
 impl StatsSummary {
@@ -237,14 +250,15 @@ impl StatsSummary {
             // From +0: an empty f64 sum is −0, which the CSV would print as "-0".
             shadow_rays_per_pixel_total: rays.values().fold(0.0, |a, b| a + b),
             light_candidates_per_pixel: fraction(total.get(STAT_LIGHT_CANDIDATES)),
-            useful_candidate_share: {
-                let candidates = total.get(STAT_LIGHT_CANDIDATES);
-                if candidates > 0 {
-                    total.get(STAT_USEFUL_CANDIDATES) as f64 / candidates as f64
-                } else {
-                    0.0
-                }
-            },
+            useful_candidate_share: share_of(
+                total.get(STAT_USEFUL_CANDIDATES),
+                total.get(STAT_LIGHT_CANDIDATES),
+            ),
+            mutations_per_pixel: fraction(total.get(STAT_MUTATIONS_TRIED)),
+            mutation_acceptance: share_of(
+                total.get(STAT_MUTATIONS_ACCEPTED),
+                total.get(STAT_MUTATIONS_TRIED),
+            ),
         }
     }
 

@@ -74,37 +74,71 @@ fn every_pass_validates_for_every_effect_set() {
             parse_and_validate(pass.shader, defines);
         }
     }
-    // The furnace test's planted errors must keep compiling (render/tests/multi_bounce.rs).
-    for planted in ["PLANTED_NO_BSDF_MIS", "PLANTED_NO_THROUGHPUT_PDF"] {
-        let mut defines = EffectSet::all().defines();
-        defines.insert(planted.to_string());
-        parse_and_validate("reference.wgsl", &defines);
-        let mut bare = BTreeSet::new();
-        bare.insert(planted.to_string());
-        parse_and_validate("reference.wgsl", &bare);
-    } // The GI tests' planted errors (render/tests/restir_gi.rs).
-    for (shader, planted) in [
-        ("gi/spatial.wgsl", "PLANTED_GI_NO_JACOBIAN"),
-        ("gi/spatial.wgsl", "PLANTED_GI_INVERTED_JACOBIAN"),
-        ("gi/temporal.wgsl", "PLANTED_GI_INVERTED_JACOBIAN"),
-        ("gi/temporal.wgsl", "PLANTED_GI_NO_TEMPORAL_VISIBILITY"),
-        // The boiling view's planted twin (render/tests/temporal_window.rs).
-        ("temporal_window.wgsl", "PLANTED_WINDOW_CURRENT_FRAME_ONLY"),
-        // The tracing backends' twins (render/tests/ray_backends.rs).
-        ("reference.wgsl", "PLANTED_BVH_LAST_HIT_NOT_NEAREST"),
-    ] {
-        let mut defines = EffectSet::all().defines();
-        defines.insert(planted.to_string());
-        parse_and_validate(shader, &defines);
+}
+
+/// Every planted-bug switch the shaders have is in the registry (render/src/planted.rs) and
+/// every entry is in some shader; each named test file plants it; and its twin of every
+/// pass shader it changes (with either tracing backend) validates, so a planted test never
+/// fails for a shader that does not compile.
+#[test]
+fn every_planted_switch_is_registered_and_its_twins_validate() {
+    use restir_render::planted::PLANTED;
+    use restir_render::shader_source::{all_shader_files, shader_file};
+    let mut in_shaders = BTreeSet::new();
+    for file in all_shader_files() {
+        let text = shader_file(file).unwrap();
+        for line in text.lines() {
+            let line = line.trim();
+            let name = line
+                .strip_prefix("#ifdef ")
+                .or_else(|| line.strip_prefix("#ifndef "))
+                .map(str::trim);
+            if let Some(name) = name.filter(|n| n.starts_with("PLANTED_") || n.starts_with("TEST_"))
+            {
+                in_shaders.insert(name.to_string());
+            }
+        }
     }
-    for planted in [
-        "PLANTED_RAY_QUERY_NO_GEOMETRY_OFFSET",
-        "PLANTED_RAY_QUERY_NO_CULLING",
-    ] {
-        let mut defines = EffectSet::all().defines();
-        defines.insert(planted.to_string());
-        defines.insert(restir_render::tracing::RAY_QUERY_DEFINE.to_string());
-        parse_and_validate("reference.wgsl", &defines);
+    let registered: BTreeSet<String> = PLANTED.iter().map(|p| p.name.to_string()).collect();
+    assert_eq!(
+        in_shaders, registered,
+        "the shaders' planted switches and render/src/planted.rs disagree"
+    );
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    for p in PLANTED {
+        if p.tests.is_empty() {
+            assert!(
+                p.breaks.contains("no GPU test plants it"),
+                "{}: name the test that plants it, or say that none does and what does instead",
+                p.name
+            );
+        }
+        for test in p.tests {
+            let text = std::fs::read_to_string(root.join(test))
+                .unwrap_or_else(|e| panic!("{}: {test}: {e}", p.name));
+            assert!(text.contains(p.name), "{test} does not plant {}", p.name);
+        }
+        let mut changed = 0;
+        // Every effect with either backend, and no optional effect at all.
+        for base_set in 0..3 {
+            let mut base = match base_set {
+                2 => BTreeSet::new(),
+                _ => EffectSet::all().defines(),
+            };
+            if base_set == 1 {
+                base.insert(restir_render::tracing::RAY_QUERY_DEFINE.to_string());
+            }
+            let mut planted = base.clone();
+            planted.insert(p.name.to_string());
+            for pass in restir_render::passes::ALL {
+                let plain = compose(pass.shader, &base).unwrap();
+                if compose(pass.shader, &planted).unwrap() != plain {
+                    parse_and_validate(pass.shader, &planted);
+                    changed += 1;
+                }
+            }
+        }
+        assert!(changed > 0, "{} changes no pass shader", p.name);
     }
 }
 
@@ -407,7 +441,9 @@ fn host_structs_match_wgsl_layouts() {
             regir_slots,
             regir_cell_size,
             regir_build_samples,
-            regir_jitter
+            regir_jitter,
+            mutations,
+            mutation_step
         ]
     );
     check_struct!(

@@ -216,9 +216,10 @@ struct Params {
     regir_cell_size: f32,         // a fraction of frame.scene_scale
     regir_build_samples: u32,
     regir_jitter: f32,            // cells
-    _regir_pad0: u32,
-    _regir_pad1: u32,
-    _regir_pad2: u32,
+    // MCMC mutation of DI's samples (docs/src/mcmc-mutation.md)
+    mutations: u32,               // steps per pixel (0 = off)
+    mutation_step: f32,           // largest local slide, barycentric units
+    _pad: u32,
 }
 
 struct Display {

@@ -121,6 +121,12 @@ const BUILTIN: &[(&str, Mode, &[&str], &str)] = &[
         "restir (DI) + ReSTIR PT, hybrid shift, 2 bounces, |J| clamped into [1/2, 2] (biased)",
     ),
     (
+        "restir-denoised",
+        Mode::Restir,
+        preset::RESTIR_DENOISED,
+        "the restir-denoised preset: temporal reuse at M cap 4, no spatial reuse, denoised (SVGF)",
+    ),
+    (
         "tiles-on",
         Mode::Restir,
         &["light_sampler=tiles"],

@@ -20,6 +20,7 @@ pub const PASS_ORDER: &[&str] = &[
     "initial",
     "temporal",
     "spatial",
+    "mutation",
     "shade",
     "display",
 ];

@@ -17,7 +17,8 @@ pub struct PipelineArgs {
     /// Override a pipeline parameter, `name=value` (see `params`); repeatable.
     #[arg(long = "set", value_name = "NAME=VALUE")]
     pub set: Vec<String>,
-    /// A preset file (TOML, `name = value` per line) applied before `--set`.
+    /// A preset applied before `--set`: a TOML file (`name = value` per line) or a built-in
+    /// name (`restir-denoised`).
     #[arg(long)]
     pub preset: Option<PathBuf>,
     /// Effect set to compile: auto (from the scene), all (general pipeline) or a list.

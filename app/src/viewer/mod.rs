@@ -17,6 +17,7 @@ mod apply;
 mod camera;
 mod clock;
 mod compare_side;
+mod denoised_preset;
 mod egui_layer;
 mod frame;
 mod gpu_surface;
@@ -50,7 +51,8 @@ pub struct ViewArgs {
     /// [default: builtin:concourse].
     #[arg(long)]
     pub scene: Option<String>,
-    /// A preset file (TOML, `name = value` per line) to start from.
+    /// A preset to start from: a TOML file (`name = value` per line) or a built-in name
+    /// (`restir-denoised`).
     #[arg(long)]
     pub preset: Option<PathBuf>,
     /// Override a pipeline parameter, `name=value` (see `params`), after the preset;
@@ -68,8 +70,9 @@ pub struct ViewArgs {
     /// After N rendered frames, write a PNG of the whole window (image and panels) to FILE.
     #[arg(long, num_args = 2, value_names = ["N", "FILE.png"])]
     pub screenshot_after: Vec<String>,
-    /// Start with the split screen on: this configuration left, B right (a mode or a
-    /// preset .toml file; the Compare section changes it).
+    /// Start with the split screen on: this configuration left, B right (a mode, optionally
+    /// +denoise or +raw, restir-denoised or a preset .toml file; the Compare section
+    /// changes it).
     #[arg(long, value_name = "B")]
     pub compare: Option<String>,
     /// Start a guided tour (docs/src/tours.md): its first step's scene, camera, mode,

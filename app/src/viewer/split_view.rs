@@ -104,9 +104,18 @@ fn labels(state: &ViewerState) -> (String, String) {
     let error = |e: Option<f64>| e.map_or(String::new(), |e| format!(" · RMSE {e:.3}{how}"));
     let errors = state.compare.errors;
     (
-        format!("A: {}{}", state.mode.name(), error(errors.map(|e| e.0))),
+        format!("A: {}{}", a_name(state), error(errors.map(|e| e.0))),
         format!("B: {}{}", state.compare.spec, error(errors.map(|e| e.1))),
     )
+}
+
+/// What A is: the mode, or the denoiser's companion preset while it is on.
+fn a_name(state: &ViewerState) -> &str {
+    if state.denoised_preset.is_on() {
+        "restir-denoised"
+    } else {
+        state.mode.name()
+    }
 }
 
 /// A label with a dark background, its bottom corner at `anchor` (right-aligned when

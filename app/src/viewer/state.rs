@@ -339,6 +339,8 @@ pub struct ViewerState {
     pub preset_path: String,
     /// Preset load/save result (error or confirmation).
     pub preset_message: Option<String>,
+    /// The denoiser's companion preset (`denoised_preset.rs`).
+    pub denoised_preset: super::denoised_preset::DenoisedPreset,
     /// Where screenshots go.
     pub screenshot_dir: String,
     /// The last screenshot's files, or why it failed.
@@ -374,6 +376,7 @@ impl ViewerState {
             device: DeviceInfo::default(),
             preset_path: "preset.toml".to_string(),
             preset_message: None,
+            denoised_preset: Default::default(),
             screenshot_dir: ".".to_string(),
             screenshot_message: None,
             panel_open: true,

@@ -15,6 +15,7 @@ pub mod gbuffer;
 pub mod gi;
 pub mod initial;
 pub mod moments;
+pub mod mutation;
 pub mod presample;
 pub mod pt;
 pub mod ray_bench;
@@ -33,7 +34,7 @@ pub use compile::{
 pub use pass::PassDef;
 
 /// Every pass, in pipeline order (a layout is created for each; tests validate each).
-pub const ALL: [&PassDef; 31] = [
+pub const ALL: [&PassDef; 32] = [
     &gbuffer::RASTER,
     &gbuffer::RESOLVE,
     &presample::PASS,
@@ -41,6 +42,7 @@ pub const ALL: [&PassDef; 31] = [
     &initial::PASS,
     &temporal::PASS,
     &spatial::PASS,
+    &mutation::PASS,
     &shade::PASS,
     &gi::initial::PASS,
     &gi::temporal::PASS,

@@ -1,5 +1,5 @@
 //! The frame as an ordered list of passes, read top to bottom like the pipeline diagram
-//! (docs/src/frame.md): G-buffer → (light tiles) → DI initial → temporal → spatial × P →
+//! (docs/src/frame.md): G-buffer → (light tiles) → DI initial → temporal → spatial × P → (mutation) →
 //! shade → (GI initial → temporal → spatial → shade, or PT initial → temporal → spatial →
 //! shade) → (denoise temporal → variance → à-trous × N → modulate) → moments → (temporal
 //! window) → display (→ GI or PT view) (→ denoiser view) (→ bias view) (→ window view), or
@@ -10,8 +10,8 @@ use std::ops::Range;
 
 use crate::passes::resources::{Chain, RESERVOIRS};
 use crate::passes::{
-    PassDef, bias_view, denoise, display, gbuffer, gi, initial, moments, presample, pt, reference,
-    regir, shade, spatial, temporal, temporal_window, window_view,
+    PassDef, bias_view, denoise, display, gbuffer, gi, initial, moments, mutation, presample, pt,
+    reference, regir, shade, spatial, temporal, temporal_window, window_view,
 };
 
 /// One pass of the frame.
@@ -85,6 +85,8 @@ pub struct FrameSwitches {
     pub temporal: bool,
     /// Spatial passes (0 = spatial reuse off).
     pub spatial_passes: u32,
+    /// MCMC mutation of DI's samples after the last reuse pass.
+    pub mutation: bool,
     /// Dispatches of the reference (chunks of samples).
     pub reference_chunks: u32,
     /// ReSTIR GI (real-time frames only) and its reuse stages.
@@ -134,6 +136,9 @@ pub fn frame_plan(f: &FrameSwitches) -> Vec<Step> {
         }
         for p in 0..f.spatial_passes {
             steps.push(Step::new(&spatial::PASS).slots(p..p + 1).inspect("spatial"));
+        }
+        if f.mutation {
+            steps.push(Step::new(&mutation::PASS).inspect("mutation"));
         }
         steps.push(Step::new(&shade::PASS));
         if f.gi {

@@ -21,6 +21,8 @@ mod reports;
 pub mod resolve;
 mod setup;
 mod state;
+#[cfg(feature = "test-hooks")]
+mod test_hooks;
 mod uniforms;
 mod window;
 
@@ -41,8 +43,7 @@ use crate::frame_targets::FrameTargets;
 use crate::gpu::timing::TimingMode;
 use crate::gpu::{Gpu, GpuError};
 use crate::gpu_scene::{GpuScene, SceneInfo, SceneUpdateTimes};
-use crate::gpu_types::*;
-use crate::passes::resources::{ACCUMULATION, MOMENTS, REFERENCE, RESERVOIRS};
+use crate::passes::resources::{ACCUMULATION, MOMENTS, REFERENCE};
 use crate::passes::{ComputePass, PassLayouts, gbuffer::RasterPass};
 use crate::scene::animation::SceneChange;
 use crate::scene::{Camera, Scene};
@@ -185,13 +186,6 @@ impl Renderer {
         self.buffers.light_sampler.stats
     }
 
-    /// Test-only: the light samplers' structures stay as they are now, whatever the scene
-    /// does (the planted twin of the BVH's refit).
-    #[doc(hidden)]
-    pub fn freeze_light_sampler_for_tests(&mut self) {
-        self.buffers.light_sampler.frozen = true;
-    }
-
     /// The cost of the last `update_scene`.
     pub fn last_scene_update(&self) -> SceneUpdateTimes {
         self.last_update
@@ -254,15 +248,6 @@ impl Renderer {
         self.pipelines.forced_effects = effects;
     }
 
-    /// Test-only: compiles the `PLANTED_*` defines `defines` into every pass from the next
-    /// frame on (on top of the derived or forced effect set), so that a test can show that
-    /// its detector fires on a known error.
-    #[doc(hidden)]
-    pub fn plant_for_tests(&mut self, defines: &[&str]) {
-        self.pipelines.planted = defines.iter().map(|d| d.to_string()).collect();
-        self.pipelines.last_effects = None;
-    }
-
     /// The effect set of the last rendered frame and the passes it dispatched.
     pub fn last_effects(&self) -> Option<&EffectSet> {
         self.pipelines.last_effects.as_ref().map(|e| &e.set)
@@ -309,85 +294,6 @@ impl Renderer {
     fn invalidate_history(&mut self) {
         self.history.invalidate();
         self.window.restart();
-    }
-
-    /// Fault injection for tests of the non-finite guard: overwrites the history
-    /// reservoirs with NaN and infinite weights, as a driver bug or a bad upload might.
-    /// The next frame's temporal pass must count them and treat them as null.
-    #[doc(hidden)]
-    pub fn poison_history_for_tests(&mut self) {
-        let poisoned = GpuReservoir {
-            light: 0,
-            p_hat: f32::NAN,
-            uv: [0.3, 0.3],
-            w_sum: f32::INFINITY,
-            weight: f32::NAN,
-            m: f32::NAN,
-            source: 1,
-        };
-        let data = vec![poisoned; self.targets.pixel_count() as usize];
-        self.gpu.queue.write_buffer(
-            self.targets
-                .chain(&RESERVOIRS, self.history.carried.history(&RESERVOIRS)),
-            0,
-            bytemuck::cast_slice(&data),
-        );
-    }
-
-    /// The same for the ReSTIR GI history (after a frame with GI): NaN and infinite
-    /// weights and positions, which the next GI temporal pass must count and drop.
-    #[doc(hidden)]
-    pub fn poison_gi_history_for_tests(&mut self) {
-        use crate::passes::gi::initial::GI_RESERVOIRS;
-        if !self.history.carried.has_history(&GI_RESERVOIRS) {
-            return;
-        }
-        let poisoned = GpuGiReservoir {
-            position: [f32::NAN, 0.0, f32::INFINITY],
-            normal: 0,
-            radiance: [f32::INFINITY; 3],
-            w_sum: f32::NAN,
-            weight: f32::INFINITY,
-            m: f32::NAN,
-            p_hat: 1.0,
-            packed: GpuGiReservoir::pack(crate::shader_constants::SOURCE_TEMPORAL, 0, 0),
-        };
-        let data = vec![poisoned; self.targets.pixel_count() as usize];
-        let history = self.history.carried.history(&GI_RESERVOIRS);
-        self.gpu.queue.write_buffer(
-            self.targets.chain(&GI_RESERVOIRS, history),
-            0,
-            bytemuck::cast_slice(&data),
-        );
-    }
-
-    /// The same for the ReSTIR PT history (after a frame with PT): NaN and infinite values,
-    /// weights and geometry, which the next PT temporal pass must count and drop.
-    #[doc(hidden)]
-    pub fn poison_pt_history_for_tests(&mut self) {
-        use crate::passes::pt::initial::PT_RESERVOIRS;
-        if !self.history.carried.has_history(&PT_RESERVOIRS) {
-            return;
-        }
-        let poisoned = crate::gpu_types::GpuPtReservoir {
-            value: [f32::INFINITY, 0.0, f32::NAN],
-            p_hat: 1.0,
-            w_sum: f32::NAN,
-            weight: f32::INFINITY,
-            m: f32::NAN,
-            packed: crate::shader_constants::SOURCE_TEMPORAL | (2 << 4) | (1 << 9),
-            rc_from_d2: f32::NAN,
-            replay_pdf: f32::INFINITY,
-            jacobian: 1.0,
-            ..Default::default()
-        };
-        let data = vec![poisoned; self.targets.pixel_count() as usize];
-        let history = self.history.carried.history(&PT_RESERVOIRS);
-        self.gpu.queue.write_buffer(
-            self.targets.chain(&PT_RESERVOIRS, history),
-            0,
-            bytemuck::cast_slice(&data),
-        );
     }
 
     /// Restarts the running average (on any change that makes old frames stale).

@@ -201,6 +201,8 @@ impl Renderer {
             } else {
                 0
             },
+            // Mutation decorrelates reused samples: it runs where reuse does.
+            mutation: realtime && settings.mutations > 0 && (settings.temporal || spatial_on),
             // Samples in chunks, one dispatch each (see REFERENCE_SAMPLES_PER_DISPATCH).
             reference_chunks: settings
                 .reference_spp

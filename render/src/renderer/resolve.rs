@@ -186,6 +186,7 @@ mod tests {
                             regir_slots: if temporal { 4096 } else { 0 },
                             temporal,
                             spatial_passes,
+                            mutation: temporal,
                             reference_chunks: 2,
                             gi,
                             gi_temporal: temporal,

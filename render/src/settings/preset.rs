@@ -3,9 +3,37 @@
 
 use super::*;
 
-/// Reads a preset on top of `base`. Unknown keys and wrong types are errors that name
-/// the file and the key; out-of-range numbers are clamped with a warning.
+/// `restir-denoised`: ReSTIR DI as the crossover map found it pays through the denoiser
+/// (docs/bench.md, "The crossover map"): a short temporal history, no spatial reuse, the
+/// denoiser on. Reuse lowers the blur the denoiser adds; a long history or wide spatial
+/// reuse adds correlated noise it cannot average away.
+pub const RESTIR_DENOISED: &[&str] = &["temporal=true", "spatial=false", "m_cap=4", "denoise=true"];
+
+/// The presets known by name (`--preset NAME`, the viewer's Preset row, `--compare NAME`):
+/// name, the assignments it makes on top of its base, and what it is.
+pub const BUILTIN: &[(&str, &[&str], &str)] = &[(
+    "restir-denoised",
+    RESTIR_DENOISED,
+    "ReSTIR DI tuned for the denoiser: temporal reuse with M cap 4, no spatial reuse, denoiser on",
+)];
+
+/// A built-in preset's assignments, by name.
+pub fn builtin(name: &str) -> Option<&'static [&'static str]> {
+    BUILTIN
+        .iter()
+        .find(|(n, ..)| *n == name)
+        .map(|(_, a, _)| *a)
+}
+
+/// Reads a preset on top of `base`: a built-in name (`BUILTIN`) or a TOML file. Unknown
+/// keys and wrong types are errors that name the file and the key; out-of-range numbers
+/// are clamped with a warning.
 pub fn load(path: &Path, base: &Settings) -> anyhow::Result<(Settings, Vec<String>)> {
+    if let Some(assignments) = path.to_str().and_then(builtin) {
+        let mut settings = base.clone();
+        let warnings = settings.apply_assignments(assignments.iter().copied())?;
+        return Ok((settings, warnings));
+    }
     let text = std::fs::read_to_string(path)
         .map_err(|e| anyhow::anyhow!("{}: cannot read preset: {e}", path.display()))?;
     parse(&text, base).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))

@@ -238,3 +238,49 @@ fn the_shared_validation_checks_are_their_own_stage() {
         Stage::Temporal
     );
 }
+
+/// Every numeric row answers a bad value with one line that names it: not a number is an
+/// error, a number outside the range is clamped with a warning.
+#[test]
+fn every_numeric_row_answers_bad_values_in_one_line() {
+    for def in PARAMS {
+        let (low, high) = match def.kind {
+            ParamKind::Int { min, max } => (min as f64 - 1.0, max as f64 + 1.0),
+            ParamKind::Float { min, max } => (min - 1.0, max * 2.0 + 1.0),
+            _ => continue,
+        };
+        let mut s = Settings::default();
+        let err = s.set_from_str(def.name, "nan").unwrap_err().to_string();
+        assert!(
+            err.contains(def.name) && !err.contains('\n'),
+            "{}: {err}",
+            def.name
+        );
+        for value in [low, high] {
+            let warning = s
+                .set_from_str(def.name, &value.to_string())
+                .unwrap_or_else(|e| panic!("{}: {e}", def.name))
+                .unwrap_or_else(|| panic!("{} = {value}: no warning", def.name));
+            assert!(
+                warning.contains(def.name) && !warning.contains('\n'),
+                "{}: {warning}",
+                def.name
+            );
+        }
+    }
+}
+
+#[test]
+fn built_in_presets_apply_cleanly_by_name() {
+    for (name, assignments, _) in preset::BUILTIN {
+        let (s, warnings) = preset::load(Path::new(name), &Settings::default()).unwrap();
+        assert!(warnings.is_empty(), "{name}: {warnings:?}");
+        let mut expected = Settings::default();
+        expected
+            .apply_assignments(assignments.iter().copied())
+            .unwrap();
+        assert_eq!(s, expected, "{name}");
+    }
+    let denoised = preset::builtin("restir-denoised").unwrap();
+    assert!(denoised.contains(&"denoise=true") && denoised.contains(&"m_cap=4"));
+}

@@ -14,6 +14,7 @@ use restir_render::{Mode, Settings};
 use crate::viewer::state::ViewerState;
 
 pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
+    let denoiser_was_on = state.settings.denoise;
     mode_selector(ui, &mut state.mode);
     let context = Context {
         height: state.render_size.1,
@@ -23,6 +24,16 @@ pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
     for stage in stages() {
         stage_ui(ui, &mut state.settings, stage, &context);
     }
+    ui.checkbox(
+        &mut state.denoised_preset.follow,
+        "Denoiser on: switch to restir-denoised",
+    )
+    .on_hover_text(
+        "Switching the denoiser on applies the restir-denoised preset (temporal reuse, M cap 4, \
+         no spatial reuse: what the crossover map found pays through the denoiser, docs/bench.md) \
+         and shows denoised RIS beside it; switching it off brings back the settings of before.",
+    );
+    crate::viewer::denoised_preset::follow_denoiser(state, denoiser_was_on);
     ui.horizontal(|ui| {
         if ui
             .button("Reset to defaults")

@@ -166,6 +166,14 @@ fn reuse(ui: &mut Ui, s: &StatsSummary) {
         s.fallback_used,
         s.boiling_dropped
     ));
+    if s.mutations_per_pixel > 0.0 {
+        ui.label(format!(
+            "MCMC mutations: {:.2} per pixel, {} accepted",
+            s.mutations_per_pixel,
+            percent(s.mutation_acceptance)
+        ))
+        .on_hover_text("Steps tried per surface pixel and frame and the share accepted (docs/src/mcmc-mutation.md): a step that is nearly always accepted barely moves the sample.");
+    }
     let rays: Vec<String> = s
         .shadow_rays_per_pixel
         .iter()

@@ -1,6 +1,7 @@
 //! The Pipeline panel: switches, sliders, presets, the mode.
 
 use super::*;
+use restir_render::Mode;
 use restir_render::settings::LightSampler;
 
 #[test]
@@ -228,4 +229,62 @@ fn regir_rows_are_greyed_out_unless_regir_draws_the_candidates() {
     assert!(!greyed(&bvh, "Light candidates"));
     let regir = panel(LightSampler::Regir);
     assert!(!greyed(&regir, "ReGIR jitter") && !greyed(&regir, "ReGIR cells per side"));
+}
+
+/// Switching the denoiser on in the panel applies restir-denoised and opens the split
+/// screen against denoised RIS; switching it off brings back what was there. (Accessibility
+/// clicks: with everything visible the tooltips cover the checkboxes from the pointer.)
+#[test]
+fn the_denoiser_switch_follows_the_map_and_back() {
+    let mut before = state();
+    before.settings.spatial_neighbours = 7;
+    before.mode = Mode::Ris;
+    let mut h = harness(
+        |ui, s: &mut ViewerState| {
+            ui.ctx().memory_mut(|m| m.set_everything_is_visible(true));
+            pipeline::ui(ui, s);
+        },
+        before.clone(),
+    );
+    h.get_by_label("Denoiser (SVGF)").click_accesskit();
+    h.run();
+    let s = h.state();
+    assert_eq!(s.mode, Mode::Restir);
+    assert!(s.settings.denoise && s.settings.temporal && !s.settings.spatial);
+    assert_eq!(s.settings.m_cap, 4.0);
+    assert!(s.compare.enabled);
+    assert_eq!(s.compare.spec, "ris+denoise");
+    assert!(
+        s.preset_message
+            .as_deref()
+            .is_some_and(|m| m.contains("restir-denoised"))
+    );
+    h.get_by_label("Denoiser (SVGF)").click_accesskit();
+    h.run();
+    let s = h.state();
+    assert_eq!(s.mode, Mode::Ris);
+    assert_eq!(s.settings, before.settings);
+    assert!(!s.compare.enabled);
+}
+
+#[test]
+fn without_following_the_map_the_denoiser_switch_changes_only_itself() {
+    let mut h = harness(
+        |ui, s: &mut ViewerState| {
+            ui.ctx().memory_mut(|m| m.set_everything_is_visible(true));
+            pipeline::ui(ui, s);
+        },
+        state(),
+    );
+    h.get_by_label("Denoiser on: switch to restir-denoised")
+        .click_accesskit();
+    h.run();
+    h.get_by_label("Denoiser (SVGF)").click_accesskit();
+    h.run();
+    let expected = Settings {
+        denoise: true,
+        ..Settings::default()
+    };
+    assert_eq!(h.state().settings, expected);
+    assert!(!h.state().compare.enabled);
 }

@@ -1,0 +1,90 @@
+//! The denoiser's companion preset: switching the denoiser on in the Pipeline panel
+//! switches to `restir-denoised` (render/src/settings/preset.rs), the ReSTIR that the
+//! crossover map found to pay through the denoiser (docs/bench.md, "The crossover map"), and
+//! opens the split screen with denoised RIS as B, so both errors stand on the image.
+//! Switching the denoiser off again brings back the settings, mode and split screen of
+//! before. The Denoise stage's "Follow the map" box turns this off.
+
+use restir_render::settings::preset;
+use restir_render::{Mode, Settings};
+
+use super::state::{CompareState, ViewerState};
+
+/// What was there before the preset took over.
+#[derive(Clone, Debug)]
+pub struct Saved {
+    settings: Settings,
+    mode: Mode,
+    compare: CompareState,
+}
+
+/// The switch's state: whether it follows the map, and what to restore.
+#[derive(Clone, Debug)]
+pub struct DenoisedPreset {
+    pub follow: bool,
+    saved: Option<Saved>,
+}
+
+impl Default for DenoisedPreset {
+    fn default() -> Self {
+        DenoisedPreset {
+            follow: true,
+            saved: None,
+        }
+    }
+}
+
+impl DenoisedPreset {
+    /// Whether the switch applied the preset and has not undone it yet.
+    pub fn is_on(&self) -> bool {
+        self.saved.is_some()
+    }
+}
+
+/// B of the split screen while the preset is on.
+pub const COMPARE_WITH: &str = "ris+denoise";
+
+/// Call after the Pipeline panel ran, with the denoiser's state before it: a switch of the
+/// denoiser applies or undoes the preset.
+pub fn follow_denoiser(state: &mut ViewerState, was_on: bool) {
+    let on = state.settings.denoise;
+    if on == was_on || !state.denoised_preset.follow {
+        return;
+    }
+    if on {
+        let Some(assignments) = preset::builtin("restir-denoised") else {
+            return;
+        };
+        let mut settings = state.settings.clone();
+        if let Err(e) = settings.apply_assignments(assignments.iter().copied()) {
+            state.preset_message = Some(format!("error: restir-denoised: {e}"));
+            return;
+        }
+        state.denoised_preset.saved = Some(Saved {
+            settings: state.settings.clone(),
+            mode: state.mode,
+            compare: state.compare.clone(),
+        });
+        state.settings = settings;
+        state.mode = Mode::Restir;
+        state.compare = CompareState {
+            enabled: true,
+            spec: COMPARE_WITH.to_string(),
+            ..state.compare.clone()
+        };
+        state.compare.target = None;
+        state.compare.error = None;
+        state.preset_message = Some(format!(
+            "Denoiser on: restir-denoised (temporal reuse, M cap 4, no spatial reuse), \
+             B = {COMPARE_WITH} (docs/bench.md, \"The crossover map\")"
+        ));
+    } else if let Some(saved) = state.denoised_preset.saved.take() {
+        state.settings = Settings {
+            denoise: false,
+            ..saved.settings
+        };
+        state.mode = saved.mode;
+        state.compare = saved.compare;
+        state.preset_message = Some("Denoiser off: the settings of before".to_string());
+    }
+}

@@ -61,6 +61,9 @@ enum Command {
     BenchLoad(bench::load_cost::LoadCostArgs),
     /// ReSTIR PT's path shifts on the CPU toy scene: bias, variance, how shifts fail.
     BenchShifts(bench::shift_cost::ShiftCostArgs),
+    /// The crossover map from a folder of `--knob` bench runs, one per (scene, size,
+    /// camera): each configuration's cost to reach denoised RIS's best error (map.md, map.csv).
+    BenchMap(bench::map::MapArgs),
 }
 
 fn main() {
@@ -80,6 +83,7 @@ fn main() {
         Some(Command::BenchRays(a)) => bench::ray_cost::run(a),
         Some(Command::BenchLoad(a)) => bench::load_cost::run(a),
         Some(Command::BenchShifts(a)) => bench::shift_cost::run(a),
+        Some(Command::BenchMap(a)) => bench::map::run(a),
         Some(Command::Scenes) => {
             cli::params::print_scenes();
             Ok(())

@@ -177,7 +177,7 @@ pub fn event_between(animation: Option<&SceneAnimation>, t0: f32, t1: f32) -> bo
     let events = anim.light_events(ClipChoice::All);
     let duration = anim.duration(ClipChoice::All);
     let wrap = |t: f32| anim.wrap(t, ClipChoice::All);
-    !crate::bench::lag::event_frames(&[t0, t1], &events, duration, wrap).is_empty()
+    !restir_render::timeline::event_frames(&[t0, t1], &events, duration, wrap).is_empty()
 }
 
 #[cfg(test)]

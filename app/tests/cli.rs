@@ -920,3 +920,17 @@ fn denoised_renders_draw_their_views_and_split_against_raw() {
         "denoised = raw everywhere"
     );
 }
+
+/// `bench-map` on a folder with no bench run says so in one line, and on a missing folder
+/// names it.
+#[test]
+fn bench_map_without_cells_fails_in_one_line() {
+    let dir = std::env::temp_dir().join(format!("restir-map-empty-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    assert_one_line_error(&viewer(&["bench-map", dir.to_str().unwrap()]), &["no cell"]);
+    assert_one_line_error(
+        &viewer(&["bench-map", "/nonexistent/map"]),
+        &["/nonexistent/map"],
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

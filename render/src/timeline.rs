@@ -132,3 +132,31 @@ impl AnimatedScene {
         self.scene.pose(time, self.choice)
     }
 }
+
+/// Measured frames `1..times.len()` at which a light event happens (the bench's lag
+/// figures and the pixel history share this rule): frame i shows event
+/// clip time e when the clip time moved past e between frame i − 1 and frame i (`wrap`
+/// maps scene time to clip time, `duration` is the loop). Compares the same f32 times the
+/// sampler poses with, so the event frame is the first frame that shows the change.
+pub fn event_frames(
+    times: &[f32],
+    events: &[f32],
+    duration: f32,
+    wrap: impl Fn(f32) -> f32,
+) -> Vec<usize> {
+    (1..times.len())
+        .filter(|&i| {
+            let (w0, w1) = (wrap(times[i - 1]), wrap(times[i]));
+            let passed = |e: f32| {
+                if times[i] - times[i - 1] >= duration {
+                    true
+                } else if w1 >= w0 {
+                    w0 < e && e <= w1
+                } else {
+                    e > w0 || e <= w1
+                }
+            };
+            times[i] > times[i - 1] && events.iter().any(|&e| passed(e))
+        })
+        .collect()
+}

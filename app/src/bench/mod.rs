@@ -19,9 +19,9 @@ mod equal_time;
 mod event_strip;
 mod events;
 mod jobs;
-/// The light-event rule (`event_frames`) is shared with the pixel history (probe.rs).
-pub(crate) mod lag;
+mod lag;
 pub mod load_cost;
+pub mod map;
 pub(crate) mod markdown;
 mod motion;
 mod plots;
@@ -350,7 +350,14 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     let mut results: Vec<ConfigResult> = per_seed.iter().map(|runs| runs[0].clone()).collect();
     for ((r, runs), c) in results.iter_mut().zip(&per_seed).zip(&configs) {
         let own = ref_sets.for_bounces(c.settings.reference_bounces());
-        let runs: Vec<&ConfigResult> = runs.iter().collect();
+        let runs: Vec<seed_figures::SeedRun> = runs
+            .iter()
+            .map(|r| seed_figures::SeedRun {
+                scores: r.scores.as_ref(),
+                moments: r.moments.as_ref(),
+                frames: r.frames.len(),
+            })
+            .collect();
         r.over_seeds = seed_figures::of_seeds(&runs, &own.images[0], own.noise_luma_rmse);
     }
     if !shot.moves() && args.seeds > 1 && !args.quiet {

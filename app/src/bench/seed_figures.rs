@@ -10,7 +10,6 @@ use restir_render::metrics::seeds::{
     BIAS_TOLERANCE, Interval, PixelSpread, Verdict, frames_to_tolerance, luminance_of, pixel_spread,
 };
 
-use super::run_loop::ConfigResult;
 use super::scoring::ScoreSummary;
 
 /// One configuration's figures over its seeds.
@@ -56,15 +55,22 @@ pub struct SeedFigures {
 /// (`hard:no-emitters`), and a ratio to it means nothing.
 const BLACK_REFERENCE: f64 = 1e-9;
 
+/// What the figures read of one seed's run (the bench's `ConfigResult`).
+pub struct SeedRun<'a> {
+    pub scores: Option<&'a ScoreSummary>,
+    pub moments: Option<&'a PixelMoments>,
+    pub frames: usize,
+}
+
 /// The figures of one configuration from its runs, one per seed (in seed order), scored
 /// against `reference` (the still camera's, or the first of a moving camera's) whose own
 /// per-pixel luma noise is `reference_noise`.
 pub fn of_seeds(
-    runs: &[&ConfigResult],
+    runs: &[SeedRun],
     reference: &LinearImage,
     reference_noise: Option<f64>,
 ) -> Option<SeedFigures> {
-    let scores: Vec<_> = runs.iter().filter_map(|r| r.scores.as_ref()).collect();
+    let scores: Vec<&ScoreSummary> = runs.iter().filter_map(|r| r.scores).collect();
     if scores.is_empty() {
         return None;
     }
@@ -92,9 +98,9 @@ pub fn of_seeds(
         0.0
     };
     let signed_bias = luma_ratio.shifted(1.0).widened_by(reference_sd);
-    let moments: Vec<&PixelMoments> = runs.iter().filter_map(|r| r.moments.as_ref()).collect();
+    let moments: Vec<&PixelMoments> = runs.iter().filter_map(|r| r.moments).collect();
     let still = moments.len() == runs.len();
-    let frames = runs.first().map_or(0, |r| r.frames.len());
+    let frames = runs.first().map_or(0, |r| r.frames);
     let verdict = if reference_mean < BLACK_REFERENCE {
         Verdict::NoLight
     } else {

@@ -8,38 +8,7 @@
 use restir_render::settings::preset;
 use restir_render::{Mode, Settings};
 
-use super::state::{CompareState, ViewerState};
-
-/// What was there before the preset took over.
-#[derive(Clone, Debug)]
-pub struct Saved {
-    settings: Settings,
-    mode: Mode,
-    compare: CompareState,
-}
-
-/// The switch's state: whether it follows the map, and what to restore.
-#[derive(Clone, Debug)]
-pub struct DenoisedPreset {
-    pub follow: bool,
-    saved: Option<Saved>,
-}
-
-impl Default for DenoisedPreset {
-    fn default() -> Self {
-        DenoisedPreset {
-            follow: true,
-            saved: None,
-        }
-    }
-}
-
-impl DenoisedPreset {
-    /// Whether the switch applied the preset and has not undone it yet.
-    pub fn is_on(&self) -> bool {
-        self.saved.is_some()
-    }
-}
+use super::state::{BeforePreset, CompareState, ViewerState};
 
 /// B of the split screen while the preset is on.
 pub const COMPARE_WITH: &str = "ris+denoise";
@@ -60,7 +29,7 @@ pub fn follow_denoiser(state: &mut ViewerState, was_on: bool) {
             state.preset_message = Some(format!("error: restir-denoised: {e}"));
             return;
         }
-        state.denoised_preset.saved = Some(Saved {
+        state.denoised_preset.saved = Some(BeforePreset {
             settings: state.settings.clone(),
             mode: state.mode,
             compare: state.compare.clone(),

@@ -281,6 +281,38 @@ impl Default for CompareState {
     }
 }
 
+/// What the denoiser's companion preset replaced, restored when the denoiser goes off.
+#[derive(Clone, Debug)]
+pub struct BeforePreset {
+    pub settings: Settings,
+    pub mode: Mode,
+    pub compare: CompareState,
+}
+
+/// The denoiser's companion preset (`denoised_preset.rs`): whether switching the denoiser
+/// on applies it, and what to restore when it is switched off.
+#[derive(Clone, Debug)]
+pub struct DenoisedPreset {
+    pub follow: bool,
+    pub saved: Option<BeforePreset>,
+}
+
+impl Default for DenoisedPreset {
+    fn default() -> Self {
+        DenoisedPreset {
+            follow: true,
+            saved: None,
+        }
+    }
+}
+
+impl DenoisedPreset {
+    /// Whether the switch applied the preset and has not undone it yet.
+    pub fn is_on(&self) -> bool {
+        self.saved.is_some()
+    }
+}
+
 /// The View section's Record toggle: every rendered frame into a folder and/or a GIF.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RecordState {
@@ -340,7 +372,7 @@ pub struct ViewerState {
     /// Preset load/save result (error or confirmation).
     pub preset_message: Option<String>,
     /// The denoiser's companion preset (`denoised_preset.rs`).
-    pub denoised_preset: super::denoised_preset::DenoisedPreset,
+    pub denoised_preset: DenoisedPreset,
     /// Where screenshots go.
     pub screenshot_dir: String,
     /// The last screenshot's files, or why it failed.

@@ -36,6 +36,10 @@ pub struct Reading {
     pub ms_at_best: Option<(f64, Reach)>,
     pub ms_at_middle: Option<(f64, Reach)>,
     pub rays_at_best: Option<f64>,
+    /// The lowest error the curve reaches ÷ the baseline's lowest: where errors stop falling
+    /// with the knob (a blur floor), the cost to reach the baseline says little and this
+    /// says which floor is lower.
+    pub floor_ratio: f64,
     /// At the top knob value: squared bias and variance (over seeds), with half-widths.
     pub squared_bias: Option<(f64, f64)>,
     pub variance: Option<(f64, f64)>,
@@ -107,6 +111,13 @@ fn read_cell(folder: &Path, knob: &str) -> anyhow::Result<Cell> {
             .and_then(|(_, p)| p.last())
             .map(|p| p.knob.clone())
     };
+    let lowest = |points: &[CostPoint]| {
+        points
+            .iter()
+            .map(|p| p.rmse)
+            .filter(|r| r.is_finite())
+            .fold(f64::INFINITY, f64::min)
+    };
     let mut readings = Vec::new();
     for (config, points) in &curves {
         let at_best = cost_at(points, best_rmse);
@@ -116,6 +127,7 @@ fn read_cell(folder: &Path, knob: &str) -> anyhow::Result<Cell> {
             ms_at_best: ratio(at_best, base_best),
             ms_at_middle: ratio(cost_at(points, middle_rmse), base_middle),
             rays_at_best: at_best.map(|r| r.cost().rays_per_pixel),
+            floor_ratio: lowest(points) / best_rmse,
             squared_bias: spread.map(|s| s.0),
             variance: spread.map(|s| s.1),
         });
@@ -252,7 +264,8 @@ pub fn markdown(cells: &[Cell]) -> String {
         let _ = writeln!(
             out,
             "Each configuration's milliseconds to reach the baseline's best error, ÷ the \
-             baseline's (≤: already there at its cheapest point; >: not within the sweep).\n"
+             baseline's (≤: already there at its cheapest point; >: not within the sweep), \
+             and in brackets the lowest error it reaches ÷ the baseline's lowest.\n"
         );
         let configs: Vec<&str> = cells[0]
             .readings
@@ -268,13 +281,9 @@ pub fn markdown(cells: &[Cell]) -> String {
         for c in &cells {
             let ratios: Vec<String> = configs
                 .iter()
-                .map(|name| {
-                    ratio_text(
-                        c.readings
-                            .iter()
-                            .find(|r| r.config == *name)
-                            .and_then(|r| r.ms_at_best),
-                    )
+                .map(|name| match c.readings.iter().find(|r| r.config == *name) {
+                    Some(r) => format!("{} ({:.2})", ratio_text(r.ms_at_best), r.floor_ratio),
+                    None => "—".to_string(),
                 })
                 .collect();
             let win = winner(c).map_or("—".to_string(), |(w, x)| format!("`{w}` {x:.2}×"));
@@ -303,6 +312,7 @@ fn csv_table(cells: &[Cell]) -> Table {
         "reach_at_best",
         "ms_vs_baseline_at_middle",
         "rays_per_pixel_at_best",
+        "lowest_rmse_vs_baseline",
         "squared_bias",
         "squared_bias_ci95",
         "variance",
@@ -328,6 +338,7 @@ fn csv_table(cells: &[Cell]) -> Table {
                     .map_or(String::new(), |x| code(&x.1).to_string()),
                 num(r.ms_at_middle.map(|x| x.0)),
                 num(r.rays_at_best),
+                r.floor_ratio.to_string(),
                 num(r.squared_bias.map(|x| x.0)),
                 num(r.squared_bias.map(|x| x.1)),
                 num(r.variance.map(|x| x.0)),

@@ -90,34 +90,47 @@ fn stage_ui(ui: &mut Ui, settings: &mut Settings, stage: Stage, context: &Contex
         .iter()
         .find(|p| p.stage == stage && is_stage_switch(p));
     let id = ui.make_persistent_id(("stage", stage.label()));
-    egui::collapsing_header::CollapsingState::load_with_default_open(
-        ui.ctx(),
-        id,
-        stage == Stage::Initial,
-    )
-    .show_header(ui, |ui| match switch {
-        Some(def) => param_widget(ui, settings, def),
-        None => {
-            ui.label(stage.label());
-        }
-    })
-    .body(|ui| {
-        ui.add_enabled_ui(switch.is_none_or(|s| is_on(settings, s)), |ui| {
-            for def in PARAMS
-                .iter()
-                .filter(|p| p.stage == stage && !is_stage_switch(p))
-            {
-                let enabled = technique_switch(def).is_none_or(|s| is_on(settings, s))
-                    && chosen_by(def).is_none_or(|(choice, value)| {
-                        settings.get(choice.name) == Some(ParamValue::Choice(value.to_string()))
-                    });
-                ui.add_enabled_ui(enabled, |ui| {
-                    param_widget(ui, settings, def);
-                    effective_value(ui, settings, def, context);
-                });
+    let load = |ui: &Ui| {
+        egui::collapsing_header::CollapsingState::load_with_default_open(
+            ui.ctx(),
+            id,
+            stage == Stage::Initial,
+        )
+    };
+    // A stage without a switch opens from its name too, not only from the small arrow
+    // (clicking the name and seeing nothing happen is the first thing a new user tries).
+    let mut name_clicked = false;
+    load(ui)
+        .show_header(ui, |ui| match switch {
+            Some(def) => param_widget(ui, settings, def),
+            None => {
+                name_clicked = ui
+                    .add(egui::Label::new(stage.label()).sense(egui::Sense::click()))
+                    .clicked();
             }
+        })
+        .body(|ui| {
+            ui.add_enabled_ui(switch.is_none_or(|s| is_on(settings, s)), |ui| {
+                for def in PARAMS
+                    .iter()
+                    .filter(|p| p.stage == stage && !is_stage_switch(p))
+                {
+                    let enabled = technique_switch(def).is_none_or(|s| is_on(settings, s))
+                        && chosen_by(def).is_none_or(|(choice, value)| {
+                            settings.get(choice.name) == Some(ParamValue::Choice(value.to_string()))
+                        });
+                    ui.add_enabled_ui(enabled, |ui| {
+                        param_widget(ui, settings, def);
+                        effective_value(ui, settings, def, context);
+                    });
+                }
+            });
         });
-    });
+    if name_clicked {
+        let mut state = load(ui);
+        state.toggle(ui);
+        state.store(ui.ctx());
+    }
 }
 
 /// The choice whose value `def`'s name starts with, and that value: `regir_grid` belongs

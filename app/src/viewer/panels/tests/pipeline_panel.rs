@@ -288,3 +288,16 @@ fn without_following_the_map_the_denoiser_switch_changes_only_itself() {
     assert_eq!(h.state().settings, expected);
     assert!(!h.state().compare.enabled);
 }
+
+/// A stage without a switch opens from its name, not only from its arrow.
+#[test]
+fn clicking_a_stage_name_opens_it() {
+    let mut h = harness(pipeline::ui, state());
+    assert!(
+        !shows(&h, "Denoiser (SVGF)"),
+        "the Denoiser stage starts closed"
+    );
+    h.get_by_label("Denoiser").click();
+    h.run();
+    assert!(shows(&h, "Denoiser (SVGF)"), "clicking its name opened it");
+}

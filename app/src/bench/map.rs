@@ -1,6 +1,6 @@
-//! `bench-map DIR`: the crossover map (docs/bench.md, "The crossover map") from the bench
-//! runs under DIR, one folder per (scene, size, camera), each a `--knob` run whose first
-//! configuration is the baseline (denoised RIS). For each cell and configuration: the
+//! `bench-map DIR`: the crossover map (docs/bench.md, "The crossover map at 384×256")
+//! from the bench runs under DIR, one folder per (scene, size, camera), each a `--knob` run
+//! whose first configuration is the baseline (denoised RIS). For each cell and configuration: the
 //! milliseconds it needs to reach the baseline's best error and its middle error, as a
 //! ratio to the baseline's own, read off its curve (equal_error.rs); the same in shadow
 //! rays; its squared bias and variance at the top knob value. Each curve's milliseconds

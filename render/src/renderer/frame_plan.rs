@@ -1,6 +1,6 @@
 //! The frame as an ordered list of passes, read top to bottom like the pipeline diagram
-//! (docs/src/frame.md): G-buffer → (light tiles) → DI initial → temporal → spatial × P → (mutation) →
-//! shade → (GI initial → temporal → spatial → shade, or PT initial → temporal → spatial →
+//! (docs/src/frame.md): G-buffer → (light tiles) → DI initial → temporal → spatial × P →
+//! (mutation) → shade → (GI initial → temporal → spatial → shade, or PT initial → temporal → spatial →
 //! shade) → (denoise temporal → variance → à-trous × N → modulate) → moments → (temporal
 //! window) → display (→ GI or PT view) (→ denoiser view) (→ bias view) (→ window view), or
 //! G-buffer (jitter off) → reference → moments → (temporal window) → display. A stage the

@@ -1,0 +1,29 @@
+#!/bin/sh
+# The crossover map at 384×256 (docs/bench.md, "The crossover map"): every scene, still
+# and panning, 4 seeds, each configuration over light_candidates = 8, 16, 32. Each
+# (scene, camera) is an independent job: run any subset, on any machine, in any order;
+# each writes its own folder and a finished one is skipped. Then `restir-viewer bench-map
+# docs/bench/crossover/map` writes map.md and map.csv. Usage: run.sh [FILTER] (a substring
+# of "scene camera").
+set -e
+BIN=${BIN:-target/release/restir-viewer}
+OUT=${OUT:-docs/bench/crossover/map}
+CONFIGS='ris+denoise,restir-denoised,restir-pairwise+denoise'
+# Still cells first, then panning; animated scenes and moving cameras take a reference per
+# frame (256 spp each), a still one 2048 spp.
+for job in "concourse static" "many-lights:65536 static" "city:131072 static" \
+    "detail static" "concourse pan:0.5" "dynamic:moving-occluder static" \
+    "dynamic:blinking-lights static" "many-lights:65536 pan:0.5" "city:131072 pan:0.5" \
+    "detail pan:0.5" "dynamic:moving-occluder pan:0.5" "dynamic:blinking-lights pan:0.5"; do
+  case "$job" in *"${1:-}"*) ;; *) continue ;; esac
+  scene=${job% *}; cam=${job#* }
+  spp=2048
+  case "$job" in dynamic:*|*pan:*) spp=256 ;; esac
+  dir="$OUT/$(echo "$scene" | tr ':' '-')-384x256-$(echo "$cam" | tr ':' '-')"
+  [ -f "$dir/equal_error.csv" ] && continue
+  start=$(date +%s)
+  "$BIN" bench --scene "builtin:$scene" --size 384x256 --frames 8 --warmup 8 --seeds 4 \
+    --reference-spp $spp --camera $cam --configs "$CONFIGS" \
+    --knob light_candidates=8,16,32 --quiet --out "$dir"
+  echo "$scene $cam $(( $(date +%s) - start )) s" >> "$OUT/run-times.txt"
+done

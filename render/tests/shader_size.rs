@@ -81,6 +81,7 @@ const BUDGETS: &[(&str, usize, usize)] = &[
     ("temporal.wgsl", 1, 9),
     ("spatial.wgsl", 1, 7),
     ("shade.wgsl", 1, 5),
+    ("mutation.wgsl", 1, 7),
     ("reference.wgsl", 5, 48),
     ("gi/initial.wgsl", 2, 19),
     ("gi/temporal.wgsl", 2, 8),

@@ -10,9 +10,12 @@
 
 @group(2) @binding(0) var visibility: texture_2d<u32>;
 @group(2) @binding(1) var<storage, read_write> surfaces: array<Surface>;
+// The light BVH, for the vertex sampler (common/vertex_light.wgsl); one-element
+// placeholders unless VERTEX_LIGHT_BVH is compiled.
+@group(2) @binding(2) var<storage, read> light_bvh_nodes: array<LightBvhNode>;
+@group(2) @binding(3) var<storage, read> light_bvh_trails: array<LightBvhTrail>;
 // Last frame's triangles (where this surface point was: object motion) are the scene
-// group's `prev_triangles` (scene_bindings.wgsl). Group 2 binding 2 of this pass's layout
-// holds the same buffer and is no longer read.
+// group's `prev_triangles` (scene_bindings.wgsl).
 
 fn clamp_barycentrics(uv: vec2<f32>) -> vec2<f32> {
 #ifdef PLANTED_UNCLAMPED_BARYCENTRICS

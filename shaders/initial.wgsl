@@ -97,7 +97,7 @@ fn light_candidate(sp: ShadingPoint, rng: ptr<function, u32>, pixel: vec2<u32>) 
     // The table picks between the lights with a position (then the tree picks which one)
     // and the others (kept): P(light with a position) = share × the walk's probability.
     if light_is_finite(y0.light) {
-        let walk = light_bvh_sample(sp.position, sp.normal, rand_f32(rng));
+        let walk = light_bvh_sample(sp.position, sp.normal, 0.0, rand_f32(rng));
         if walk.light == NO_LIGHT {
             return no_candidate();
         }

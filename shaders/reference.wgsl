@@ -18,6 +18,10 @@
 // pass_index = which chunk of REFERENCE_SAMPLES_PER_DISPATCH samples this dispatch takes.
 @group(2) @binding(2) var<uniform> pass_info: PassInfo;
 @group(2) @binding(3) var<storage, read> surfaces: array<Surface>;
+// The light BVH, for the vertex sampler (common/vertex_light.wgsl); one-element
+// placeholders unless VERTEX_LIGHT_BVH is compiled.
+@group(2) @binding(4) var<storage, read> light_bvh_nodes: array<LightBvhNode>;
+@group(2) @binding(5) var<storage, read> light_bvh_trails: array<LightBvhTrail>;
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {

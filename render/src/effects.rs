@@ -258,8 +258,13 @@ effect_table! {
     LightTiles => "LIGHT_TILES", "light-tiles";
     /// ReGIR's cells of presampled lights (docs/src/light-samplers.md).
     Regir => "REGIR", "regir";
+    /// ReGIR's build samples drawn from the light BVH at each cell's centre.
+    RegirFromBvh => "REGIR_FROM_BVH", "regir-from-bvh";
     /// The light BVH (docs/src/light-samplers.md).
     LightBvh => "LIGHT_BVH", "light-bvh";
+    /// The light BVH at every light-sampling site past DI's candidates: GI and PT vertices,
+    /// transparent layers, the reference (common/vertex_light.wgsl).
+    VertexLightBvh => "VERTEX_LIGHT_BVH", "vertex-light-bvh";
     Environment => "ENVIRONMENT", "environment";
     Animation => "ANIMATION", "animation";
 }
@@ -292,15 +297,17 @@ impl fmt::Display for EffectSet {
 }
 
 impl EffectSet {
-    /// The general pipeline: every code path compiled in.
     /// The general pipeline: every code path compiled in. The light samplers are
     /// alternatives (one draws a frame's candidates), so it keeps the tiles and leaves
-    /// ReGIR and the light BVH out.
+    /// ReGIR and the light BVH (at the first vertex and at the others) out.
     pub fn all() -> EffectSet {
         EffectSet {
             enabled: Effect::ALL
                 .into_iter()
-                .filter(|e| !LIGHT_SAMPLER_EFFECTS[1..].contains(e))
+                .filter(|e| {
+                    !LIGHT_SAMPLER_EFFECTS[1..].contains(e)
+                        && ![Effect::VertexLightBvh, Effect::RegirFromBvh].contains(e)
+                })
                 .collect(),
             reasons: Effect::ALL
                 .iter()
@@ -499,10 +506,31 @@ impl EffectSet {
             other.clone(),
         );
         decide(
+            Effect::RegirFromBvh,
+            sampler == LightSampler::Regir && settings.regir_build_from_bvh,
+            "ReGIR's cells filled from the light BVH walked at their centres".into(),
+            if sampler == LightSampler::Regir {
+                "ReGIR's cells filled from the power table (regir_build_from_bvh off)".into()
+            } else {
+                other.clone()
+            },
+        );
+        decide(
             Effect::LightBvh,
             sampler == LightSampler::Bvh,
             format!("a light BVH: {why}"),
-            other,
+            other.clone(),
+        );
+        decide(
+            Effect::VertexLightBvh,
+            sampler == LightSampler::Bvh && settings.bvh_at_vertices,
+            "the light BVH at path vertices, transparent layers and the reference's vertices too"
+                .into(),
+            if sampler == LightSampler::Bvh {
+                "path vertices draw lights from the power table (bvh_at_vertices off)".into()
+            } else {
+                other
+            },
         );
         decide(
             Effect::Environment,
@@ -534,6 +562,17 @@ impl EffectSet {
         {
             return Err(
                 "light-tiles, regir and light-bvh are alternative light samplers: name at most one"
+                    .into(),
+            );
+        }
+        if enabled.contains(&Effect::RegirFromBvh) && !enabled.contains(&Effect::Regir) {
+            return Err(
+                "regir-from-bvh fills ReGIR's cells from the light BVH: name regir too".into(),
+            );
+        }
+        if enabled.contains(&Effect::VertexLightBvh) && !enabled.contains(&Effect::LightBvh) {
+            return Err(
+                "vertex-light-bvh samples path vertices with the light BVH: name light-bvh too"
                     .into(),
             );
         }

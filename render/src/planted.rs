@@ -57,6 +57,16 @@ pub const PLANTED: &[PlantedSwitch] = &[
         "the light BVH's PDF without its orientation bound: not the density the walk drew from",
     ),
     switch(
+        "PLANTED_VERTEX_TABLE_PDF",
+        &["render/tests/vertex_light_sampler.rs"],
+        "a path vertex (GI, PT, the reference) divides by the power table's PDF after the light BVH drew",
+    ),
+    switch(
+        "PLANTED_REGIR_BVH_TABLE_PDF",
+        &["render/tests/light_samplers.rs"],
+        "ReGIR's fill weighs a build sample the light BVH drew by the power table's PDF",
+    ),
+    switch(
         "PLANTED_MCMC_NO_TARGET_RATIO",
         &["render/tests/mcmc_mutation.rs"],
         "the mutation's acceptance without T(y') / T(y): the kernel no longer keeps T invariant",

@@ -67,6 +67,9 @@ pub struct ReferenceRequest {
     /// The scene time an animated scene was posed at (`None` for a static scene, whose
     /// keys stay what they were): references of different moments never share a file.
     pub scene_time: Option<f32>,
+    /// Lights sampled by the light BVH at every vertex (`reference_light_bvh`) instead of
+    /// the power table; the effects (hence the key) say so too.
+    pub light_bvh: bool,
     /// Path vertices shaded (`max_bounces`): 1 is direct light only, 2 adds one bounce of
     /// indirect light. A reference is compared with frames that estimate the same integral.
     pub max_bounces: u32,
@@ -88,7 +91,7 @@ impl ReferenceRequest {
         spp: u32,
         jitter: bool,
     ) -> ReferenceRequest {
-        let settings = reference_settings(jitter, 1, 1);
+        let settings = reference_settings(jitter, 1, 1, false);
         ReferenceRequest {
             scene: scene_spec.to_string(),
             camera,
@@ -100,8 +103,20 @@ impl ReferenceRequest {
             seed: REFERENCE_SEED,
             environment: scene.environment.as_ref().map(|e| e.fingerprint()),
             scene_time: scene.animation.as_ref().map(|a| a.posed_at),
+            light_bvh: false,
             max_bounces: 1,
             jitter_phase: None,
+        }
+    }
+
+    /// The same request with its lights sampled by the light BVH at every vertex
+    /// (`light_bvh`) or by the power table, and the effect set that follows.
+    pub fn with_light_bvh(self, light_bvh: bool, scene: &Scene) -> ReferenceRequest {
+        let settings = reference_settings(self.jitter, 1, 1, light_bvh);
+        ReferenceRequest {
+            effects: EffectSet::detect(&SceneFeatures::of(scene), &settings, false),
+            light_bvh,
+            ..self
         }
     }
 

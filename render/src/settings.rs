@@ -327,10 +327,14 @@ parameter_table! {
             "Slots per cell, each refilled every frame by RIS; a candidate reads one slot at random. Cells × slots is capped at 2^18: past it, fewer slots.";
         regir_build_samples: u32 = 4, ParamKind::Int { min: 1, max: 64 }, "ReGIR build samples",
             "Power-sampled lights each slot resamples from, toward the cell's target (power over squared distance, zero where the cell lies wholly behind a one-sided emitter).";
+        regir_build_from_bvh: bool = false, ParamKind::Bool, "ReGIR fed by the light BVH",
+            "Draw each slot's build samples from the light BVH walked at the cell's centre instead of the power table (a hybrid: docs/src/light-samplers.md, \"ReGIR fed by the tree\"), so cells find their near lights among a million. Unbiased either way; costs the tree's build and a walk per build sample.";
         regir_jitter: f32 = 1.0, ParamKind::Float { min: 0.0, max: 4.0 }, "ReGIR jitter",
             "How far (in cells) a pixel's lookup point is jittered before its cell is found: 0 reads the pixel's own cell (visible cell edges), 1 blends neighbours. Any value is unbiased: each cell's target covers the pixels that may read it.";
         environment_share: f32 = 0.0, ParamKind::Float { min: 0.0, max: 0.99 }, "Environment share",
             "Probability that a light sample is an environment direction. 0: by estimated power (π R² ∫L dω against the lights' power; docs/src/environment.md, \"Split with the other lights\"). Any value is unbiased; it only moves noise between sky and lights (an enclosed room under a bright sky wants less). Without an environment it does nothing.";
+        bvh_at_vertices: bool = true, ParamKind::Bool, "Light BVH at path vertices",
+            "With the light BVH as the sampler: GI's and PT's path vertices and transparent layers draw their light samples from the tree too, each weighed against BSDF sampling with the tree's PDF at that vertex (docs/src/light-samplers.md, \"At every vertex\"). Off: the power table there. Either is unbiased; the tree sends a vertex's samples to the lights near it.";
         initial_visibility: bool = true, ParamKind::Bool, "Initial visibility",
             "Trace the survivor's shadow ray right after initial sampling and drop it when occluded (visibility reuse: docs/src/ris.md, \"Visibility reuse\"), so reuse only spreads samples that were visible. One extra shadow ray per pixel.";
     }
@@ -397,6 +401,8 @@ parameter_table! {
     Shading {
         jitter: bool = true, ParamKind::Bool, "Sub-pixel jitter",
             "Jitter the G-buffer inside the pixel every frame, so accumulated frames converge to the pixel-area average (antialiased). Off: every pass, the reference included, sees the pixel centre, so comparisons measure lighting error alone.";
+        reference_light_bvh: bool = false, ParamKind::Bool, "Reference: light BVH",
+            "The reference samples lights with the light BVH at every vertex instead of the power table. Off (default): the power table whatever the light sampler, so the reference stays independent of the estimators it checks; the two references agree (render/tests/vertex_light_sampler.rs) and the tree's converges faster where lights are many and local (docs/src/light-samplers.md, \"At every vertex\").";
         reference_spp: u32 = 4, ParamKind::Int { min: 1, max: 4096 }, "Reference spp",
             "Samples per pixel per frame of the reference renderer.";
         max_bounces: u32 = 1, ParamKind::Int { min: 1, max: MAX_BOUNCES as i64 }, "Max bounces",
@@ -482,6 +488,20 @@ pub enum SettingsError {
 impl Settings {
     pub fn def(name: &str) -> Option<&'static ParamDef> {
         PARAMS.iter().find(|p| p.name == name)
+    }
+
+    /// These settings as the reference renders with them: its own light sampler, the power
+    /// table or (`reference_light_bvh`) the light BVH at every vertex, never the realtime
+    /// modes' choice, so that it stays an independent check of them.
+    pub fn for_reference(&self) -> Settings {
+        let mut s = self.clone();
+        s.light_sampler = if self.reference_light_bvh {
+            LightSampler::Bvh
+        } else {
+            LightSampler::Power
+        };
+        s.bvh_at_vertices = true;
+        s
     }
 
     /// These settings with every reuse stage off, as the nee and ris modes run them: each

@@ -33,7 +33,8 @@ impl Mode {
     }
 
     /// The settings this mode renders with: nee and ris turn every reuse stage off
-    /// (`Settings::without_reuse`), nee also draws one light candidate and no BSDF one.
+    /// (`Settings::without_reuse`), nee also draws one light candidate and no BSDF one; the
+    /// reference samples lights its own way (`Settings::for_reference`).
     pub fn settings(self, settings: &crate::settings::Settings) -> crate::settings::Settings {
         match self {
             Mode::Nee => {
@@ -43,7 +44,8 @@ impl Mode {
                 s
             }
             Mode::Ris => settings.without_reuse(),
-            Mode::Restir | Mode::Reference => settings.clone(),
+            Mode::Restir => settings.clone(),
+            Mode::Reference => settings.for_reference(),
         }
     }
 }

@@ -8,47 +8,9 @@
 
 mod common;
 
-use std::sync::Arc;
+use restir_render::{LinearImage, Mode, Renderer, Scene, Settings, load_scene};
 
-use glam::Vec3;
-use restir_render::scene::Material;
-use restir_render::{LinearImage, Mode, Renderer, Scene, Settings, load_environment, load_scene};
-
-use common::scene_parts::{material, rect};
-
-/// The Cornell box under the sky with two more lights of about the ceiling light's power:
-/// a red 4 cm square on the left wall and a blue 1.2 m one on the back wall. Areas 900×
-/// apart, so a proposal density that forgets 1/area is far off; the sky's density is per
-/// steradian. The colours matter: T is the luminance of f, so where f / T is one colour,
-/// W' = W · T(y) / T(y') telescopes and a wrong kernel moves samples without moving the
-/// mean. Only a change of colour shows it, so the tests compare each channel.
-fn mixed_lights_cornell() -> Scene {
-    let mut scene = load_scene("builtin:cornell").unwrap();
-    scene.environment = Some(Arc::new(load_environment("builtin:sky").unwrap()));
-    let small = material(
-        &mut scene,
-        Material::emitter("small", Vec3::new(1.0, 0.05, 0.05) * (3.0 / 0.0016), false),
-    );
-    let large = material(
-        &mut scene,
-        Material::emitter("large", Vec3::new(0.05, 0.05, 1.0) * (6.0 / 1.44), false),
-    );
-    rect(
-        &mut scene,
-        Vec3::new(-0.999, 1.2, 0.0),
-        Vec3::Y * 0.02,
-        Vec3::Z * 0.02,
-        small,
-    );
-    rect(
-        &mut scene,
-        Vec3::new(0.0, 1.0, -0.999),
-        Vec3::X * 0.6,
-        Vec3::Y * 0.6,
-        large,
-    );
-    scene
-}
+use common::scene_parts::mixed_lights_cornell;
 
 const SIZE: (u32, u32) = (48, 36);
 

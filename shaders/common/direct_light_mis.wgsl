@@ -4,7 +4,7 @@
 // triangle lights and per steradian for the environment, so an emitter both strategies can
 // find is counted once. Used by the one-bounce reference, at every path vertex and for the
 // light of transparent layers toward the camera (layer_walk.wgsl).
-#include "common/shading_point.wgsl"
+#include "common/vertex_light.wgsl"
 
 // A strategy's weighted estimate and the shadow rays it traced (counted per pass).
 struct DirectLight {
@@ -19,15 +19,15 @@ const LIGHT_SAMPLE_RAYS: u32 = 1u;
 const LIGHT_SAMPLE_RAYS: u32 = 0u;
 #endif
 
-// One power-sampled light point with a shadow ray. `bsdf_in_weight`: the BSDF strategy
-// runs too, so its pdf enters the weight (without it the light sample stands alone).
+// One light point from the vertex sampler (vertex_light.wgsl) with a shadow ray.
+// `bsdf_in_weight`: the BSDF strategy runs too, so its pdf enters the weight (without it
+// the light sample stands alone).
 // Without SHADOWS the scene is convex and every segment between surface points is
 // unoccluded (effects.rs).
 fn light_sample_mis(sp: ShadingPoint, rng: ptr<function, u32>, bsdf_in_weight: bool) -> DirectLight {
-    let y = sample_light(rng);
-    let lp = light_point(y.light, y.uv);
+    let lp = sample_light_point_at(sp, rng);
     let c = light_contribution(sp, lp);
-    if !(target_pdf(c) > 0.0) {
+    if !(target_pdf(c) > 0.0) || !(lp.source_pdf > 0.0) {
         return DirectLight(vec3<f32>(0.0), 0u);
     }
     let tr = light_transmittance(sp, lp, c);
@@ -52,7 +52,7 @@ fn bsdf_found_emission(sp: ShadingPoint, bs: BrdfSample, found: LightSampleId) -
     if found.light == NO_LIGHT {
         return vec3<f32>(0.0);
     }
-    let lp = light_point(found.light, found.uv);
+    let lp = light_point_at(sp, found.light, found.uv);
     let c = light_contribution_with(sp, lp, true, bs.wi);
     if !(target_pdf(c) > 0.0) {
         return vec3<f32>(0.0);

@@ -28,8 +28,11 @@ fn sin_from_cos(c: f32) -> f32 {
 }
 
 // pbrt-v4's LightBounds::Importance for a node at point p with normal n (zero: none).
-// `orientation` false leaves out both angle terms (only the planted error of the tests).
-fn light_bvh_importance(node: LightBvhNode, p: vec3<f32>, n: vec3<f32>, orientation: bool) -> f32 {
+// `radius_around` > 0 bounds every point within that distance of p instead (ReGIR's cells: the
+// node's sphere is grown by it, so the angle cut-off is 0 only where no light below can
+// reach any such point). `orientation` false leaves out both angle terms (only the planted
+// error of the tests).
+fn light_bvh_importance(node: LightBvhNode, p: vec3<f32>, n: vec3<f32>, radius_around: f32, orientation: bool) -> f32 {
     if !(node.phi > 0.0) {
         return 0.0;
     }
@@ -47,7 +50,7 @@ fn light_bvh_importance(node: LightBvhNode, p: vec3<f32>, n: vec3<f32>, orientat
     let cos_w = dot(oct_decode(node.axis), wi);
     let sin_w = sin_from_cos(cos_w);
     // The directions from p the box subtends: its bounding sphere's cone.
-    let radius = 0.5 * diagonal;
+    let radius = 0.5 * diagonal + radius_around;
     var cos_b = -1.0;
     if dist2 >= radius * radius {
         cos_b = sqrt(max(0.0, 1.0 - radius * radius / dist2));
@@ -73,10 +76,10 @@ fn light_bvh_importance(node: LightBvhNode, p: vec3<f32>, n: vec3<f32>, orientat
 // The probabilities of the two children of an interior node: ∝ importance or, where both
 // are 0 (the parent's looser bounds let the walk this far), ∝ power, so every walk ends
 // at a light and the PDF sums to one. (0, 0): neither has power.
-fn light_bvh_branch(first: u32, second: u32, p: vec3<f32>, n: vec3<f32>, orientation: bool) -> vec2<f32> {
+fn light_bvh_branch(first: u32, second: u32, p: vec3<f32>, n: vec3<f32>, radius: f32, orientation: bool) -> vec2<f32> {
     let a = light_bvh_nodes[first];
     let b = light_bvh_nodes[second];
-    var w = vec2<f32>(light_bvh_importance(a, p, n, orientation), light_bvh_importance(b, p, n, orientation));
+    var w = vec2<f32>(light_bvh_importance(a, p, n, radius, orientation), light_bvh_importance(b, p, n, radius, orientation));
     var total = w.x + w.y;
     if !(total > 0.0) || !is_finite_f32(total) {
         w = vec2<f32>(a.phi, b.phi);
@@ -93,8 +96,9 @@ struct LightBvhSample {
     pdf: f32,     // the probability of this light among the lights with a position
 }
 
-// Walks down from the root with the number u in [0, 1), rescaled at each branch.
-fn light_bvh_sample(p: vec3<f32>, n: vec3<f32>, u_in: f32) -> LightBvhSample {
+// Walks down from the root with the number u in [0, 1), rescaled at each branch; `radius`:
+// as in light_bvh_importance (0 at a shading point).
+fn light_bvh_sample(p: vec3<f32>, n: vec3<f32>, radius: f32, u_in: f32) -> LightBvhSample {
     var index = 0u;
     var u = u_in;
     var pdf = 1.0;
@@ -103,7 +107,7 @@ fn light_bvh_sample(p: vec3<f32>, n: vec3<f32>, u_in: f32) -> LightBvhSample {
         if (node.child_or_light & LIGHT_BVH_LEAF) != 0u {
             return LightBvhSample(node.child_or_light & ~LIGHT_BVH_LEAF, pdf);
         }
-        let prob = light_bvh_branch(index + 1u, node.child_or_light, p, n, true);
+        let prob = light_bvh_branch(index + 1u, node.child_or_light, p, n, radius, true);
         if !(prob.x + prob.y > 0.0) {
             break;
         }
@@ -137,7 +141,7 @@ fn light_bvh_pdf(light: u32, p: vec3<f32>, n: vec3<f32>) -> f32 {
     var pdf = 1.0;
     for (var k = 0u; k < min(trail.depth, 64u); k++) {
         let node = light_bvh_nodes[index];
-        let prob = light_bvh_branch(index + 1u, node.child_or_light, p, n, orientation);
+        let prob = light_bvh_branch(index + 1u, node.child_or_light, p, n, 0.0, orientation);
         let word = select(trail.bits.y, trail.bits.x, k < 32u);
         let second = ((word >> (k & 31u)) & 1u) == 1u;
         pdf *= select(prob.x, prob.y, second);

@@ -1,9 +1,10 @@
 // Direct light at a shading point by resampled importance sampling: the `ris` mode's
 // estimator (initial.wgsl's candidates, docs/src/ris.md) without a reservoir to keep.
-// N_l power-sampled light points and N_b BSDF rays that find an emitter, each weighted
-// p̂ / (N_l p_light + N_b p_bsdf) (the balance heuristic), one survivor picked in
-// proportion, one shadow ray for it: f·Le·G·V · w_sum / p̂(survivor). BSDF rays see
-// occlusion by construction, so only a scene that compiles shadow rays may ask for them.
+// N_l light points from the vertex sampler (vertex_light.wgsl) and N_b BSDF rays that
+// find an emitter, each weighted p̂ / (N_l p_light + N_b p_bsdf) (the balance heuristic),
+// one survivor picked in proportion, one shadow ray for it: f·Le·G·V · w_sum / p̂(survivor).
+// BSDF rays see occlusion by construction, so only a scene that compiles shadow rays may ask
+// for them.
 // The G-buffer estimates the light of transparent layers with it (layer_walk.wgsl): far
 // less noise than one light sample where a few lights dominate (a shade's own bulb).
 //
@@ -42,8 +43,7 @@ fn add_ris_direct_light(sp: ShadingPoint, light_candidates: u32, bsdf_candidates
     let n_b = f32(bsdf_candidates);
     if frame.light_count > 0u {
         for (var i = 0u; i < light_candidates; i++) {
-            let y = sample_light(rng);
-            let lp = light_point(y.light, y.uv);
+            let lp = sample_light_point_at(sp, rng);
             let u = rand_f32(rng);
             let c = light_contribution(sp, lp);
             let t = target_pdf(c);
@@ -61,7 +61,7 @@ fn add_ris_direct_light(sp: ShadingPoint, light_candidates: u32, bsdf_candidates
         if found.light == NO_LIGHT {
             continue;
         }
-        let lp = light_point(found.light, found.uv);
+        let lp = light_point_at(sp, found.light, found.uv);
         let c = light_contribution_with(sp, lp, true, bs.wi);
         let t = target_pdf(c);
         ris_consider(&choice, lp, c, t, n_l * lp.source_pdf + n_b * bs.pdf * c.cos_light / c.dist2, u);

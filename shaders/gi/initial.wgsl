@@ -1,8 +1,9 @@
 // ReSTIR GI initial sample (Ouyang et al. 2021 §3.1): one BSDF-sampled ray from the primary hit
 // x_v; at the secondary hit x_s its outgoing direct radiance toward x_v, estimated with DI's
-// machinery: RIS over `light_candidates` power-sampled lights with the unshadowed target, one
-// shadow ray for the survivor. Emission of x_s itself is not part of L_o: seen from x_v it is
-// direct light, which ReSTIR DI already counts (docs/src/restir-gi.md, "The sample"). The sample
+// machinery: RIS over `light_candidates` lights from the vertex sampler
+// (common/vertex_light.wgsl) with the unshadowed target, one shadow ray for the survivor.
+// Emission of x_s itself is not part of L_o: seen from x_v it is direct light, which ReSTIR
+// DI already counts (docs/src/restir-gi.md, "The sample"). The sample
 // (x_s, n_s, L_o) has source pdf p_ω (solid angle at x_v); one candidate, so W = 1 / p_ω, M = 1.
 #include "gi/reuse.wgsl"
 #include "common/layer_walk.wgsl"
@@ -10,6 +11,10 @@
 @group(2) @binding(0) var<storage, read> surfaces: array<Surface>;
 @group(2) @binding(1) var<storage, read_write> gi_out: array<GiReservoir>;
 @group(2) @binding(2) var<storage, read_write> gi_debug: array<GiPixelDebug>;
+// The light BVH, for the vertex sampler (common/vertex_light.wgsl); one-element
+// placeholders unless VERTEX_LIGHT_BVH is compiled.
+@group(2) @binding(3) var<storage, read> light_bvh_nodes: array<LightBvhNode>;
+@group(2) @binding(4) var<storage, read> light_bvh_trails: array<LightBvhTrail>;
 
 // f · Le · G · V · W of one RIS-selected light point at `sp` (0 in shadow or without lights).
 fn direct_light_estimate(sp: ShadingPoint, rng: ptr<function, u32>) -> vec3<f32> {
@@ -22,8 +27,7 @@ fn direct_light_estimate(sp: ShadingPoint, rng: ptr<function, u32>) -> vec3<f32>
     var chosen_point: LightPoint;
     var chosen: LightContribution;
     for (var i = 0u; i < n; i++) {
-        let y = sample_light(rng);
-        let lp = light_point(y.light, y.uv);
+        let lp = sample_light_point_at(sp, rng);
         let c = light_contribution(sp, lp);
         let t = target_pdf(c);
         let u = rand_f32(rng);

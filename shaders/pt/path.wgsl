@@ -20,8 +20,10 @@
 //
 // Random numbers. A path keeps one seed; bounce b draws its lobe, direction and layer walk
 // from pt_rng(seed, b, PT_RNG_BSDF) and its light sample from pt_rng(seed, b, PT_RNG_LIGHT),
-// so replaying bounce b anywhere draws the same numbers (a power-sampled light point does
-// not depend on the shading point: replayed light samples land on the same z).
+// so replaying bounce b anywhere draws the same numbers. A pure replay keeps the light
+// point z: power-sampled, the same numbers land on it anywhere; drawn by the light BVH
+// (VERTEX_LIGHT_BVH, vertex_light.wgsl) they would not, so z is kept and the shift's
+// Jacobian takes the ratio of z's densities at the two vertices (PT_NEE_DENSITY_VARIES).
 //
 // Transparent layers: the walk's choices come from the bounce's numbers, so replay repeats
 // them; their stop/pass probabilities are treated as part of the integrand, exact for clear
@@ -29,6 +31,14 @@
 // "Paths through glass").
 #include "pt/reservoir.wgsl"
 #include "common/layer_walk.wgsl"
+
+// Whether z's light-sampling density depends on the vertex (the light BVH's does), so that
+// a replayed path's NEE end enters its density and the replay Jacobian.
+#ifdef VERTEX_LIGHT_BVH
+const PT_NEE_DENSITY_VARIES: bool = true;
+#else
+const PT_NEE_DENSITY_VARIES: bool = false;
+#endif
 
 const PT_RNG_BSDF: u32 = 0u;
 const PT_RNG_LIGHT: u32 = 1u;
@@ -162,7 +172,7 @@ fn pt_nee_end(sp: ShadingPoint, z: LightSampleId) -> PtEnd {
     if z.light == NO_LIGHT {
         return e;
     }
-    let lp = light_point(z.light, z.uv);
+    let lp = light_point_at(sp, z.light, z.uv);
     let c = light_contribution(sp, lp);
     e.density = lp.source_pdf;
     if !(target_pdf(c) > 0.0) || !(lp.source_pdf > 0.0) {
@@ -185,7 +195,7 @@ fn pt_bsdf_end(sp: ShadingPoint, wi: vec3<f32>, lobe: u32, z: LightSampleId, tin
     if z.light == NO_LIGHT {
         return e;
     }
-    let lp = light_point(z.light, z.uv);
+    let lp = light_point_at(sp, z.light, z.uv);
     let c = light_contribution_with(sp, lp, true, wi);
     if !(target_pdf(c) > 0.0) {
         return e;
@@ -228,7 +238,7 @@ fn pt_candidate(st: PtWalkState, n: u32, end: u32, prefix: vec3<f32>, e: PtEnd, 
     c.light_u = z.uv.x;
     c.light_v = z.uv.y;
     if st.k == PT_RC_NONE {
-        c.replay_pdf = st.prefix_pdf * select(1.0, e.density, end == PT_END_BSDF);
+        c.replay_pdf = st.prefix_pdf * select(1.0, e.density, end == PT_END_BSDF || PT_NEE_DENSITY_VARIES);
     } else {
         c.replay_pdf = st.rc_prefix_pdf;
         c.rc_triangle = st.rc_hit.triangle;
@@ -265,7 +275,7 @@ fn pt_trace_initial(first: ShadingPoint, seed: u32, r: ptr<function, PtReservoir
     for (var b = 1u; b <= bounces; b++) {
         if b >= 2u && frame.light_count > 0u {
             var lrng = pt_rng(seed, b, PT_RNG_LIGHT);
-            let z = sample_light(&lrng);
+            let z = sample_light_at(sp, &lrng);
             let e = pt_nee_end(sp, z);
             if e.density > 0.0 {
                 let c = pt_candidate(st, b, PT_END_NEE, prefix, e, z, vec3<f32>(1.0));
@@ -420,10 +430,16 @@ fn pt_shift(r: PtReservoir, to: ShadingPoint) -> PtShifted {
     var out = r;
     var jacobian = 1.0;
     if k == PT_RC_NONE {
-        // Pure replay: the end from y_n, with the same numbers.
+        // Pure replay: the end from y_n, with the same numbers (NEE: the same z).
         var e: PtEnd;
         if end == PT_END_NEE {
             e = pt_nee_end(sp, z);
+            if PT_NEE_DENSITY_VARIES {
+                if !(e.density > 0.0) {
+                    return pt_shift_failed(r, PT_FAIL_ZERO);
+                }
+                density *= e.density;
+            }
         } else {
             let bn = end_bounce;
             if !bn.ok || bn.found.id.light == NO_LIGHT {

@@ -14,6 +14,10 @@
 @group(2) @binding(2) var<storage, read_write> pt_out: array<PtReservoir>;
 @group(2) @binding(3) var<storage, read_write> pt_debug: array<PtPixelDebug>;
 @group(2) @binding(4) var<storage, read_write> pt_probe: array<PtProbeStage>;
+// The light BVH, for the vertex sampler (common/vertex_light.wgsl); one-element
+// placeholders unless VERTEX_LIGHT_BVH is compiled.
+@group(2) @binding(5) var<storage, read> light_bvh_nodes: array<LightBvhNode>;
+@group(2) @binding(6) var<storage, read> light_bvh_trails: array<LightBvhTrail>;
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {

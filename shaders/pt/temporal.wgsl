@@ -21,6 +21,10 @@
 @group(2) @binding(4) var<storage, read_write> pt_out: array<PtReservoir>;
 @group(2) @binding(5) var<storage, read_write> pt_debug: array<PtPixelDebug>;
 @group(2) @binding(6) var<storage, read_write> pt_probe: array<PtProbeStage>;
+// The light BVH, for the vertex sampler (common/vertex_light.wgsl); one-element
+// placeholders unless VERTEX_LIGHT_BVH is compiled.
+@group(2) @binding(7) var<storage, read> light_bvh_nodes: array<LightBvhNode>;
+@group(2) @binding(8) var<storage, read> light_bvh_trails: array<LightBvhTrail>;
 
 struct PtPrevious {
     mask: u32,            // REJECT_* bits: not merged

@@ -273,6 +273,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         jitter: base.jitter,
         effects: effects.clone(),
         max_bounces: 1,
+        light_bvh: base.reference_light_bvh,
         phases: if base.jitter {
             references::measured_phases(
                 args.seeds,

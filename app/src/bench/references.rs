@@ -164,6 +164,8 @@ pub struct ReferencePlan<'a> {
     pub effects: Option<EffectSet>,
     /// Path vertices the references shade (`max_bounces` of the configurations they serve).
     pub max_bounces: u32,
+    /// The references sample lights with the light BVH (`--set reference_light_bvh=true`).
+    pub light_bvh: bool,
 }
 
 /// Loads or renders the references of frames `first..first + count` of `shot` (one for a
@@ -240,7 +242,8 @@ fn request_of(
     size: (u32, u32),
 ) -> ReferenceRequest {
     let mut request =
-        ReferenceRequest::new(plan.scene_spec, scene, camera, size, plan.spp, plan.jitter);
+        ReferenceRequest::new(plan.scene_spec, scene, camera, size, plan.spp, plan.jitter)
+            .with_light_bvh(plan.light_bvh, scene);
     if let Some(e) = &plan.effects {
         request.effects = e.clone();
     }

@@ -3,12 +3,12 @@
 
 use std::sync::{Arc, Mutex};
 
-/// Storage buffers one shader stage binds at most (scene group + pass group + stats): 21
-/// for the temporal and display passes (14 scene buffers with the previous frame's
-/// triangles, materials, punctual lights and BVH nodes, the environment table and the
-/// ray-query triangle map, 6 of their own, the stats). Desktop adapters offer far more
-/// (Metal 31, Mesa 22's lavapipe 32, Vulkan and D3D12 drivers thousands).
-const STORAGE_BUFFERS_PER_STAGE: u32 = 21;
+/// Storage buffers one shader stage binds at most (scene group + pass group + stats): 24
+/// for ReSTIR PT's temporal pass (14 scene buffers with the previous frame's triangles,
+/// materials, punctual lights and BVH nodes, the environment table and the ray-query
+/// triangle map, 9 of its own with the light BVH's two, the stats). Desktop adapters offer
+/// far more (Metal 31, Mesa 22's lavapipe 32, Vulkan and D3D12 drivers thousands).
+const STORAGE_BUFFERS_PER_STAGE: u32 = 24;
 
 /// Set to `1` to create the device without ray queries even where the adapter has them, as
 /// on an adapter without (testing the software backend's fallback and the error of

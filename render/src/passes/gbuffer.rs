@@ -7,7 +7,7 @@ use std::collections::BTreeSet;
 
 use super::compile::{PassLayouts, shader_module};
 use super::pass::{Dispatch, PassDef, read, write};
-use super::resources::Resource::*;
+use super::resources::{LightData, Resource::*};
 use crate::gpu::timing::FrameRecorder;
 use crate::gpu::{Gpu, GpuError};
 
@@ -27,7 +27,12 @@ pub const RASTER: PassDef = PassDef {
 pub const RESOLVE: PassDef = PassDef {
     name: "gbuffer resolve",
     shader: "gbuffer_resolve.wgsl",
-    group: &[read(Visibility), write(Surfaces)],
+    group: &[
+        read(Visibility),
+        write(Surfaces),
+        read(Lights(LightData::BvhNodes)),
+        read(Lights(LightData::BvhTrails)),
+    ],
     dispatch: Dispatch::Pixels,
 };
 

@@ -4,7 +4,7 @@
 //! One dispatch per chunk of samples, the chunk picked by its `PassInfo` slot.
 
 use super::pass::{Dispatch, PassDef, read, write};
-use super::resources::{ACCUMULATION, RADIANCE, Resource::*};
+use super::resources::{ACCUMULATION, LightData, RADIANCE, Resource::*};
 
 pub const PASS: PassDef = PassDef {
     name: "reference",
@@ -14,6 +14,8 @@ pub const PASS: PassDef = PassDef {
         write(Pixels(&ACCUMULATION)),
         read(PassInfo),
         read(Surfaces),
+        read(Lights(LightData::BvhNodes)),
+        read(Lights(LightData::BvhTrails)),
     ],
     dispatch: Dispatch::Pixels,
 };

@@ -2,14 +2,18 @@
 //! toward its cell's lights, once per frame before the initial pass reads them
 //! (docs/src/light-samplers.md, "ReGIR").
 
-use super::pass::{Dispatch, PassDef, write};
+use super::pass::{Dispatch, PassDef, read, write};
 use super::resources::{LightData, Resource::*};
 use crate::shader_constants::MAX_REGIR_SLOTS_TOTAL;
 
 pub const FILL: PassDef = PassDef {
     name: "regir fill",
     shader: "regir_fill.wgsl",
-    group: &[write(Lights(LightData::Presampled))],
+    group: &[
+        write(Lights(LightData::Presampled)),
+        read(Lights(LightData::BvhNodes)),
+        read(Lights(LightData::BvhTrails)),
+    ],
     // At most this many slots; the step dispatches the frame's cells × slots
     // (`Step::threads`).
     dispatch: Dispatch::Threads {

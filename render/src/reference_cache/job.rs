@@ -167,7 +167,7 @@ fn run(
     if let Some(reference) = cache.load(request).map_err(text)? {
         return Ok(reference);
     }
-    let settings = reference_settings(request.jitter, 1, request.max_bounces);
+    let settings = reference_settings(request.jitter, 1, request.max_bounces, request.light_bvh);
     let mut renderer =
         Renderer::new(gpu, scene, request.width, request.height, settings).map_err(text)?;
     cache

@@ -18,13 +18,20 @@ const SAMPLES_PER_FRAME_TARGET: u64 = 1 << 20;
 const MAX_SPP_PER_FRAME: u32 = 256;
 
 /// The settings of a reference frame: defaults (the reference reads only these three).
-pub(super) fn reference_settings(jitter: bool, spp_per_frame: u32, max_bounces: u32) -> Settings {
+pub(super) fn reference_settings(
+    jitter: bool,
+    spp_per_frame: u32,
+    max_bounces: u32,
+    light_bvh: bool,
+) -> Settings {
     Settings {
         jitter,
         reference_spp: spp_per_frame,
         max_bounces,
+        reference_light_bvh: light_bvh,
         ..Settings::default()
     }
+    .for_reference()
 }
 
 /// Samples per pixel per frame: the largest divisor of `spp` near the per-frame target, so
@@ -54,6 +61,7 @@ pub fn render_reference(
         request.jitter,
         per_frame,
         request.max_bounces,
+        request.light_bvh,
     ));
     renderer.set_mode(Mode::Reference);
     renderer.set_camera(request.camera);

@@ -561,7 +561,14 @@ impl Renderer {
         if switches.regir_slots > 0 {
             replaced |= lights.ensure_presampled(&self.gpu, switches.regir_slots);
         }
-        if switches.realtime && effects.contains(Effect::LightBvh) {
+        // The reference's vertices may sample with the tree too (`Settings::for_reference`),
+        // and ReGIR's fill may draw from it.
+        let tree = [
+            Effect::LightBvh,
+            Effect::VertexLightBvh,
+            Effect::RegirFromBvh,
+        ];
+        if tree.iter().any(|e| effects.contains(*e)) {
             replaced |= lights.ensure_bvh(&self.gpu, &self.scene);
         }
         replaced

@@ -2,6 +2,7 @@
 //! with a clear message when there is none; none of them skips silently.
 #![allow(dead_code)]
 
+pub mod blocks;
 pub mod furnace;
 pub mod indirect;
 pub mod scene_parts;

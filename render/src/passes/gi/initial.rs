@@ -4,7 +4,7 @@
 
 use crate::gpu_types::{GpuGiPixelDebug, GpuGiReservoir};
 use crate::passes::pass::{Dispatch, PassDef, read, write};
-use crate::passes::resources::{Allocation, Chain, PixelBuffer, Resource::*, Role};
+use crate::passes::resources::{Allocation, Chain, LightData, PixelBuffer, Resource::*, Role};
 
 /// ReSTIR GI reservoirs (their own ping-pong, history kept for GI temporal reuse).
 pub const GI_RESERVOIRS: Chain = Chain {
@@ -25,6 +25,8 @@ pub const PASS: PassDef = PassDef {
         read(Surfaces),
         write(Chain(&GI_RESERVOIRS, Role::Out)),
         write(Pixels(&GI_DEBUG)),
+        read(Lights(LightData::BvhNodes)),
+        read(Lights(LightData::BvhTrails)),
     ],
     dispatch: Dispatch::Pixels,
 };

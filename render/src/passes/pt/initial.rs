@@ -4,7 +4,7 @@
 
 use crate::gpu_types::{GpuPtPixelDebug, GpuPtProbeStage, GpuPtReservoir};
 use crate::passes::pass::{Dispatch, PassDef, read, write};
-use crate::passes::resources::{Allocation, Chain, PixelBuffer, Resource::*, Role};
+use crate::passes::resources::{Allocation, Chain, LightData, PixelBuffer, Resource::*, Role};
 use crate::shader_constants::PT_PROBE_STAGES;
 
 /// ReSTIR PT path reservoirs (their own ping-pong, history kept for PT temporal reuse).
@@ -34,6 +34,8 @@ pub const PASS: PassDef = PassDef {
         write(Chain(&PT_RESERVOIRS, Role::Out)),
         write(Pixels(&PT_DEBUG)),
         write(Pixels(&PT_PROBE)),
+        read(Lights(LightData::BvhNodes)),
+        read(Lights(LightData::BvhTrails)),
     ],
     dispatch: Dispatch::Pixels,
 };

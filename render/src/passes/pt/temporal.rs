@@ -4,7 +4,7 @@
 
 use super::initial::{PT_DEBUG, PT_PROBE, PT_RESERVOIRS};
 use crate::passes::pass::{Dispatch, PassDef, read, write};
-use crate::passes::resources::{Resource::*, Role};
+use crate::passes::resources::{LightData, Resource::*, Role};
 
 pub const PASS: PassDef = PassDef {
     name: "pt temporal",
@@ -17,6 +17,8 @@ pub const PASS: PassDef = PassDef {
         write(Chain(&PT_RESERVOIRS, Role::Out)),
         write(Pixels(&PT_DEBUG)),
         write(Pixels(&PT_PROBE)),
+        read(Lights(LightData::BvhNodes)),
+        read(Lights(LightData::BvhTrails)),
     ],
     dispatch: Dispatch::Pixels,
 };

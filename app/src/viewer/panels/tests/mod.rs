@@ -41,7 +41,7 @@ fn harness<'a>(
     state: ViewerState,
 ) -> Harness<'a, ViewerState> {
     Harness::builder()
-        .with_size(egui::vec2(520.0, 1400.0))
+        .with_size(egui::vec2(520.0, 1600.0))
         .build_ui_state(panel, state)
 }
 

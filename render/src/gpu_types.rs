@@ -377,7 +377,8 @@ pub struct GpuParams {
     /// barycentric units (docs/src/mcmc-mutation.md).
     pub mutations: u32,
     pub mutation_step: f32,
-    pub _pad: u32,
+    /// Light candidates at GI's secondary vertex (resolved: never 0 unless DI's is).
+    pub gi_light_candidates: u32,
 }
 
 /// What the display pass shows and how (view settings, not pipeline parameters).

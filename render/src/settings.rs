@@ -421,6 +421,8 @@ parameter_table! {
             "Merge GI reservoirs of nearby pixels, each sample reconnected to this pixel's visible point.", ReuseSwitch;
         gi_m_cap: f32 = 10.0, ParamKind::Float { min: 0.0, max: 1e6 }, "GI M cap",
             "Upper bound of a GI reservoir's confidence M (as M cap for direct light, separately). 10, half the direct light's: a GI sample's cached radiance is never re-evaluated, so it outlives a lighting change for about M cap frames (recovery took ~M cap frames for direct light, docs/bench.md \"Lag and ghosting\").";
+        gi_light_candidates: u32 = 0, ParamKind::Int { min: 0, max: 256 }, "GI light candidates",
+            "Light candidates of the RIS at GI's secondary vertex (the direct light its sample carries). 0: DI's `light_candidates`. With the light BVH at the vertices a few of its candidates do what 32 of the table's do, for an eighth of the walks (docs/bench.md, \"At every vertex\").";
         gi_spatial_neighbours: u32 = 3, ParamKind::Int { min: 0, max: MAX_SPATIAL_NEIGHBOURS as i64 }, "GI neighbours",
             "Neighbours tried per pixel in GI spatial reuse. 3, fewer than direct light's 5: each one costs a reconnection shadow ray when GI reconnection visibility is on.";
         gi_spatial_radius: f32 = 30.0, ParamKind::Float { min: 1.0, max: 1024.0 }, "GI radius (px at 1080p)",
@@ -721,7 +723,11 @@ impl Settings {
             regir_jitter: self.regir_jitter,
             mutations: self.mutations.min(MAX_MUTATIONS),
             mutation_step: self.mutation_step,
-            _pad: 0,
+            gi_light_candidates: if self.gi_light_candidates == 0 {
+                self.light_candidates
+            } else {
+                self.gi_light_candidates
+            },
         }
     }
 

@@ -443,7 +443,8 @@ fn host_structs_match_wgsl_layouts() {
             regir_build_samples,
             regir_jitter,
             mutations,
-            mutation_step
+            mutation_step,
+            gi_light_candidates
         ]
     );
     check_struct!(

@@ -219,7 +219,7 @@ struct Params {
     // MCMC mutation of DI's samples (docs/src/mcmc-mutation.md)
     mutations: u32,               // steps per pixel (0 = off)
     mutation_step: f32,           // largest local slide, barycentric units
-    _pad: u32,
+    gi_light_candidates: u32,     // RIS candidates at GI's secondary vertex
 }
 
 struct Display {

@@ -1,6 +1,6 @@
 // ReSTIR GI initial sample (Ouyang et al. 2021 §3.1): one BSDF-sampled ray from the primary hit
 // x_v; at the secondary hit x_s its outgoing direct radiance toward x_v, estimated with DI's
-// machinery: RIS over `light_candidates` lights from the vertex sampler
+// machinery: RIS over `gi_light_candidates` lights from the vertex sampler
 // (common/vertex_light.wgsl) with the unshadowed target, one shadow ray for the survivor.
 // Emission of x_s itself is not part of L_o: seen from x_v it is direct light, which ReSTIR
 // DI already counts (docs/src/restir-gi.md, "The sample"). The sample
@@ -18,7 +18,7 @@
 
 // f · Le · G · V · W of one RIS-selected light point at `sp` (0 in shadow or without lights).
 fn direct_light_estimate(sp: ShadingPoint, rng: ptr<function, u32>) -> vec3<f32> {
-    let n = params.light_candidates;
+    let n = params.gi_light_candidates;
     if frame.light_count == 0u || n == 0u {
         return vec3<f32>(0.0);
     }

@@ -284,3 +284,18 @@ fn built_in_presets_apply_cleanly_by_name() {
     let denoised = preset::builtin("restir-denoised").unwrap();
     assert!(denoised.contains(&"denoise=true") && denoised.contains(&"m_cap=4"));
 }
+
+#[test]
+fn gi_light_candidates_default_to_di_s_and_the_reference_keeps_the_table() {
+    let mut s = Settings::default();
+    assert_eq!(s.gpu_params(1080).gi_light_candidates, s.light_candidates);
+    s.gi_light_candidates = 4;
+    assert_eq!(s.gpu_params(1080).gi_light_candidates, 4);
+    s.light_sampler = LightSampler::Bvh;
+    s.bvh_at_vertices = false;
+    let reference = s.for_reference();
+    assert_eq!(reference.light_sampler, LightSampler::Power);
+    assert!(reference.bvh_at_vertices);
+    s.reference_light_bvh = true;
+    assert_eq!(s.for_reference().light_sampler, LightSampler::Bvh);
+}

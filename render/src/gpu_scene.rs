@@ -6,6 +6,7 @@
 
 pub mod accel;
 pub mod layout;
+pub mod light_changes;
 mod rebuild;
 #[cfg(test)]
 mod rebuild_tests;
@@ -35,6 +36,7 @@ use crate::scene::{Aabb, Scene};
 use crate::tracing::RayBackend;
 use accel::{AccelInfo, AccelStructures};
 use layout::SceneLayouts;
+use light_changes::LightChangeLog;
 
 pub use layout::SCENE_STORAGE_BINDINGS;
 
@@ -138,9 +140,10 @@ pub struct GpuScene {
     prev_differs: bool,
     /// Per light entry, its select_pdf as uploaded (tests and the inspector).
     light_pdfs: Vec<f32>,
-    /// Per triangle light entry: (source triangle, area at the last table build), to tell
-    /// rigid emitter motion (table still valid) from a change of area (dynamic scenes).
-    light_areas: Vec<(u32, f32)>,
+    /// Per light entry, for a triangle: (source triangle, area at the last table build),
+    /// to tell rigid emitter motion (table still valid) from a change of area (dynamic
+    /// scenes).
+    light_areas: Vec<Option<(u32, f32)>>,
     /// Per light entry: (is a triangle, BVH triangle or punctual index); `None` for the
     /// environment, which has no geometry.
     light_geometry_kinds: Vec<Option<(bool, u32)>>,
@@ -163,11 +166,27 @@ pub struct GpuScene {
     built_sah: f64,
     triangle_records: Vec<GpuTriangle>,
     prev_triangle_records: Vec<GpuTriangle>,
+    shading_records: Vec<GpuTriangleShading>,
+    /// What an update of a few moved meshes needs (`update.rs`), made on the first such
+    /// update and dropped when the tree is rebuilt.
+    motion_index: Option<update::MotionIndex>,
+    /// The light entries each recent update changed, for the light BVH's refit.
+    pub light_changes: LightChangeLog,
     /// Refitted SAH over built SAH above which the tree is rebuilt (`BVH_REBUILD_FACTOR`;
     /// infinite: refit only).
     pub bvh_rebuild_factor: f64,
     /// Parts of a rebuild left out (tests only; `RebuildPlant::default()` otherwise).
     rebuild_plant: rebuild::RebuildPlant,
+}
+
+/// What a test reads back of the buffers an update rewrites (and of the light BVH's).
+#[cfg(feature = "test-hooks")]
+#[derive(Debug, PartialEq)]
+pub struct SceneBufferContents {
+    pub triangles: Vec<GpuTriangle>,
+    pub shading: Vec<GpuTriangleShading>,
+    pub bvh_nodes: Vec<GpuBvhNode>,
+    pub light_bvh_nodes: Vec<GpuLightBvhNode>,
 }
 
 /// The storage buffers an update rewrites (bind group 1 holds them all).
@@ -459,6 +478,9 @@ impl GpuScene {
                 Vec::new()
             },
             prev_triangle_records: if dynamic { triangles } else { Vec::new() },
+            shading_records: if dynamic { shading } else { Vec::new() },
+            motion_index: None,
+            light_changes: LightChangeLog::new(lights.lights.len()),
             bvh_rebuild_factor: BVH_REBUILD_FACTOR,
             rebuild_plant: Default::default(),
             bvh,
@@ -529,24 +551,37 @@ impl GpuScene {
     /// corners (a punctual light's position three times), power and sidedness, or `None`
     /// for an infinite light (the environment, a directional light).
     pub fn light_sampler_lights(&self) -> Vec<Option<crate::light_bvh::EmissiveTriangle>> {
-        self.light_shapes
-            .iter()
-            .zip(&self.light_geometry)
-            .zip(&self.light_entries)
-            .map(|((shape, geometry), (_, power))| {
-                let p = (*geometry)?;
-                let two_sided = match shape {
-                    LightShape::Infinite => return None,
-                    LightShape::OneSided => false,
-                    LightShape::TwoSided => true,
-                };
-                Some(crate::light_bvh::EmissiveTriangle {
-                    p,
-                    power: *power as f32,
-                    two_sided,
-                })
-            })
+        (0..self.light_entries.len() as u32)
+            .map(|entry| self.light_sampler_light(entry))
             .collect()
+    }
+
+    #[cfg(feature = "test-hooks")]
+    pub fn buffer_contents_for_tests(&self, gpu: &Gpu) -> SceneBufferContents {
+        use crate::gpu::readback::read_buffer;
+        let b = &self.buffers;
+        SceneBufferContents {
+            triangles: read_buffer(gpu, &b.triangles, 0, b.triangles.size()),
+            shading: read_buffer(gpu, &b.shading, 0, b.shading.size()),
+            bvh_nodes: read_buffer(gpu, &b.bvh_nodes, 0, b.bvh_nodes.size()),
+            light_bvh_nodes: Vec::new(),
+        }
+    }
+
+    /// Light entry `entry` as the light samplers see it (`None` without a position).
+    pub fn light_sampler_light(&self, entry: u32) -> Option<crate::light_bvh::EmissiveTriangle> {
+        let e = entry as usize;
+        let p = (*self.light_geometry.get(e)?)?;
+        let two_sided = match self.light_shapes.get(e)? {
+            LightShape::Infinite => return None,
+            LightShape::OneSided => false,
+            LightShape::TwoSided => true,
+        };
+        Some(crate::light_bvh::EmissiveTriangle {
+            p,
+            power: self.light_entries.get(e)?.1 as f32,
+            two_sided,
+        })
     }
 
     /// The world position of light sample (light, uv), as `light_point` in lights.wgsl.

@@ -211,6 +211,31 @@ pub struct GpuLightBvhNode {
     pub _pad: u32,
 }
 
+/// A light-BVH node's bounds in full precision (`light_bvh::LightBounds`), which the GPU
+/// refit unions: the node records hold them quantised.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuLightBounds {
+    pub min: [f32; 3],
+    pub phi: f32,
+    pub max: [f32; 3],
+    /// The normals' cone: cos θ_o (-1: every direction) and its axis.
+    pub cos_theta_o: f32,
+    pub w: [f32; 3],
+    pub cos_theta_e: f32,
+}
+
+/// One level of the GPU refit (one dispatch): nodes `work[first..first + count]`, leaves
+/// (taking the changed lights' bounds) or interior nodes.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuRefitLevel {
+    pub first: u32,
+    pub count: u32,
+    pub leaves: u32,
+    pub _pad: u32,
+}
+
 /// Per light entry: its branch choices from the root (bit k: the second child at depth k)
 /// and how deep its leaf is (`LIGHT_BVH_NOT_IN_TREE`: no leaf).
 #[repr(C)]

@@ -9,6 +9,8 @@
 
 use glam::{Quat, Vec3};
 
+use crate::shader_constants::LIGHT_BVH_NEARLY_OPPOSITE;
+
 /// A cone of directions: every direction within `acos(cos_theta)` of `w`. `cos_theta` −1
 /// is the whole sphere.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -43,7 +45,9 @@ impl DirectionCone {
     pub fn union(a: DirectionCone, b: DirectionCone) -> DirectionCone {
         let theta_a = a.cos_theta.clamp(-1.0, 1.0).acos();
         let theta_b = b.cos_theta.clamp(-1.0, 1.0).acos();
-        let theta_d = a.w.dot(b.w).clamp(-1.0, 1.0).acos();
+        // The angle between the axes from both its sine and cosine: acos of a dot product
+        // near 1 turns its rounding (6e-8) into 3.5e-4 rad, atan2 keeps it at 1e-7.
+        let theta_d = a.w.cross(b.w).length().atan2(a.w.dot(b.w));
         let pi = std::f32::consts::PI;
         if (theta_d + theta_b).min(pi) <= theta_a {
             return a;
@@ -51,20 +55,34 @@ impl DirectionCone {
         if (theta_d + theta_a).min(pi) <= theta_b {
             return b;
         }
-        let theta_o = (theta_a + theta_d + theta_b) / 2.0;
+        // Rotate a's axis toward b's, about their cross product. Axes within
+        // NEARLY_OPPOSITE of opposite have no well-defined great circle (their cross product
+        // is rounding noise): about any axis perpendicular to a's then, with θ_d taken as π
+        // so that the cone still holds b's (a small threshold on the cross product instead
+        // would jump between cones for parallel walls, and the GPU's refit,
+        // light_bvh_refit.wgsl, would land on either side of the jump).
+        let (axis, theta_o) = if theta_d < pi - LIGHT_BVH_NEARLY_OPPOSITE {
+            let axis = a.w.cross(b.w).normalize_or(perpendicular(a.w));
+            (axis, (theta_a + theta_d + theta_b) / 2.0)
+        } else {
+            (perpendicular(a.w), (theta_a + pi + theta_b) / 2.0)
+        };
         if theta_o >= pi {
             return DirectionCone::entire_sphere();
         }
-        let axis = a.w.cross(b.w);
-        if axis.length_squared() < 1e-12 {
-            return DirectionCone::entire_sphere();
-        }
-        let w = Quat::from_axis_angle(axis.normalize(), theta_o - theta_a) * a.w;
+        let w = Quat::from_axis_angle(axis, theta_o - theta_a) * a.w;
         DirectionCone {
             w: w.normalize(),
             cos_theta: theta_o.cos(),
         }
     }
+}
+
+/// A unit vector perpendicular to unit `w`, smooth near the coordinate axes where scenes'
+/// normals gather (light_bvh_refit.wgsl's `perpendicular` is the same).
+pub fn perpendicular(w: Vec3) -> Vec3 {
+    let e = if w.z.abs() > 0.9 { Vec3::X } else { Vec3::Z };
+    w.cross(e).normalize()
 }
 
 /// What a node (or one light) bounds: positions, emission directions, power.
@@ -414,24 +432,29 @@ impl LightBvh {
     /// their bounds, which are still right. The same tree as `refit` when `changed` lists
     /// every light that changed. Returns the nodes it rewrote, in ascending order.
     pub fn refit_changed(&mut self, lights: &[EmissiveTriangle], changed: &[usize]) -> Vec<usize> {
+        let rewritten = self.nodes_above(changed);
+        // Preorder: a node's children come after it, so descending order is bottom up.
+        for &index in rewritten.iter().rev() {
+            self.recompute(index, lights);
+        }
+        rewritten
+    }
+
+    /// The leaves of the `changed` lights and every node above them, ascending.
+    pub fn nodes_above(&self, changed: &[usize]) -> Vec<usize> {
         let mut dirty = vec![false; self.nodes.len()];
-        let mut rewritten = Vec::new();
+        let mut nodes = Vec::new();
         for &light in changed {
             let mut node = self.leaves.get(light).copied().unwrap_or(NO_NODE);
             // Up to the root, or to a node another changed light already marked.
             while node != NO_NODE && !dirty[node as usize] {
                 dirty[node as usize] = true;
-                rewritten.push(node as usize);
+                nodes.push(node as usize);
                 node = self.parents[node as usize];
             }
         }
-        // Preorder: a node's children come after it, so descending order is bottom up.
-        rewritten.sort_unstable_by(|a, b| b.cmp(a));
-        for &index in &rewritten {
-            self.recompute(index, lights);
-        }
-        rewritten.reverse();
-        rewritten
+        nodes.sort_unstable();
+        nodes
     }
 
     /// Node `index`'s bounds from its light or its children.

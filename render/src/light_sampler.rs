@@ -7,34 +7,20 @@
 //! slots, so none is ever added or removed: a light switched off stays in the tree with
 //! no power).
 
+mod gpu_refit;
+
 use std::time::Instant;
 
 use glam::Vec3;
 
-use crate::gpu::Gpu;
+use crate::gpu::{Gpu, write_runs};
 use crate::gpu_scene::{GpuScene, oct_encode};
 use crate::gpu_types::{GpuLightBvhNode, GpuLightBvhTrail, GpuPresampledLight};
 use crate::light_bvh::{EmissiveTriangle, LightBvh, Node};
-use crate::shader_constants::{LIGHT_BVH_LEAF, LIGHT_BVH_NOT_IN_TREE};
+use crate::shader_constants::{LIGHT_BVH_CONE_SLACK, LIGHT_BVH_LEAF, LIGHT_BVH_NOT_IN_TREE};
 
 /// Rewritten nodes closer than this are uploaded in one write with the nodes between them.
 const UPLOAD_GAP: usize = 64;
-
-/// Ascending `indices` as ranges, joined where fewer than `gap` indices lie between them.
-fn runs(indices: &[usize], gap: usize) -> Vec<std::ops::Range<usize>> {
-    let mut out: Vec<std::ops::Range<usize>> = Vec::new();
-    for &i in indices {
-        match out.last_mut() {
-            Some(run) if i < run.end + gap => run.end = i + 1,
-            _ => out.push(i..i + 1),
-        }
-    }
-    out
-}
-
-/// Widening of each node's normals cone (radians) so that the octahedral encoding of its
-/// axis (≈ 1e-4 rad of error) never makes the bound exclude a direction it holds.
-const CONE_SLACK: f32 = 1e-3;
 
 /// What the light samplers cost, for `--stats`, the viewer and docs/bench.md.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
@@ -49,6 +35,10 @@ pub struct LightSamplerStats {
     pub bvh_refits: u64,
     /// Nodes the last refit rewrote (the changed lights' leaves and everything above them).
     pub bvh_refit_nodes: usize,
+    /// The last refit ran on the GPU (`light_bvh_gpu_refit`); its time then is the CPU's
+    /// share (finding the nodes, uploading the work) plus, when the frame is timed, the
+    /// GPU's, waited for.
+    pub bvh_refit_on_gpu: bool,
     /// The presampled lights' bytes (the tiles' entries or ReGIR's slots, 64 each).
     pub presampled_bytes: u64,
 }
@@ -74,6 +64,13 @@ struct SceneLightBvh {
     entries: Vec<u32>,
     power_generation: u64,
     motion_generation: u64,
+    /// The scene's `light_changes` generation it has caught up with.
+    change_generation: u64,
+    /// The refit on the GPU, made on its first use (`light_bvh_gpu_refit`).
+    gpu_refit: Option<gpu_refit::GpuRefit>,
+    /// The GPU has refitted the tree since `tree` and `records` were last brought up to
+    /// date: only `lights` is current on the CPU.
+    refitted_on_gpu: bool,
 }
 
 pub struct LightSamplerBuffers {
@@ -85,13 +82,20 @@ pub struct LightSamplerBuffers {
     pub stats: LightSamplerStats,
     /// Test-only: the BVH is neither refitted nor rebuilt (a planted stale tree).
     pub frozen: bool,
+    /// Test-only: each refit loses one light of the scene's change list (planted).
+    pub planted_lost_change: bool,
+    /// Wait for a GPU refit and count its time in `bvh_refit_ms` (frames that are timed).
+    pub wait_for_gpu_refit: bool,
 }
 
 fn storage(gpu: &Gpu, label: &str, bytes: u64) -> wgpu::Buffer {
     gpu.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some(label),
         size: bytes.max(16),
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        // COPY_SRC: the tests read the tree back.
+        usage: wgpu::BufferUsages::STORAGE
+            | wgpu::BufferUsages::COPY_DST
+            | wgpu::BufferUsages::COPY_SRC,
         mapped_at_creation: false,
     })
 }
@@ -110,6 +114,8 @@ impl LightSamplerBuffers {
             bvh: None,
             stats: LightSamplerStats::default(),
             frozen: false,
+            planted_lost_change: false,
+            wait_for_gpu_refit: false,
         }
     }
 
@@ -126,8 +132,9 @@ impl LightSamplerBuffers {
     }
 
     /// The light BVH of `scene` as it is now: built on first use, refitted after its
-    /// lights moved or changed power. True if the buffers were replaced.
-    pub fn ensure_bvh(&mut self, gpu: &Gpu, scene: &GpuScene) -> bool {
+    /// lights moved or changed power, on the GPU if `on_gpu`. True if the buffers were
+    /// replaced.
+    pub fn ensure_bvh(&mut self, gpu: &Gpu, scene: &GpuScene, on_gpu: bool) -> bool {
         let power = scene.light_power_generation;
         let motion = scene.light_motion_generation;
         match &mut self.bvh {
@@ -135,29 +142,66 @@ impl LightSamplerBuffers {
             Some(b) if b.power_generation == power && b.motion_generation == motion => false,
             Some(b) => {
                 let start = Instant::now();
-                let now = scene.light_sampler_lights();
                 let mut changed = Vec::new();
-                for (i, (light, &entry)) in b.lights.iter_mut().zip(&b.entries).enumerate() {
-                    if let Some(Some(t)) = now.get(entry as usize).filter(|t| **t != Some(*light)) {
-                        *light = *t;
-                        changed.push(i);
+                match scene.light_changes.since(b.change_generation) {
+                    // The scene's log names the entries that changed: only those are read.
+                    Some(mut entries) => {
+                        if self.planted_lost_change {
+                            entries.pop();
+                        }
+                        for entry in entries {
+                            let Ok(i) = b.entries.binary_search(&entry) else {
+                                continue; // the environment or a directional light
+                            };
+                            if let Some(now) = scene.light_sampler_light(entry)
+                                && now != b.lights[i]
+                            {
+                                b.lights[i] = now;
+                                changed.push(i);
+                            }
+                        }
+                    }
+                    // The log no longer reaches back: every light compared.
+                    None => {
+                        let now = scene.light_sampler_lights();
+                        for (i, (light, &entry)) in b.lights.iter_mut().zip(&b.entries).enumerate()
+                        {
+                            if let Some(Some(t)) =
+                                now.get(entry as usize).filter(|t| **t != Some(*light))
+                            {
+                                *light = *t;
+                                changed.push(i);
+                            }
+                        }
                     }
                 }
-                let rewritten = b.tree.refit_changed(&b.lights, &changed);
+                b.change_generation = scene.light_changes.generation();
                 b.power_generation = power;
                 b.motion_generation = motion;
-                for &index in &rewritten {
-                    b.records[index] = node_record(&b.tree, index, &b.entries);
+                if on_gpu && b.gpu_refit.is_none() {
+                    match gpu_refit::GpuRefit::new(gpu, &b.tree) {
+                        Ok(g) => b.gpu_refit = Some(g),
+                        Err(e) => log::error!(
+                            "light BVH refit on the GPU unavailable ({e}); refitting on the CPU"
+                        ),
+                    }
                 }
-                for run in runs(&rewritten, UPLOAD_GAP) {
-                    let offset = (run.start * std::mem::size_of::<GpuLightBvhNode>()) as u64;
-                    gpu.queue.write_buffer(
-                        &self.bvh_nodes,
-                        offset,
-                        bytemuck::cast_slice(&b.records[run]),
-                    );
+                match b.gpu_refit.as_mut().filter(|_| on_gpu) {
+                    Some(g) => {
+                        self.stats.bvh_refit_nodes =
+                            g.refit(gpu, &b.tree, &b.lights, &changed, &self.bvh_nodes);
+                        b.refitted_on_gpu = true;
+                        if self.wait_for_gpu_refit {
+                            gpu.wait_idle();
+                        }
+                    }
+                    None => {
+                        // The GPU's bounds would go stale: a later GPU refit starts anew.
+                        b.gpu_refit = None;
+                        self.stats.bvh_refit_nodes = cpu_refit(gpu, b, &changed, &self.bvh_nodes);
+                    }
                 }
-                self.stats.bvh_refit_nodes = rewritten.len();
+                self.stats.bvh_refit_on_gpu = on_gpu && b.gpu_refit.is_some();
                 self.stats.bvh_refit_ms = start.elapsed().as_secs_f64() * 1e3;
                 self.stats.bvh_refits += 1;
                 false
@@ -205,13 +249,26 @@ impl LightSamplerBuffers {
             entries,
             power_generation: scene.light_power_generation,
             motion_generation: scene.light_motion_generation,
+            change_generation: scene.light_changes.generation(),
+            gpu_refit: None,
+            refitted_on_gpu: false,
         });
     }
 
     /// `light`'s selection probability at point `p` with normal `n` under each sampler
     /// (light_bvh.wgsl's `light_bvh_selection`, by the plain-Rust tree it was uploaded from).
-    pub fn selection_pdfs(&self, scene: &GpuScene, light: u32, p: Vec3, n: Vec3) -> SelectionPdfs {
+    pub fn selection_pdfs(
+        &mut self,
+        scene: &GpuScene,
+        light: u32,
+        p: Vec3,
+        n: Vec3,
+    ) -> SelectionPdfs {
         let power = scene.light_select_pdf(light).unwrap_or(0.0);
+        if let Some(b) = self.bvh.as_mut().filter(|b| b.refitted_on_gpu) {
+            // The tree the GPU refitted, on the CPU (its records stay as they were).
+            b.tree.refit(&b.lights);
+        }
         let bvh = self
             .bvh
             .as_ref()
@@ -227,6 +284,26 @@ impl LightSamplerBuffers {
     pub fn forget_scene(&mut self) {
         self.bvh = None;
     }
+}
+
+/// The refit on the CPU of the `changed` lights (already in `b.lights`): their nodes
+/// recomputed and uploaded in runs; after refits on the GPU, every node (the CPU's tree
+/// and records are older than the GPU's). Returns the nodes it rewrote.
+fn cpu_refit(gpu: &Gpu, b: &mut SceneLightBvh, changed: &[usize], nodes: &wgpu::Buffer) -> usize {
+    if b.refitted_on_gpu {
+        b.tree.refit(&b.lights);
+        b.records = node_records(&b.tree, &b.entries);
+        gpu.queue
+            .write_buffer(nodes, 0, bytemuck::cast_slice(&b.records));
+        b.refitted_on_gpu = false;
+        return b.records.len();
+    }
+    let rewritten = b.tree.refit_changed(&b.lights, changed);
+    for &index in &rewritten {
+        b.records[index] = node_record(&b.tree, index, &b.entries);
+    }
+    write_runs(gpu, nodes, &b.records, &rewritten, UPLOAD_GAP);
+    rewritten.len()
 }
 
 /// The tree's nodes as the GPU reads them (at least one, a placeholder for an empty tree:
@@ -255,7 +332,7 @@ fn node_record(tree: &LightBvh, index: usize, entries: &[u32]) -> GpuLightBvhNod
     let cos_theta_o = if b.normals.cos_theta <= -1.0 {
         -1.0
     } else {
-        (b.normals.cos_theta.clamp(-1.0, 1.0).acos() + CONE_SLACK)
+        (b.normals.cos_theta.clamp(-1.0, 1.0).acos() + LIGHT_BVH_CONE_SLACK)
             .min(std::f32::consts::PI)
             .cos()
     };

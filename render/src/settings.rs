@@ -335,6 +335,8 @@ parameter_table! {
             "Probability that a light sample is an environment direction. 0: by estimated power (π R² ∫L dω against the lights' power; docs/src/environment.md, \"Split with the other lights\"). Any value is unbiased; it only moves noise between sky and lights (an enclosed room under a bright sky wants less). Without an environment it does nothing.";
         bvh_at_vertices: bool = true, ParamKind::Bool, "Light BVH at path vertices",
             "With the light BVH as the sampler: GI's and PT's path vertices and transparent layers draw their light samples from the tree too, each weighed against BSDF sampling with the tree's PDF at that vertex (docs/src/light-samplers.md, \"At every vertex\"). Off: the power table there. Either is unbiased; the tree sends a vertex's samples to the lights near it.";
+        light_bvh_gpu_refit: bool = true, ParamKind::Bool, "Light BVH refit on the GPU",
+            "When lights move or change power, refit the light BVH in a compute pass (one dispatch per tree level above the changed lights) instead of on the CPU (docs/src/light-samplers.md, \"Moving lights\"). The same tree either way, within float rounding of the cone bounds.";
         initial_visibility: bool = true, ParamKind::Bool, "Initial visibility",
             "Trace the survivor's shadow ray right after initial sampling and drop it when occluded (visibility reuse: docs/src/ris.md, \"Visibility reuse\"), so reuse only spreads samples that were visible. One extra shadow ray per pixel.";
     }

@@ -267,6 +267,10 @@ wgsl_constants! {
     /// LIGHT_BVH_NOT_IN_TREE has no leaf (no power or no position: PDF 0).
     pub const LIGHT_BVH_LEAF: u32 = 0x80000000;
     pub const LIGHT_BVH_NOT_IN_TREE: u32 = 0xffffffff;
+    /// The refit on the GPU (light_bvh_refit.wgsl): invocations per workgroup, and how many
+    /// levels (dispatches) a refit may have, each with its slot of the levels uniform.
+    pub const LIGHT_BVH_REFIT_WORKGROUP: u32 = 64;
+    pub const MAX_LIGHT_BVH_LEVELS: u32 = 72;
 
     /// Upper bound of `spatial_neighbours` (the shader keeps accepted ones in an array).
     pub const MAX_SPATIAL_NEIGHBOURS: u32 = 32;
@@ -292,6 +296,13 @@ wgsl_constants! {
     /// palette anyway, and the reference's noise, known only as an image-wide RMSE, is larger
     /// than that in its brightest pixels.
     pub const BIAS_NEGLIGIBLE: f32 = 0.01;
+    /// Widening of each light-BVH node's normals cone (radians), so that the octahedral
+    /// encoding of its axis (≈ 1e-4 rad of error) never makes the bound exclude a direction
+    /// it holds (the records of light_sampler.rs and light_bvh_refit.wgsl alike).
+    pub const LIGHT_BVH_CONE_SLACK: f32 = 1e-3;
+    /// Normals' cones whose axes are this close to opposite (radians) are joined about a
+    /// fixed perpendicular (light_bvh.rs, `DirectionCone::union`).
+    pub const LIGHT_BVH_NEARLY_OPPOSITE: f32 = 1e-3;
         /// Frames in the temporal window of the boiling and survivor-change views (the
     /// `temporal window` pass): long enough that the relative standard deviation of a steady
     /// pixel is estimated to ±18 % (1/√(2·15)), short enough that a switched light leaves it

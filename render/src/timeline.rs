@@ -108,7 +108,7 @@ impl AnimatedScene {
         }
         self.time = Some(time);
         let change = self.scene.pose(time, self.choice);
-        let times = renderer.update_scene(&self.scene, change);
+        let times = renderer.update_scene(&self.scene, change.clone());
         (change, times)
     }
 
@@ -121,6 +121,7 @@ impl AnimatedScene {
                 lights: true,
                 emission: true,
                 camera: false,
+                moved_vertices: None,
             };
             renderer.update_scene(&self.scene, everything);
         }

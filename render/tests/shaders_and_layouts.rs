@@ -328,6 +328,13 @@ fn host_structs_match_wgsl_layouts() {
     check_struct!(m, "LightBvhTrail", GpuLightBvhTrail, [bits, depth]);
     check_struct!(
         m,
+        "LightBounds",
+        GpuLightBounds,
+        [min, phi, max, cos_theta_o, w, cos_theta_e]
+    );
+    check_struct!(m, "RefitLevel", GpuRefitLevel, [first, count, leaves]);
+    check_struct!(
+        m,
         "PresampledLight",
         GpuPresampledLight,
         [

@@ -115,6 +115,26 @@ struct LightBvhNode {
     _pad: u32,
 }
 
+// A light-BVH node's bounds in full precision (light_bvh.rs's LightBounds), which the
+// GPU refit unions (light_bvh_refit.wgsl): its record above holds them quantised.
+struct LightBounds {
+    min: vec3<f32>,
+    phi: f32,
+    max: vec3<f32>,
+    cos_theta_o: f32,   // the normals' cone; -1: every direction
+    w: vec3<f32>,       // the cone's axis
+    cos_theta_e: f32,
+}
+
+// One level of the GPU refit: its nodes are work[first .. first + count]; `leaves`: they
+// are leaves, taking the changed lights' bounds leaf_bounds[0 .. count].
+struct RefitLevel {
+    first: u32,
+    count: u32,
+    leaves: u32,
+    _pad: u32,
+}
+
 // A light's branch choices from the root (bit k: the second child at depth k) and depth.
 struct LightBvhTrail {
     bits: vec2<u32>,

@@ -44,7 +44,7 @@ impl Viewer {
         let (change, _) = clock.set_time(&mut self.renderer, time.time);
         // The split screen's B shows the same moment.
         if let Some(b) = self.compare.as_mut().filter(|_| change.any()) {
-            b.renderer.update_scene(clock.scene(), change);
+            b.renderer.update_scene(clock.scene(), change.clone());
         }
         if change.camera {
             // A camera on an animated node: follow it unless the user flew away from it.

@@ -31,3 +31,32 @@ pub fn texture_2d(
         view_formats,
     })
 }
+
+/// Writes `records[i]` for the ascending `indices` into `buffer` (which holds `records`
+/// as uploaded before), as runs: indices closer than `gap` go in one write with the
+/// records between them, so a few scattered changes cost a few writes, not one each.
+pub fn write_runs<T: bytemuck::Pod>(
+    gpu: &Gpu,
+    buffer: &wgpu::Buffer,
+    records: &[T],
+    indices: &[usize],
+    gap: usize,
+) {
+    for run in runs(indices, gap) {
+        let offset = (run.start * std::mem::size_of::<T>()) as u64;
+        gpu.queue
+            .write_buffer(buffer, offset, bytemuck::cast_slice(&records[run]));
+    }
+}
+
+/// Ascending `indices` as ranges, joined where fewer than `gap` indices lie between them.
+fn runs(indices: &[usize], gap: usize) -> Vec<std::ops::Range<usize>> {
+    let mut out: Vec<std::ops::Range<usize>> = Vec::new();
+    for &i in indices {
+        match out.last_mut() {
+            Some(run) if i < run.end + gap => run.end = i + 1,
+            _ => out.push(i..i + 1),
+        }
+    }
+    out
+}

@@ -80,6 +80,7 @@ impl GpuScene {
             );
         }
         self.bvh = bvh;
+        self.motion_index = None;
         self.built_sah = self.bvh.sah_cost();
         if !plant.skip_light_remap {
             repoint_triangle_entries(

@@ -52,34 +52,50 @@ pub(super) fn triangle_records(
     positions: &[[Vec3; 3]],
     triangle_light: &[u32],
 ) -> (Vec<GpuTriangle>, Vec<GpuTriangleShading>) {
-    let mut triangles = Vec::with_capacity(order.len());
-    let mut shading = Vec::with_capacity(order.len());
-    for (bvh_index, &source) in order.iter().enumerate() {
-        let tri = &scene.triangles[source as usize];
-        let [p0, p1, p2] = positions[source as usize];
-        let verts = tri.indices.map(|i| scene.vertices[i as usize]);
-        let has_normals = verts.iter().all(|v| v.normal.length_squared() > 0.0);
-        triangles.push(GpuTriangle {
-            p0: p0.into(),
-            material: tri.material,
-            p1: p1.into(),
-            light: triangle_light[bvh_index],
-            p2: p2.into(),
-            source_index: source,
-        });
-        shading.push(GpuTriangleShading {
-            normals: verts.map(|v| {
-                if has_normals {
-                    oct_encode(v.normal.normalize())
-                } else {
-                    0
-                }
-            }),
-            has_normals: has_normals as u32,
-            uvs: verts.map(|v| v.uv.into()),
-        });
-    }
-    (triangles, shading)
+    order
+        .iter()
+        .enumerate()
+        .map(|(bvh_index, &source)| {
+            triangle_record(
+                scene,
+                source,
+                positions[source as usize],
+                triangle_light[bvh_index],
+            )
+        })
+        .unzip()
+}
+
+/// Scene triangle `source` at `positions`, holding light entry `light` (or `NO_LIGHT`).
+pub(super) fn triangle_record(
+    scene: &Scene,
+    source: u32,
+    [p0, p1, p2]: [Vec3; 3],
+    light: u32,
+) -> (GpuTriangle, GpuTriangleShading) {
+    let tri = &scene.triangles[source as usize];
+    let verts = tri.indices.map(|i| scene.vertices[i as usize]);
+    let has_normals = verts.iter().all(|v| v.normal.length_squared() > 0.0);
+    let triangle = GpuTriangle {
+        p0: p0.into(),
+        material: tri.material,
+        p1: p1.into(),
+        light,
+        p2: p2.into(),
+        source_index: source,
+    };
+    let shading = GpuTriangleShading {
+        normals: verts.map(|v| {
+            if has_normals {
+                oct_encode(v.normal.normalize())
+            } else {
+                0
+            }
+        }),
+        has_normals: has_normals as u32,
+        uvs: verts.map(|v| v.uv.into()),
+    };
+    (triangle, shading)
 }
 
 /// The texture records and the shared texel buffer: record `i` is scene texture `i`
@@ -188,15 +204,20 @@ pub(super) fn gpu_materials(scene: &Scene) -> Vec<GpuMaterial> {
 }
 
 /// (source triangle, area) of every triangle entry of `table`.
-pub(super) fn light_areas(scene: &Scene, order: &[u32], table: &LightTable) -> Vec<(u32, f32)> {
+pub(super) fn light_areas(
+    scene: &Scene,
+    order: &[u32],
+    table: &LightTable,
+) -> Vec<Option<(u32, f32)>> {
     table
         .lights
         .iter()
-        .filter(|l| l.kind_prim >> LIGHT_KIND_SHIFT == LIGHT_KIND_TRIANGLE)
         .map(|l| {
-            let source = order[(l.kind_prim & LIGHT_PRIM_MASK) as usize];
-            let [a, b, c] = scene.triangle_positions(source as usize);
-            (source, 0.5 * (b - a).cross(c - a).length())
+            (l.kind_prim >> LIGHT_KIND_SHIFT == LIGHT_KIND_TRIANGLE).then(|| {
+                let source = order[(l.kind_prim & LIGHT_PRIM_MASK) as usize];
+                let [a, b, c] = scene.triangle_positions(source as usize);
+                (source, 0.5 * (b - a).cross(c - a).length())
+            })
         })
         .collect()
 }

@@ -190,6 +190,31 @@ pub fn shader_module(
     }
 }
 
+/// The compute pipeline of `module`'s `main` over `layout`, with validation errors as a
+/// `GpuError` instead of wgpu's panic.
+pub fn compute_pipeline(
+    gpu: &Gpu,
+    label: &str,
+    layout: &wgpu::PipelineLayout,
+    module: &wgpu::ShaderModule,
+) -> Result<wgpu::ComputePipeline, GpuError> {
+    let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let pipeline = gpu
+        .device
+        .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(label),
+            layout: Some(layout),
+            module,
+            entry_point: Some("main"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+    match pollster::block_on(scope.pop()) {
+        Some(e) => Err(GpuError::Validation(format!("{label}: {e}"))),
+        None => Ok(pipeline),
+    }
+}
+
 /// A compute pass: one pipeline compiled for one set of defines.
 pub struct ComputePass {
     pub name: &'static str,
@@ -206,7 +231,6 @@ impl ComputePass {
     ) -> Result<ComputePass, GpuError> {
         let module = shader_module(gpu, pass.shader, defines)?;
         let frame_and_scene = layouts.frame_and_scene(defines);
-        let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let pipeline_layout = gpu
             .device
             .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -218,19 +242,7 @@ impl ComputePass {
                 ],
                 immediate_size: 0,
             });
-        let pipeline = gpu
-            .device
-            .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(pass.name),
-                layout: Some(&pipeline_layout),
-                module: &module,
-                entry_point: Some("main"),
-                compilation_options: Default::default(),
-                cache: None,
-            });
-        if let Some(e) = pollster::block_on(scope.pop()) {
-            return Err(GpuError::Validation(format!("{}: {e}", pass.name)));
-        }
+        let pipeline = compute_pipeline(gpu, pass.name, &pipeline_layout, &module)?;
         Ok(ComputePass {
             name: pass.name,
             dispatch: pass.dispatch,

@@ -273,7 +273,7 @@ impl Renderer {
 
         let switches = self.frame_switches(&settings, effects);
         let plan = frame_plan(&switches);
-        if self.ensure_light_sampler(&switches, effects) {
+        if self.ensure_light_sampler(&switches, effects, settings.light_bvh_gpu_refit) {
             self.bind_groups.clear();
         }
         self.compile_frame_pipelines(&active, &plan)?;
@@ -552,8 +552,15 @@ impl Renderer {
 impl Renderer {
     /// The light samplers' data this frame needs, allocated or brought up to date (the BVH
     /// rebuilt or refitted after the lights changed); true if a buffer was replaced.
-    fn ensure_light_sampler(&mut self, switches: &FrameSwitches, effects: &EffectSet) -> bool {
+    fn ensure_light_sampler(
+        &mut self,
+        switches: &FrameSwitches,
+        effects: &EffectSet,
+        refit_on_gpu: bool,
+    ) -> bool {
         let lights = &mut self.buffers.light_sampler;
+        lights.wait_for_gpu_refit =
+            self.readbacks.timing_mode != crate::gpu::timing::TimingMode::Off;
         let mut replaced = false;
         if switches.light_tiles {
             replaced |= lights.ensure_presampled(&self.gpu, LIGHT_TILE_COUNT * LIGHT_TILE_SIZE);
@@ -569,7 +576,7 @@ impl Renderer {
             Effect::RegirFromBvh,
         ];
         if tree.iter().any(|e| effects.contains(*e)) {
-            replaced |= lights.ensure_bvh(&self.gpu, &self.scene);
+            replaced |= lights.ensure_bvh(&self.gpu, &self.scene, refit_on_gpu);
         }
         replaced
     }

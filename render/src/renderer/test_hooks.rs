@@ -14,6 +14,22 @@ impl Renderer {
         self.buffers.light_sampler.frozen = true;
     }
 
+    /// Test-only: each light-BVH refit loses one light of the scene's change list (the
+    /// planted twin of the change list's test).
+    pub fn lose_light_change_for_tests(&mut self) {
+        self.buffers.light_sampler.planted_lost_change = true;
+    }
+
+    /// Test-only: the scene's and the light BVH's GPU buffers as they are now (the
+    /// partial update's test compares them with a full upload's).
+    pub fn scene_buffers_for_tests(&self) -> crate::gpu_scene::SceneBufferContents {
+        let mut contents = self.scene.buffer_contents_for_tests(&self.gpu);
+        let nodes = &self.buffers.light_sampler.bvh_nodes;
+        contents.light_bvh_nodes =
+            crate::gpu::readback::read_buffer(&self.gpu, nodes, 0, nodes.size());
+        contents
+    }
+
     /// Test-only: compiles the `PLANTED_*` defines `defines` into every pass from the next
     /// frame on (on top of the derived or forced effect set), so that a test can show that
     /// its detector fires on a known error.

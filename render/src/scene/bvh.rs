@@ -16,6 +16,7 @@ mod refit;
 mod traverse;
 pub mod two_level;
 
+pub use refit::RefitLinks;
 pub use traverse::{Hit, Ray, Visits};
 
 /// Deepest tree the builder makes (root = level 1). The WGSL traversal stack has 64 entries

@@ -1,13 +1,15 @@
 //! Posing: every playing channel evaluated at one time and written into the scene's flat
 //! world-space data (vertices, material emission, punctual lights, camera).
 
+use std::ops::Range;
+
 use glam::{Mat3, Mat4, Vec3};
 
 use super::{ClipChoice, Local, SceneAnimation, Target, Track, Trs};
 use crate::scene::{Camera, Scene};
 
 /// What `pose` changed, so the renderer rebuilds only what depends on it.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct SceneChange {
     /// Some vertex moved: triangles and the BVH need updating.
     pub geometry: bool,
@@ -18,6 +20,10 @@ pub struct SceneChange {
     pub emission: bool,
     /// The scene camera moved (it is used only where the user has not moved the camera).
     pub camera: bool,
+    /// The vertex ranges `pose` moved (scene vertex indices), so an update can rewrite
+    /// only their triangles and the tree above them. `None`: not known (a full upload, a
+    /// change made by hand), every vertex may have moved.
+    pub moved_vertices: Option<Vec<Range<u32>>>,
 }
 
 impl SceneChange {
@@ -91,7 +97,10 @@ impl SceneAnimation {
     pub fn pose(&self, scene: &mut Scene, time: f32, choice: ClipChoice) -> SceneChange {
         let values = self.values_at(time, choice);
         let world = self.nodes.world_matrices(&values.locals);
-        let mut change = SceneChange::default();
+        let mut change = SceneChange {
+            moved_vertices: Some(Vec::new()),
+            ..SceneChange::default()
+        };
         let emissive: Vec<bool> = scene.materials.iter().map(|m| m.is_emissive()).collect();
 
         scene.mesh_transforms.resize(self.meshes.len(), Mat4::NAN);
@@ -123,6 +132,9 @@ impl SceneAnimation {
             }
             if moved {
                 change.geometry = true;
+                if let Some(ranges) = &mut change.moved_vertices {
+                    ranges.push(mesh.first..mesh.first + mesh.local.len() as u32);
+                }
             }
         }
         if change.geometry {

@@ -438,7 +438,8 @@ fn the_split_image_halves_match_single_configuration_renders() {
 }
 
 /// `light_sampler=auto` (the default; docs/src/light-samplers.md) presamples tiles only from
-/// the measured break-even light count on; the stats JSON says which and why.
+/// the measured break-even light count on, and takes the light BVH where the load-time
+/// probe finds the lights local; the stats JSON says which and why.
 #[test]
 fn light_sampler_auto_drops_tiles_for_few_lights_and_keeps_them_for_many() {
     let dir = temp_dir("tiles");
@@ -471,6 +472,17 @@ fn light_sampler_auto_drops_tiles_for_few_lights_and_keeps_them_for_many() {
     assert!(many, "many-lights:65536 drops tiles: {why}");
     let (forced, _) = effects_of("builtin:cornell", &["--set", "light_sampler=tiles"]);
     assert!(forced, "light_sampler=tiles forces them");
+    // The light BVH by the load-time probe: the city's lights are local, the room's are
+    // not; the figure is in the reason, the same on every run (a fixed seed).
+    let (_, city) = effects_of("builtin:city:4096", &[]);
+    assert!(
+        city.contains("the light sampler is bvh") && city.contains("the probe at 256 points"),
+        "{city}"
+    );
+    let (_, again) = effects_of("builtin:city:4096", &[]);
+    assert_eq!(city, again, "the probe is deterministic");
+    let (_, room) = effects_of("builtin:many-lights:65536", &[]);
+    assert!(room.contains("not worth the walk"), "{room}");
 }
 
 #[test]

@@ -8,6 +8,7 @@
 use std::collections::BTreeSet;
 use std::fmt;
 
+use crate::light_probe::{self, LightProbe};
 use crate::scene::{AlphaMode, Scene};
 use crate::settings::{LightSampler, Settings};
 use crate::shader_constants::{LIGHT_TILE_COUNT, LIGHT_TILE_SIZE};
@@ -18,39 +19,52 @@ use crate::shader_constants::{LIGHT_TILE_COUNT, LIGHT_TILE_SIZE};
 /// `builtin:many-lights:N` (docs/bench.md, "Light tiles: where they pay").
 pub const LIGHT_TILES_BREAK_EVEN: usize = 16384;
 
-/// `light_sampler=auto` takes the light BVH for scenes whose lights spread over at least
-/// this many metres (glTF's unit) and number at least `LIGHT_BVH_MIN_LIGHTS`: a street or a
-/// city, where each point is lit by the few lights near it. Measured on `city:N` (2^10 to
-/// 2^20 lights over 572 m: the BVH ahead at equal time at every N) against
-/// `many-lights:65536` (a 12 m room) and `concourse` (its lights within about 60 m), where it
-/// does not pay (docs/bench.md, "Light samplers at scale").
-pub const LIGHT_BVH_MIN_EXTENT_M: u32 = 100;
+/// `light_sampler=auto` takes the light BVH where the load-time probe (`light_probe.rs`)
+/// finds that a sampler by distance would need at least this many times fewer samples than
+/// the power table, and the scene has at least `LIGHT_BVH_MIN_LIGHTS` lights. The walk
+/// made the initial pass 2.7–5.9× the table's at 2^20 (docs/bench.md, "Light samplers at
+/// scale"): a gain of this size is what it must bring. Calibrated on the probe's figures
+/// for the measured scenes (docs/src/light-samplers.md, "Choosing"): the lowest where the
+/// BVH won at equal time is 24 (`city:1024`; 24–36 over `city:N`), the highest where it lost
+/// 6.2 (`many-lights:65536`; `concourse` 4.5); the threshold is their geometric mean.
+pub const LIGHT_BVH_MIN_LOCALITY: f32 = 12.0;
+/// Below this many lights the BVH was not measured against the table; `auto` keeps the
+/// table or the tiles there.
 pub const LIGHT_BVH_MIN_LIGHTS: usize = 1024;
 
 /// The sampler `choice` means for a scene, and why: `auto` by the measurements
-/// (docs/bench.md, "Light tiles: where they pay" and "Light samplers at scale").
+/// (docs/bench.md, "Light tiles: where they pay" and "Light samplers at scale") and the
+/// scene's probe.
 pub fn resolve_light_sampler(f: &SceneFeatures, choice: LightSampler) -> (LightSampler, String) {
     let lights = f.emissive_triangles + f.punctual_lights;
+    let probe = match f.light_probe {
+        Some(p) => format!(
+            "the probe at {} points: sampling by distance would need {:.1}× fewer samples than by power",
+            p.points,
+            p.locality()
+        ),
+        None => "no probe (no lights with a position, or no surfaces)".to_string(),
+    };
+    let local = f
+        .light_probe
+        .is_some_and(|p| p.locality() >= LIGHT_BVH_MIN_LOCALITY);
     match choice {
-        LightSampler::Auto
-            if f.light_extent_m >= LIGHT_BVH_MIN_EXTENT_M && lights >= LIGHT_BVH_MIN_LIGHTS =>
-        {
-            (
-                LightSampler::Bvh,
-                format!(
-                    "auto: {lights} lights spread over {} m ≥ {LIGHT_BVH_MIN_EXTENT_M} m, where each point sees the few near it",
-                    f.light_extent_m
-                ),
-            )
-        }
+        LightSampler::Auto if local && lights >= LIGHT_BVH_MIN_LIGHTS => (
+            LightSampler::Bvh,
+            format!(
+                "auto: {lights} lights; {probe} (≥ {LIGHT_BVH_MIN_LOCALITY} pays for the walk)"
+            ),
+        ),
         LightSampler::Auto if lights >= LIGHT_TILES_BREAK_EVEN => (
             LightSampler::Tiles,
-            format!("auto: {lights} lights ≥ {LIGHT_TILES_BREAK_EVEN}, where presampling pays"),
+            format!(
+                "auto: {lights} lights ≥ {LIGHT_TILES_BREAK_EVEN}, where presampling pays; {probe} (< {LIGHT_BVH_MIN_LOCALITY}: not worth the walk)"
+            ),
         ),
         LightSampler::Auto => (
             LightSampler::Power,
             format!(
-                "auto: {lights} lights < {LIGHT_TILES_BREAK_EVEN}: presampling would cost more than it saves"
+                "auto: {lights} lights < {LIGHT_TILES_BREAK_EVEN}: presampling would cost more than it saves; {probe}"
             ),
         ),
         other => (other, format!("light_sampler={}", other.name())),
@@ -85,9 +99,9 @@ pub struct SceneFeatures {
     pub environment: bool,
     /// The scene has an animation (moving geometry or changing lights).
     pub animated: bool,
-    /// The diagonal of the box around every light with a position, in whole metres: how
-    /// far the lights spread (`resolve_light_sampler`).
-    pub light_extent_m: u32,
+    /// What a sampler by distance would gain over the power table here (`light_probe.rs`;
+    /// `None` without lights with a position): `auto`'s choice of the light BVH.
+    pub light_probe: Option<LightProbe>,
 }
 
 impl SceneFeatures {
@@ -132,36 +146,43 @@ impl SceneFeatures {
             can_occlude: can_occlude(scene),
             environment: scene.environment.is_some(),
             animated: scene.animation.is_some(),
-            light_extent_m: light_extent(scene).min(u32::MAX as f32) as u32,
+            light_probe: probe_light_locality(scene),
         }
     }
 }
 
-/// The diagonal of the box around the emissive triangles and the point and spot lights.
-fn light_extent(scene: &Scene) -> f32 {
-    let mut lo = glam::Vec3::splat(f32::INFINITY);
-    let mut hi = glam::Vec3::splat(f32::NEG_INFINITY);
-    let mut add = |p: glam::Vec3| {
-        if p.is_finite() {
-            lo = lo.min(p);
-            hi = hi.max(p);
-        }
-    };
-    for (t, tri) in scene.triangles.iter().enumerate() {
-        let emits = scene
+/// `light_probe::probe` over the scene's lights with a position (emissive triangles, point
+/// and spot lights, each with its power) seen from its other triangles.
+fn probe_light_locality(scene: &Scene) -> Option<LightProbe> {
+    use glam::Vec3;
+    let pi = std::f32::consts::PI;
+    let luminance = |c: Vec3| 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+    let emitter = |t: usize| {
+        scene
             .materials
-            .get(tri.material as usize)
-            .is_some_and(|m| m.is_emissive());
-        if emits {
-            scene.triangle_positions(t).into_iter().for_each(&mut add);
+            .get(scene.triangles[t].material as usize)
+            .filter(|m| m.is_emissive())
+    };
+    let mut lights: Vec<(Vec3, f32)> = Vec::new();
+    for t in 0..scene.triangles.len() {
+        if let Some(m) = emitter(t) {
+            let [a, b, c] = scene.triangle_positions(t);
+            let area = 0.5 * (b - a).cross(c - a).length();
+            let sides = if m.double_sided { 2.0 } else { 1.0 };
+            lights.push(((a + b + c) / 3.0, luminance(m.emission) * area * sides * pi));
         }
     }
     for p in &scene.punctual_lights {
         if p.kind != crate::scene::PunctualKind::Directional {
-            add(p.position);
+            lights.push((p.position, luminance(p.intensity) * 4.0 * pi));
         }
     }
-    if lo.x > hi.x { 0.0 } else { (hi - lo).length() }
+    light_probe::probe(
+        &lights,
+        scene.triangles.len(),
+        |t| emitter(t).is_none().then(|| scene.triangle_positions(t)),
+        light_probe::PROBE_SEED,
+    )
 }
 
 /// Emissive triangles, counting those of animated materials dark at load time: a light

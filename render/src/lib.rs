@@ -17,6 +17,7 @@ pub mod gpu_scene;
 pub mod gpu_types;
 pub mod image;
 pub mod light_bvh;
+pub mod light_probe;
 pub mod light_sampler;
 pub mod load_phases;
 pub mod metrics;
@@ -32,7 +33,6 @@ pub mod settings;
 pub mod shader_constants;
 pub mod shader_source;
 pub mod stats;
-#[cfg(test)]
 mod test_hash;
 pub mod timeline;
 pub mod tracing;

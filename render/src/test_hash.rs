@@ -1,5 +1,6 @@
 //! Deterministic noise for the plain-Rust models' unit tests (the denoiser's, the light
-//! BVH's): the same numbers on every machine and run, so their thresholds stay measured.
+//! BVH's) and for the light probe's points: the same numbers on every machine and run, so
+//! their thresholds stay measured.
 
 /// A uniform number in [0, 1) per (index, stream): a murmur-style integer hash.
 pub fn hash(i: u32, stream: u32) -> f32 {

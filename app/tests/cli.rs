@@ -479,8 +479,18 @@ fn light_sampler_auto_drops_tiles_for_few_lights_and_keeps_them_for_many() {
         city.contains("the light sampler is bvh") && city.contains("the probe at 256 points"),
         "{city}"
     );
+    let candidates = || {
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("stats.json")).unwrap())
+                .unwrap();
+        json["light_candidates_per_pixel"].as_f64().unwrap()
+    };
+    // auto's BVH draws its measured count (effects::AUTO_BVH_CANDIDATES), not 32.
+    assert!((candidates() - 4.0).abs() < 1e-6, "{}", candidates());
     let (_, again) = effects_of("builtin:city:4096", &[]);
     assert_eq!(city, again, "the probe is deterministic");
+    effects_of("builtin:city:4096", &["--set", "light_sampler=bvh"]);
+    assert!((candidates() - 32.0).abs() < 1e-6, "{}", candidates());
     let (_, room) = effects_of("builtin:many-lights:65536", &[]);
     assert!(room.contains("not worth the walk"), "{room}");
 }

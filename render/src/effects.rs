@@ -28,6 +28,12 @@ pub const LIGHT_TILES_BREAK_EVEN: usize = 16384;
 /// BVH won at equal time is 24 (`city:1024`; 24–36 over `city:N`), the highest where it lost
 /// 6.2 (`many-lights:65536`; `concourse` 4.5); the threshold is their geometric mean.
 pub const LIGHT_BVH_MIN_LOCALITY: f32 = 12.0;
+/// Light candidates per pixel when `auto` takes the BVH (at most: `light_candidates` caps
+/// it). Chosen by equal-time measurement on `city:N` (docs/bench.md, "Light samplers at
+/// scale"): the count whose walk stays within a tenth of the frame at 2^20 (9.4 %) with the
+/// best equal-time gain over the tiles among those: 6.1× at 2^20, 5.1–6.7× down to 2^10.
+/// With 8 the gain is 7.3× but the walk 15 % of the frame; with 32, 8.1× and 40 %.
+pub const AUTO_BVH_CANDIDATES: u32 = 4;
 /// Below this many lights the BVH was not measured against the table; `auto` keeps the
 /// table or the tiles there.
 pub const LIGHT_BVH_MIN_LIGHTS: usize = 1024;

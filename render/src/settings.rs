@@ -314,7 +314,7 @@ macro_rules! parameter_table {
 parameter_table! {
     Initial {
         light_candidates: u32 = 32, ParamKind::Int { min: 0, max: 256 }, "Light candidates",
-            "Light samples per pixel drawn from the power-proportional alias table and streamed through the reservoir (docs/src/ris.md, \"The streaming reservoir\"). 1 light and 0 BSDF candidates is plain NEE.";
+            "Light samples per pixel drawn by the light sampler and streamed through the reservoir (docs/src/ris.md, \"The streaming reservoir\"). 1 light and 0 BSDF candidates is plain NEE. When light_sampler=auto takes the light BVH, at most 4 (its equal-time best within a tenth of the frame: docs/src/light-samplers.md, \"Choosing\").";
         bsdf_candidates: u32 = 1, ParamKind::Int { min: 0, max: 16 }, "BSDF candidates",
             "BSDF-sampled rays per pixel; those that hit an emitter join the reservoir, combined with the light candidates by the balance heuristic.";
         light_sampler: LightSampler = LightSampler::Auto, ParamKind::Choice(LIGHT_SAMPLER_NAMES), "Light sampler",

@@ -21,7 +21,7 @@ use crate::passes::pass::Dispatch;
 use crate::passes::pt::initial::{PT_PROBE, PT_RESERVOIRS};
 use crate::passes::resources::RESERVOIRS;
 use crate::passes::{ComputePass, PASS_INFO_SLOTS, PASS_INFO_STRIDE, PassDef, PassLayouts};
-use crate::settings::Settings;
+use crate::settings::{LightSampler, Settings};
 use crate::shader_constants::{
     LIGHT_TILE_COUNT, LIGHT_TILE_SIZE, MAX_DENOISE_ITERATIONS, MAX_SPATIAL_PASSES,
     REFERENCE_SAMPLES_PER_DISPATCH,
@@ -173,7 +173,18 @@ impl Renderer {
     /// The settings as the current mode applies them (`nee` is RIS with one light
     /// candidate and no BSDF candidate; `ris` has no reuse).
     pub fn effective_settings(&self) -> Settings {
-        self.mode.settings(&self.settings)
+        let mut settings = self.mode.settings(&self.settings);
+        // `auto`'s light BVH draws the candidate count measured to pay within a tenth of
+        // the frame (`effects::AUTO_BVH_CANDIDATES`); `light_sampler=bvh` draws them all.
+        if settings.light_sampler == LightSampler::Auto
+            && crate::effects::resolve_light_sampler(&self.features, LightSampler::Auto).0
+                == LightSampler::Bvh
+        {
+            settings.light_candidates = settings
+                .light_candidates
+                .min(crate::effects::AUTO_BVH_CANDIDATES);
+        }
+        settings
     }
 
     /// Which passes this frame runs. The reference traces its own camera rays, except with

@@ -10,7 +10,8 @@ fn repository() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap()
 }
 
-/// The names the page's tree must hold: `name.rs` for a file, `name/` for a folder.
+/// The names the page's tree must hold: a file's name with its extension, a folder's with
+/// a slash after it.
 fn entries(dir: &str, folders_only: bool) -> BTreeSet<String> {
     let path = repository().join(dir);
     std::fs::read_dir(&path)

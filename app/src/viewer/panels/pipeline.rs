@@ -5,8 +5,9 @@
 use std::path::Path;
 
 use egui::{RichText, Ui};
+use restir_render::effects::{AUTO_BVH_CANDIDATES, Effect};
 use restir_render::settings::{
-    PARAMS, ParamDef, ParamKind, ParamValue, RayBackendChoice, Stage, preset,
+    LightSampler, PARAMS, ParamDef, ParamKind, ParamValue, RayBackendChoice, Stage, preset,
 };
 use restir_render::tracing::RayBackend;
 use restir_render::{Mode, Settings};
@@ -20,6 +21,12 @@ pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
         height: state.render_size.1,
         ray_query: state.device.ray_query,
         ray_backend: state.device.ray_backend,
+        auto_took_bvh: state.settings.light_sampler == LightSampler::Auto
+            && state
+                .scene
+                .effects
+                .as_ref()
+                .is_some_and(|e| e.contains(Effect::LightBvh)),
     };
     for stage in stages() {
         stage_ui(ui, &mut state.settings, stage, &context);
@@ -79,6 +86,8 @@ struct Context {
     height: u32,
     ray_query: bool,
     ray_backend: Option<RayBackend>,
+    /// `light_sampler=auto` took the light BVH for this scene (it then caps the candidates).
+    auto_took_bvh: bool,
 }
 
 /// A stage as a collapsible group. A stage with an on/off switch (`temporal`,
@@ -227,6 +236,14 @@ fn effective_value(ui: &mut Ui, settings: &Settings, def: &ParamDef, context: &C
     let height = context.height;
     if def.name == "ray_backend" {
         ray_backend_note(ui, settings, context);
+    }
+    if def.name == "light_candidates"
+        && context.auto_took_bvh
+        && settings.light_candidates > AUTO_BVH_CANDIDATES
+    {
+        ui.weak(format!(
+            "= {AUTO_BVH_CANDIDATES} here: auto's light BVH (light_sampler=bvh draws all)"
+        ));
     }
     if def.name == "initial_visibility"
         && !settings.initial_visibility

@@ -487,6 +487,13 @@ fn light_sampler_auto_drops_tiles_for_few_lights_and_keeps_them_for_many() {
     };
     // auto's BVH draws its measured count (effects::AUTO_BVH_CANDIDATES), not 32.
     assert!((candidates() - 4.0).abs() < 1e-6, "{}", candidates());
+    let probe: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("stats.json")).unwrap()).unwrap();
+    let locality = probe["light_probe"]["locality_x100"].as_u64().unwrap();
+    assert!(
+        locality >= 1200,
+        "the probe's figure in --stats: {locality}"
+    );
     let (_, again) = effects_of("builtin:city:4096", &[]);
     assert_eq!(city, again, "the probe is deterministic");
     effects_of("builtin:city:4096", &["--set", "light_sampler=bvh"]);

@@ -31,8 +31,9 @@ pub const PROBE_POINTS: usize = 256;
 pub const PROBE_SEED: u32 = 0x5EED_1157;
 
 /// What the probe found: its points (those some light reaches), and the median gain, in
-/// hundredths (an integer, so that `SceneFeatures` stays comparable).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// hundredths (an integer, so that `SceneFeatures` stays comparable). `--stats` writes it
+/// as its `light_probe` block.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub struct LightProbe {
     pub points: usize,
     pub locality_x100: u32,

@@ -181,6 +181,12 @@ impl Renderer {
         self.scene.bvh.sah_cost()
     }
 
+    /// What `light_sampler=auto` decided from: the load-time probe of the scene's lights
+    /// (`light_probe.rs`; `None` without lights with a position).
+    pub fn light_probe(&self) -> Option<crate::light_probe::LightProbe> {
+        self.features.light_probe
+    }
+
     /// What the light samplers' structures cost: BVH build and refit, memory.
     pub fn light_sampler_stats(&self) -> crate::light_sampler::LightSamplerStats {
         self.buffers.light_sampler.stats

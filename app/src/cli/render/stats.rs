@@ -114,6 +114,9 @@ struct StatsFile<'a> {
     /// The light samplers' structures: BVH build and refit times, memory
     /// (docs/src/light-samplers.md).
     light_sampler: restir_render::light_sampler::LightSamplerStats,
+    /// `light_sampler=auto`'s probe: its points and how many times fewer samples a sampler
+    /// by distance would need than the power table, in hundredths (light_probe.rs).
+    light_probe: Option<restir_render::light_probe::LightProbe>,
     #[serde(skip_serializing_if = "Option::is_none")]
     scene_time: Option<SceneTimeStats>,
     /// With the boiling or survivor-change view: the temporal window's figures.
@@ -290,6 +293,7 @@ fn side_stats(side: &Side) -> StatsFile<'_> {
         effective_spatial_radius_px: settings.effective_spatial_radius(height),
         mean_luminance: side.image.mean_luminance(),
         light_sampler: renderer.light_sampler_stats(),
+        light_probe: renderer.light_probe(),
         scene_time: side.scene_time.clone(),
         temporal_window: window_stats(renderer),
         summary: StatsSummary::from_reports(&side.reports, side.image.non_finite_count() as u64),

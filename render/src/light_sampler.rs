@@ -1,11 +1,11 @@
 //! The light samplers' GPU data beside the power table (docs/src/light-samplers.md): the
-//! presampled lights (the light tiles' entries or ReGIR's slots) and the light BVH. The renderer owns them and
-//! allocates each on the first frame that uses it (a one-element placeholder before), so a
-//! scene that never asks for a structure pays nothing for it. The BVH is the plain-Rust
-//! `LightBvh` (the model its tests check) uploaded as it is: built on a scene's first frame
-//! that uses it, refitted when lights move or change power (a scene's lights keep their
-//! slots, so none is ever added or removed: a light switched off stays in the tree with
-//! no power).
+//! presampled lights (the light tiles' entries or ReGIR's slots) and the light BVH. The
+//! renderer owns them and allocates each on the first frame that uses it (a one-element
+//! placeholder before), so a scene that never asks for a structure pays nothing for it.
+//! The BVH is the plain-Rust `LightBvh` (the model its tests check) uploaded as it is:
+//! built on a scene's first frame that uses it, refitted when lights move or change power,
+//! on the GPU by default (`light_sampler/gpu_refit.rs`). A scene's lights keep their slots,
+//! so none is ever added or removed: a light switched off stays in the tree with no power.
 
 mod gpu_refit;
 

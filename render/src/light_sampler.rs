@@ -86,6 +86,8 @@ pub struct LightSamplerBuffers {
     pub planted_lost_change: bool,
     /// Wait for a GPU refit and count its time in `bvh_refit_ms` (frames that are timed).
     pub wait_for_gpu_refit: bool,
+    /// The refit's pipeline failed to compile on this device: the CPU refits.
+    gpu_refit_failed: bool,
 }
 
 fn storage(gpu: &Gpu, label: &str, bytes: u64) -> wgpu::Buffer {
@@ -116,6 +118,7 @@ impl LightSamplerBuffers {
             frozen: false,
             planted_lost_change: false,
             wait_for_gpu_refit: false,
+            gpu_refit_failed: false,
         }
     }
 
@@ -178,12 +181,16 @@ impl LightSamplerBuffers {
                 b.change_generation = scene.light_changes.generation();
                 b.power_generation = power;
                 b.motion_generation = motion;
-                if on_gpu && b.gpu_refit.is_none() {
+                if on_gpu && b.gpu_refit.is_none() && !self.gpu_refit_failed {
                     match gpu_refit::GpuRefit::new(gpu, &b.tree) {
                         Ok(g) => b.gpu_refit = Some(g),
-                        Err(e) => log::error!(
-                            "light BVH refit on the GPU unavailable ({e}); refitting on the CPU"
-                        ),
+                        Err(e) => {
+                            // Said once: every later refit runs on the CPU.
+                            log::error!(
+                                "light BVH refit on the GPU unavailable ({e}); refitting on the CPU"
+                            );
+                            self.gpu_refit_failed = true;
+                        }
                     }
                 }
                 match b.gpu_refit.as_mut().filter(|_| on_gpu) {

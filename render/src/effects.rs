@@ -38,6 +38,15 @@ pub const AUTO_BVH_CANDIDATES: u32 = 4;
 /// table or the tiles there.
 pub const LIGHT_BVH_MIN_LIGHTS: usize = 1024;
 
+/// Whether `light_sampler=auto` takes the light BVH for a scene with features `f`: its
+/// probe finds the lights local and there are enough of them. Cheap: the renderer asks
+/// every frame (`Renderer::effective_settings` caps the candidates then).
+pub fn auto_takes_bvh(f: &SceneFeatures) -> bool {
+    f.emissive_triangles + f.punctual_lights >= LIGHT_BVH_MIN_LIGHTS
+        && f.light_probe
+            .is_some_and(|p| p.locality() >= LIGHT_BVH_MIN_LOCALITY)
+}
+
 /// The sampler `choice` means for a scene, and why: `auto` by the measurements
 /// (docs/bench.md, "Light tiles: where they pay" and "Light samplers at scale") and the
 /// scene's probe.
@@ -51,11 +60,8 @@ pub fn resolve_light_sampler(f: &SceneFeatures, choice: LightSampler) -> (LightS
         ),
         None => "no probe (no lights with a position, or no surfaces)".to_string(),
     };
-    let local = f
-        .light_probe
-        .is_some_and(|p| p.locality() >= LIGHT_BVH_MIN_LOCALITY);
     match choice {
-        LightSampler::Auto if local && lights >= LIGHT_BVH_MIN_LIGHTS => (
+        LightSampler::Auto if auto_takes_bvh(f) => (
             LightSampler::Bvh,
             format!(
                 "auto: {lights} lights; {probe} (≥ {LIGHT_BVH_MIN_LOCALITY} pays for the walk)"

@@ -177,8 +177,7 @@ impl Renderer {
         // `auto`'s light BVH draws the candidate count measured to pay within a tenth of
         // the frame (`effects::AUTO_BVH_CANDIDATES`); `light_sampler=bvh` draws them all.
         if settings.light_sampler == LightSampler::Auto
-            && crate::effects::resolve_light_sampler(&self.features, LightSampler::Auto).0
-                == LightSampler::Bvh
+            && crate::effects::auto_takes_bvh(&self.features)
         {
             settings.light_candidates = settings
                 .light_candidates

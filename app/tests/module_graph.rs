@@ -1,43 +1,16 @@
 //! Import circles between the modules of both crates (docs/src/source-layout.md, "Layers").
 //! A module is a source file (test files left out); it imports another when it names a
 //! path into it (`use crate::a::b::{c, d}`, `super::x`, `crate::a::f()` in code). A circle
-//! is a strongly connected set of two or more modules: none may exist in `app/`, and in
-//! `render/` the modules still in a circle are listed below and may only shrink (a module
-//! that leaves every circle must leave the list too, so the list stays exact). The planted
-//! twin at the end shows the detector catches one back import. No GPU: it reads the
-//! sources as text.
+//! is a strongly connected set of two or more modules: none may exist in either crate. The planted
+//! twin at the end shows the detector catches one back import.
+//!
+//! Above the files, each crate's top-level modules stand on floors, drawn in the book's
+//! "Layers" block; a module may import from its own floor and the ones below, never from
+//! above, and every top-level module stands on exactly one floor (so the picture cannot
+//! drift from the code). No GPU: it reads the sources and the page as text.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
-
-/// The `render/` modules still inside an import circle, to be broken into layers.
-const RENDER_CIRCLES: &[&str] = &[
-    "effects",
-    "environment",
-    "environment::upload",
-    "frame_targets",
-    "gpu_scene",
-    "gpu_scene::layout",
-    "gpu_types",
-    "light_sampler",
-    "passes::compile",
-    "passes::gbuffer",
-    "reference_cache",
-    "reference_cache::key",
-    "renderer",
-    "scene",
-    "scene::animation",
-    "scene::builtin",
-    "scene::bvh",
-    "scene::gltf_loader",
-    "scene::gltf_loader::draco",
-    "scene::gltf_loader::primitives",
-    "scene::lights",
-    "scene::load",
-    "settings",
-    "shader_constants",
-    "view",
-];
 
 fn repo() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
@@ -272,22 +245,107 @@ fn the_app_has_no_import_circle() {
 }
 
 #[test]
-fn render_circles_only_shrink() {
+fn the_render_crate_has_no_import_circle() {
     let found = circles(&graph(&modules(&repo().join("render/src"))));
-    for c in &found {
-        eprintln!("render circle of {}: {c:?}", c.len());
-    }
-    let in_circles: BTreeSet<String> = found.iter().flatten().cloned().collect();
-    let listed: BTreeSet<String> = RENDER_CIRCLES.iter().map(|s| s.to_string()).collect();
-    let new: Vec<&String> = in_circles.difference(&listed).collect();
+    assert!(found.is_empty(), "import circles in render/src: {found:?}");
+}
+
+/// One crate's floors from the "Layers" block of docs/src/source-layout.md, bottom first:
+/// after a line `CRATE/src, top floor first` come lines `floor name:  module  module ...`
+/// up to the first line that is not indented.
+fn documented_floors(crate_src: &str) -> Vec<Vec<String>> {
+    let page = std::fs::read_to_string(repo().join("docs/src/source-layout.md")).unwrap();
+    let header = format!("{crate_src}, top floor first");
+    let mut lines = page.lines().skip_while(|l| l.trim() != header);
     assert!(
-        new.is_empty(),
-        "modules newly in an import circle: {new:?} (circles: {found:?})"
+        lines.next().is_some(),
+        "source-layout.md has no '{header}' block"
     );
-    let left: Vec<&String> = listed.difference(&in_circles).collect();
+    let mut floors: Vec<Vec<String>> = lines
+        .take_while(|l| l.starts_with("  "))
+        .map(|l| {
+            let (_, names) = l.split_once(':').expect("a floor line is 'name: modules'");
+            names.split_whitespace().map(str::to_string).collect()
+        })
+        .collect();
+    floors.reverse();
+    floors
+}
+
+/// Imports between top-level modules that climb to a higher floor, and top-level modules
+/// on no floor or on several (floors bottom first; a module's top level is its first segment).
+fn floor_violations(
+    edges: &BTreeMap<String, BTreeSet<String>>,
+    floors: &[Vec<String>],
+) -> Vec<String> {
+    let top = |m: &str| m.split("::").next().unwrap_or("").to_string();
+    let mut floor_of: BTreeMap<String, usize> = BTreeMap::new();
+    let mut out = Vec::new();
+    for (i, floor) in floors.iter().enumerate() {
+        for name in floor {
+            if floor_of.insert(name.clone(), i).is_some() {
+                out.push(format!("{name} stands on two floors"));
+            }
+        }
+    }
+    let tops: BTreeSet<String> = edges
+        .keys()
+        .map(|m| top(m))
+        .filter(|t| !t.is_empty())
+        .collect();
+    for t in &tops {
+        if !floor_of.contains_key(t) {
+            out.push(format!("{t} stands on no floor"));
+        }
+    }
+    for name in floor_of.keys() {
+        if !tops.contains(name) {
+            out.push(format!("{name} is on a floor but is no module"));
+        }
+    }
+    for (from, targets) in edges {
+        for to in targets {
+            let (a, b) = (top(from), top(to));
+            if let (Some(fa), Some(fb)) = (floor_of.get(&a), floor_of.get(&b))
+                && fb > fa
+            {
+                out.push(format!("{from} (floor {fa}) imports {to} (floor {fb})"));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn both_crates_keep_their_floors() {
+    for crate_src in ["render/src", "app/src"] {
+        let edges = graph(&modules(&repo().join(crate_src)));
+        let floors = documented_floors(crate_src);
+        let bad = floor_violations(&edges, &floors);
+        assert!(
+            bad.is_empty(),
+            "{crate_src} against the floors in docs/src/source-layout.md: {bad:#?}"
+        );
+    }
+}
+
+#[test]
+fn planted_climb_between_floors_is_caught() {
+    // Two floors with no circle: only the floors see an import from below reaching up.
+    let floors = vec![vec!["core".to_string()], vec!["renderer".to_string()]];
+    let mut m: BTreeMap<String, String> = BTreeMap::new();
+    m.insert("core".into(), String::new());
+    m.insert("core::math".into(), String::new());
+    m.insert("renderer".into(), "use crate::core::math::Vec3;".into());
+    assert!(floor_violations(&graph(&m), &floors).is_empty());
+    m.insert("core::math".into(), "use crate::renderer::Frame;".into());
+    let bad = floor_violations(&graph(&m), &floors);
+    assert_eq!(bad, ["core::math (floor 0) imports renderer (floor 1)"]);
+    m.insert("stats".into(), String::new());
     assert!(
-        left.is_empty(),
-        "no longer in any circle, take them off RENDER_CIRCLES: {left:?}"
+        floor_violations(&graph(&m), &floors)
+            .iter()
+            .any(|b| b == "stats stands on no floor")
     );
 }
 

@@ -5,6 +5,7 @@
 //! (`accel.rs`). `update.rs` rewrites them in place when an animated scene changes.
 
 pub mod accel;
+pub mod environment;
 pub mod layout;
 pub mod light_changes;
 mod rebuild;
@@ -27,7 +28,6 @@ use std::time::Instant;
 use glam::Vec3;
 use wgpu::util::DeviceExt;
 
-use crate::environment::upload::EnvironmentResources;
 use crate::gpu::Gpu;
 use crate::gpu_types::*;
 use crate::scene::bvh::Bvh;
@@ -35,6 +35,7 @@ use crate::scene::lights::LightTable;
 use crate::scene::{Aabb, Scene};
 use crate::tracing::RayBackend;
 use accel::{AccelInfo, AccelStructures};
+use environment::EnvironmentResources;
 use layout::SceneLayouts;
 use light_changes::LightChangeLog;
 

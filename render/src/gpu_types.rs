@@ -443,6 +443,11 @@ pub struct GpuPassInfo {
     pub _pad: [u32; 2],
 }
 
+/// Distance between the `GpuPassInfo` slots of the pass-info buffer (the uniform offset
+/// alignment), and how many slots it has.
+pub const PASS_INFO_STRIDE: u32 = 256;
+pub const PASS_INFO_SLOTS: u32 = 256;
+
 /// One entry of the environment's sampling table (environment/distribution.rs): W·H
 /// conditional entries (alias within the row) then H marginal entries (alias over rows).
 #[repr(C)]

@@ -7,10 +7,12 @@
 
 #[macro_use]
 pub mod wgsl_constants;
+pub mod alias;
 pub mod denoise;
 pub mod effects;
 pub mod environment;
 pub mod flicker;
+pub mod fnv;
 pub mod frame_targets;
 pub mod gpu;
 pub mod gpu_scene;
@@ -32,11 +34,14 @@ pub mod scene;
 pub mod settings;
 pub mod shader_constants;
 pub mod shader_source;
-pub mod stats;
 mod test_hash;
 pub mod timeline;
 pub mod tracing;
 pub mod view;
+
+/// What a frame reports (counters, pass times, the inspected pixel): the renderer's output,
+/// also at the crate root, where the app and the tests read it.
+pub use renderer::stats;
 
 pub use environment::{Environment, load_environment};
 pub use gpu::{Gpu, GpuError};

@@ -24,8 +24,9 @@ mod job;
 pub mod key;
 mod render;
 
+pub use crate::fnv::Fnv64;
 pub use job::{JobState, ReferenceJob};
-pub use key::{CACHE_VERSION, Fnv64, ReferenceKey, key_of};
+pub use key::{CACHE_VERSION, ReferenceKey, key_of};
 use render::reference_settings;
 pub use render::{render_reference, spp_per_frame};
 

@@ -693,7 +693,7 @@ impl Settings {
             // 2048 and halve the image).
             reference_spp: self.reference_spp.clamp(
                 1,
-                REFERENCE_SAMPLES_PER_DISPATCH * crate::passes::PASS_INFO_SLOTS,
+                REFERENCE_SAMPLES_PER_DISPATCH * crate::gpu_types::PASS_INFO_SLOTS,
             ),
             boiling_filter: self.boiling_filter,
             gi_m_cap: self.gi_m_cap,

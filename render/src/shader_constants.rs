@@ -2,9 +2,6 @@
 //! once, here, and written into every WGSL module as a generated prelude, so the host and
 //! the shaders cannot drift apart.
 
-use crate::gpu_types;
-use crate::wgsl_constants::WgslValue;
-
 wgsl_constants! {
     fn rejection_bits;
     /// Validation checks; the same bits form the temporal and spatial rejection masks
@@ -452,40 +449,6 @@ wgsl_constants! {
     pub const DENOISE_GRADIENT_STRIDE: u32 = 3;
     /// The temporal pass's `PassInfo` slot when last frame left a valid history (0: none).
     pub const DENOISE_HISTORY_SLOT: u32 = 1;
-}
-
-/// The WGSL prelude: every constant declared in a `wgsl_constants!` block, here and in
-/// gpu_types.rs, as a WGSL `const` (one row emits the Rust constant and its WGSL line).
-pub fn wgsl_prelude() -> String {
-    let mut out = String::from("// Generated from render/src/shader_constants.rs: edit there.\n");
-    let blocks: [fn() -> Vec<(&'static str, WgslValue)>; 19] = [
-        gpu_types::absent_markers,
-        gpu_types::material_flags,
-        gpu_types::texture_packing,
-        gpu_types::light_kinds,
-        gpu_types::punctual_kinds,
-        crate::view::view_codes,
-        rejection_bits,
-        surface_checks,
-        sources,
-        proposers,
-        packing_and_flags,
-        counters,
-        indirect_techniques,
-        streams_and_limits,
-        motion_and_view_limits,
-        tonemappers_and_gi_rejections,
-        gi_packing_and_flags,
-        pt_probe,
-        denoiser,
-    ];
-    for block in blocks {
-        for (name, value) in block() {
-            out.push_str(&value.declaration(name));
-            out.push('\n');
-        }
-    }
-    out
 }
 
 #[cfg(test)]

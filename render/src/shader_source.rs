@@ -10,7 +10,8 @@
 use std::collections::BTreeSet;
 use std::path::PathBuf;
 
-use crate::shader_constants::wgsl_prelude;
+use crate::wgsl_constants::WgslValue;
+use crate::{gpu_types, shader_constants as k, view};
 
 mod embedded {
     include!(concat!(env!("OUT_DIR"), "/embedded_shaders.rs"));
@@ -142,6 +143,42 @@ pub fn all_shader_files() -> Vec<&'static str> {
         .iter()
         .map(|(name, _)| *name)
         .collect()
+}
+
+/// The WGSL prelude: every constant declared in a `wgsl_constants!` block (in
+/// shader_constants.rs, gpu_types.rs and view.rs) as a WGSL `const`: one row emits the Rust
+/// constant and its WGSL line. It is assembled here, above the blocks, so that the constant
+/// modules need not know one another (docs/src/source-layout.md, "Layers").
+pub fn wgsl_prelude() -> String {
+    let mut out = String::from("// Generated from render/src/shader_constants.rs: edit there.\n");
+    let blocks: [fn() -> Vec<(&'static str, WgslValue)>; 19] = [
+        gpu_types::absent_markers,
+        gpu_types::material_flags,
+        gpu_types::texture_packing,
+        gpu_types::light_kinds,
+        gpu_types::punctual_kinds,
+        view::view_codes,
+        k::rejection_bits,
+        k::surface_checks,
+        k::sources,
+        k::proposers,
+        k::packing_and_flags,
+        k::counters,
+        k::indirect_techniques,
+        k::streams_and_limits,
+        k::motion_and_view_limits,
+        k::tonemappers_and_gi_rejections,
+        k::gi_packing_and_flags,
+        k::pt_probe,
+        k::denoiser,
+    ];
+    for block in blocks {
+        for (name, value) in block() {
+            out.push_str(&value.declaration(name));
+            out.push('\n');
+        }
+    }
+    out
 }
 
 #[cfg(test)]

@@ -56,17 +56,7 @@ impl RayBackend {
 /// Compiles trace_ray_query.wgsl behind trace.wgsl (and `enable wgpu_ray_query;`).
 pub const RAY_QUERY_DEFINE: &str = "RAY_QUERY";
 
-/// Why `ray_backend=ray-query` cannot run on this device (one line for the CLI and the
-/// viewer).
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error(
-    "ray_backend=ray-query: the adapter '{adapter}' has no hardware ray queries \
-     (wgpu EXPERIMENTAL_RAY_QUERY / VK_KHR_ray_query{hint}); use ray_backend=software or auto"
-)]
-pub struct RayQueryUnavailable {
-    pub adapter: String,
-    hint: String,
-}
+pub use crate::gpu::RayQueryUnavailable;
 
 /// What a device offers the choice.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -277,7 +277,7 @@ mod tests {
         codes.dedup();
         assert_eq!(names.len(), DebugView::ALL.len());
         assert_eq!(codes.len(), DebugView::ALL.len());
-        let prelude = crate::shader_constants::wgsl_prelude();
+        let prelude = crate::shader_source::wgsl_prelude();
         for v in DebugView::ALL {
             assert_eq!(DebugView::from_name(v.name()), Some(v));
             assert!(prelude.contains(&format!("= {}u;", v.gpu_code())));

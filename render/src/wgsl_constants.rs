@@ -1,5 +1,5 @@
 //! One row per shader constant: a `pub const` inside `wgsl_constants!` is a Rust constant
-//! and, through `shader_constants::wgsl_prelude`, the WGSL `const` of the same name and
+//! and, through `shader_source::wgsl_prelude`, the WGSL `const` of the same name and
 //! value at the top of every composed shader. Nothing is written twice, so the host and
 //! the shaders cannot drift apart.
 

@@ -1,6 +1,6 @@
 // Group 0: what every pass sees. The stats counters are cleared every frame and read back
 // with the frame's statistics (the STAT_* indices of render/src/shader_constants.rs say what
-// each counts; render/src/stats.rs reads them).
+// each counts; render/src/renderer/stats.rs reads them).
 #include "common/types.wgsl"
 
 @group(0) @binding(0) var<uniform> frame: Frame;

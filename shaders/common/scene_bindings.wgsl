@@ -23,7 +23,7 @@
 @group(1) @binding(14) var<storage, read> prev_bvh_nodes: array<BvhNode>;
 #endif
 #ifdef ENVIRONMENT
-// The environment (render/src/environment/upload.rs): sampling table, radiance, uniform.
+// The environment (render/src/gpu_scene/environment.rs): sampling table, radiance, uniform.
 @group(1) @binding(11) var<storage, read> env_table: array<EnvTexel>;
 @group(1) @binding(12) var env_radiance: texture_2d<f32>;
 @group(1) @binding(13) var<uniform> env: Environment;

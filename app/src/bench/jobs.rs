@@ -16,7 +16,7 @@ use super::seed_figures::{self, FIGURES_FILE, FigureRow};
 
 /// The folder of configuration `name`'s job under `out`.
 pub fn job_dir(out: &Path, name: &str) -> PathBuf {
-    out.join("jobs").join(crate::bias_matrix::cells::slug(name))
+    out.join("jobs").join(slug(name))
 }
 
 /// This process's `bench` arguments with `--list-jobs` left out and `--configs` and `--out`
@@ -58,10 +58,7 @@ pub fn list(configs: &[Config], out: &Path) -> anyhow::Result<()> {
         .collect();
     for c in configs {
         let job = job_argv(&argv, &c.name, out);
-        println!(
-            "{}",
-            crate::bias_matrix::shell_line(&exe.to_string_lossy(), &job)
-        );
+        println!("{}", shell_line(&exe.to_string_lossy(), &job));
     }
     Ok(())
 }
@@ -116,6 +113,38 @@ pub fn merge(configs: &[Config], out: &Path) -> anyhow::Result<()> {
     csv.write(&out.join("figures.csv"))?;
     println!("{md}");
     Ok(())
+}
+
+/// Letters, digits, `-`, `.` and `_` kept, anything else `_`.
+pub fn slug(text: &str) -> String {
+    text.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || matches!(c, '-' | '.' | '_') {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
+/// A command line a POSIX shell reads back as `program` and `args`.
+pub fn shell_line(program: &str, args: &[String]) -> String {
+    let quote = |s: &str| {
+        if !s.is_empty()
+            && s.chars()
+                .all(|c| c.is_ascii_alphanumeric() || "-_./:=@+,".contains(c))
+        {
+            s.to_string()
+        } else {
+            format!("'{}'", s.replace('\'', r"'\''"))
+        }
+    };
+    std::iter::once(quote(program))
+        .chain(std::iter::once("bench".to_string()))
+        .chain(args.iter().map(|a| quote(a)))
+        .collect::<Vec<_>>()
+        .join(" ")
 }
 
 #[cfg(test)]

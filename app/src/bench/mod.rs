@@ -18,7 +18,7 @@ mod equal_error;
 mod equal_time;
 mod event_strip;
 mod events;
-mod jobs;
+pub mod jobs;
 mod lag;
 pub mod load_cost;
 pub mod map;

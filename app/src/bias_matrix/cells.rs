@@ -2,6 +2,8 @@
 //! scene (the families at a stated N), the real-world models, and every estimator a user
 //! can pick. A cell is one scene and one estimator; each runs as one `bench` command.
 
+use crate::bench::jobs::slug;
+
 /// Light count of the families in the matrix: large enough that the tiles, ReGIR and the
 /// light BVH all have work, small enough to build in a second.
 pub const FAMILY_N: usize = 16_384;
@@ -83,19 +85,6 @@ pub fn scene_label(scene: &str) -> String {
         .and_then(|s| s.to_str())
         .unwrap_or(scene)
         .to_string()
-}
-
-/// Letters, digits, `-`, `.` and `_` kept, anything else `_`.
-pub fn slug(text: &str) -> String {
-    text.chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || matches!(c, '-' | '.' | '_') {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect()
 }
 
 /// The cells of `scenes` × `estimators`, scene-major.

@@ -20,6 +20,7 @@ use std::time::Instant;
 use anyhow::{Context, bail};
 use clap::{Args, Parser};
 
+use crate::bench::jobs::shell_line;
 use crate::bench::seed_figures::FIGURES_FILE;
 use crate::bench::{self, BenchArgs};
 use cells::{Cell, ESTIMATORS, all_scenes};
@@ -301,25 +302,6 @@ fn run_cell(args: &BiasMatrixArgs, cell: &Cell, stage: Stage) {
         eprintln!("{} · {}: {e:#}", cell.scene, cell.estimator);
         let _ = std::fs::write(dir.join(table::ERROR_FILE), format!("{e:#}\n"));
     }
-}
-
-/// A command line a POSIX shell reads back as `program` and `args`.
-pub(crate) fn shell_line(program: &str, args: &[String]) -> String {
-    let quote = |s: &str| {
-        if !s.is_empty()
-            && s.chars()
-                .all(|c| c.is_ascii_alphanumeric() || "-_./:=@+,".contains(c))
-        {
-            s.to_string()
-        } else {
-            format!("'{}'", s.replace('\'', r"'\''"))
-        }
-    };
-    std::iter::once(quote(program))
-        .chain(std::iter::once("bench".to_string()))
-        .chain(args.iter().map(|a| quote(a)))
-        .collect::<Vec<_>>()
-        .join(" ")
 }
 
 #[cfg(test)]

@@ -14,9 +14,9 @@
 use std::f64::consts::PI;
 
 use super::texel_of;
+use crate::alias::{AliasSlot, alias_pick, alias_slots};
 use crate::gpu_types::GpuEnvTexel;
 use crate::image::luminance;
-use crate::scene::alias::{AliasSlot, alias_pick, alias_slots};
 
 /// What a texel's weight is. Only `SolidAngle` is correct; `PerTexel` is the classic bug
 /// (sin θ forgotten, poles oversampled) kept so a test can prove the checks catch it.

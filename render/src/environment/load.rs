@@ -6,7 +6,6 @@
 use std::path::Path;
 
 use super::{Environment, MAX_TEXELS, sky};
-use crate::scene::load::one_line;
 
 #[derive(Debug, thiserror::Error)]
 #[error("{file}: {detail}")]
@@ -18,7 +17,8 @@ pub struct EnvironmentError {
 fn fail(file: &str, detail: impl Into<String>) -> EnvironmentError {
     EnvironmentError {
         file: file.to_string(),
-        detail: one_line(detail.into()),
+        // Error text from the image crate may span lines; the promise is one line.
+        detail: detail.into().replace(['\n', '\r'], " "),
     }
 }
 

@@ -16,7 +16,6 @@ pub(crate) mod load;
 mod sky;
 #[cfg(test)]
 mod tests;
-pub mod upload;
 
 use std::f32::consts::PI;
 use std::fmt;
@@ -116,7 +115,7 @@ impl Environment {
 
     /// Text that changes whenever the rendered environment would (reference cache keys).
     pub fn fingerprint(&self) -> String {
-        let mut h = crate::reference_cache::key::Fnv64::default();
+        let mut h = crate::fnv::Fnv64::default();
         h.write(bytemuck::cast_slice(&self.texels));
         format!(
             "{}:{}x{}:{:016x}:strength={:08x}:rotation={:08x}",

@@ -31,7 +31,20 @@ pub enum GpuError {
     #[error("GPU error: {0}")]
     Validation(String),
     #[error(transparent)]
-    RayQueryUnavailable(#[from] crate::tracing::RayQueryUnavailable),
+    RayQueryUnavailable(#[from] RayQueryUnavailable),
+}
+
+/// Why `ray_backend=ray-query` cannot run on this device (one line for the CLI and the
+/// viewer).
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error(
+    "ray_backend=ray-query: the adapter '{adapter}' has no hardware ray queries \
+     (wgpu EXPERIMENTAL_RAY_QUERY / VK_KHR_ray_query{hint}); use ray_backend=software or auto"
+)]
+pub struct RayQueryUnavailable {
+    pub adapter: String,
+    /// Why, when known (the environment switch that turned them off).
+    pub(crate) hint: String,
 }
 
 /// A device and queue plus what the renderer needs to know about them.

@@ -1,10 +1,11 @@
 //! Device set-up and small GPU helpers shared by the passes.
 
+pub mod bindings;
 pub mod context;
 pub mod readback;
 pub mod timing;
 
-pub use context::{Gpu, GpuError, NO_RAY_QUERY_ENV};
+pub use context::{Gpu, GpuError, NO_RAY_QUERY_ENV, RayQueryUnavailable};
 
 /// A single-sampled, single-mip 2-D texture (render targets, storage images, captures).
 pub fn texture_2d(

@@ -4,7 +4,7 @@
 //! pipelines the second (`SceneLayouts::for_backend`); passes never name a binding here.
 
 use crate::gpu::Gpu;
-use crate::passes::{storage, uniform};
+use crate::gpu::bindings::{buffer_entries, storage, uniform};
 use crate::tracing::RayBackend;
 
 /// Storage bindings 0..: triangles, shading, materials, textures, texels, lights, punctual
@@ -114,11 +114,11 @@ impl SceneLayouts {
 /// the environment and last frame's BVH boxes.
 pub fn software_entries<'a>(
     storage: &[&'a wgpu::Buffer],
-    environment: &'a crate::environment::upload::EnvironmentResources,
+    environment: &'a super::environment::EnvironmentResources,
     prev_bvh_nodes: &'a wgpu::Buffer,
 ) -> Vec<wgpu::BindGroupEntry<'a>> {
     let first = ENVIRONMENT_FIRST_BINDING;
-    let mut entries = crate::passes::buffer_entries(storage);
+    let mut entries = buffer_entries(storage);
     entries.extend([
         wgpu::BindGroupEntry {
             binding: first,

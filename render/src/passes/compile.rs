@@ -16,36 +16,8 @@ use crate::tracing::RayBackend;
 /// The 2-D workgroup of `Dispatch::Pixels` passes (their `@workgroup_size(8, 8)`).
 pub const WORKGROUP: u32 = 8;
 
-/// Distance between the `PassInfo` slots of the pass-info buffer (the uniform offset
-/// alignment), and how many slots it has.
-pub const PASS_INFO_STRIDE: u32 = 256;
-pub const PASS_INFO_SLOTS: u32 = 256;
-
-pub fn storage(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
-}
-
-pub fn uniform(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Uniform,
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
-}
+pub use crate::gpu::bindings::{buffer_bind_group, buffer_entries, storage, uniform};
+pub use crate::gpu_types::{PASS_INFO_SLOTS, PASS_INFO_STRIDE};
 
 /// The layout entry of group-2 binding `index`: its kind follows from the resource (a
 /// uniform, a texture, or a storage buffer read-only unless written).
@@ -79,33 +51,6 @@ pub fn layout_entry(index: u32, binding: &Binding) -> wgpu::BindGroupLayoutEntry
         ty,
         count: None,
     }
-}
-
-/// Whole-buffer entries in binding order 0, 1, 2, ...
-pub fn buffer_entries<'a>(buffers: &[&'a wgpu::Buffer]) -> Vec<wgpu::BindGroupEntry<'a>> {
-    buffers
-        .iter()
-        .enumerate()
-        .map(|(i, b)| wgpu::BindGroupEntry {
-            binding: i as u32,
-            resource: b.as_entire_binding(),
-        })
-        .collect()
-}
-
-/// A bind group whose entries are whole buffers, in binding order 0, 1, 2, ...
-pub fn buffer_bind_group(
-    gpu: &Gpu,
-    label: &str,
-    layout: &wgpu::BindGroupLayout,
-    buffers: &[&wgpu::Buffer],
-) -> wgpu::BindGroup {
-    let entries = buffer_entries(buffers);
-    gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some(label),
-        layout,
-        entries: &entries,
-    })
 }
 
 fn layout(gpu: &Gpu, label: &str, entries: &[wgpu::BindGroupLayoutEntry]) -> wgpu::BindGroupLayout {

@@ -10,42 +10,13 @@ use std::path::Path;
 use anyhow::Context;
 
 use super::ReferenceRequest;
+use crate::fnv::Fnv64;
 use crate::shader_source::compose;
 
 /// Bump when something a reference depends on changes in a way the key cannot see (the
 /// reference estimator's Rust side; a built-in scene's generator is seen: its content is
 /// hashed).
 pub const CACHE_VERSION: u32 = 1;
-
-/// FNV-1a, 64 bit: stable across platforms, Rust versions and runs (std's `DefaultHasher`
-/// promises none of that). Not cryptographic; the stored key text guards against collisions.
-#[derive(Clone, Copy)]
-pub struct Fnv64(u64);
-
-impl Default for Fnv64 {
-    fn default() -> Self {
-        Fnv64(0xcbf2_9ce4_8422_2325)
-    }
-}
-
-impl Fnv64 {
-    pub fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.0 ^= b as u64;
-            self.0 = self.0.wrapping_mul(0x0000_0100_0000_01b3);
-        }
-    }
-
-    pub fn finish(self) -> u64 {
-        self.0
-    }
-
-    pub fn of(bytes: &[u8]) -> u64 {
-        let mut h = Fnv64::default();
-        h.write(bytes);
-        h.finish()
-    }
-}
 
 /// A reference's identity: the canonical description and its hash.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -21,6 +21,7 @@ mod reports;
 pub mod resolve;
 mod setup;
 mod state;
+pub mod stats;
 #[cfg(feature = "test-hooks")]
 mod test_hooks;
 mod uniforms;

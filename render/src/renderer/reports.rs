@@ -2,7 +2,7 @@
 //! come back through separate readbacks and are matched by frame index.
 
 use super::Renderer;
-use crate::stats::{FrameCounters, FrameReport};
+use super::stats::{FrameCounters, FrameReport};
 
 impl Renderer {
     /// Reports (counters and pass timings) of frames whose readbacks have arrived.

@@ -8,12 +8,12 @@ use std::sync::Arc;
 use glam::Mat4;
 
 use super::PixelInspection;
+use super::stats::FrameCounters;
 use super::{CompileWatcher, PipelineVariant, inspect, pipelines, record, resolve};
 use crate::effects::EffectSet;
 use crate::gpu::readback::ReadbackRing;
 use crate::gpu::timing::{PassTimer, TimingMode};
 use crate::scene::Camera;
-use crate::stats::FrameCounters;
 
 /// The uniform buffers every pass reads, the stats buffer and the frame bind group (groups 0 of every pass).
 pub(super) struct FrameBuffers {

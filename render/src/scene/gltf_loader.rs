@@ -14,6 +14,7 @@ mod parse;
 mod pointer_channels;
 mod primitives;
 mod quantized;
+mod sources;
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::Path;
@@ -22,13 +23,14 @@ use glam::{Mat4, Vec3};
 use gltf::khr_lights_punctual::Kind;
 
 use super::animation::{CameraBinding, MeshBinding};
-use super::load::{SceneError, one_line, validate};
+use super::validate::{SceneError, one_line, validate};
 use super::{Camera, Material, PunctualKind, PunctualLight, Scene};
 use crate::load_phases::{LoadPhases, Watcher, unwatched};
 use parse::{Parsed, open_document};
-use primitives::{PrimitiveId, Sources, append_primitive};
+use primitives::append_primitive;
+use sources::{PrimitiveId, Sources};
 
-/// Load a .gltf or .glb file. The returned scene has passed `load::validate`.
+/// Load a .gltf or .glb file. The returned scene has passed `validate::validate`.
 pub fn load_gltf(path: &Path) -> Result<Scene, SceneError> {
     load_gltf_watched(path, &unwatched)
 }

@@ -9,8 +9,8 @@
 
 use glam::{DVec3, Vec3};
 
-use super::alias::alias_slots;
 use super::{Material, PunctualKind, PunctualLight, Scene, Texture};
+use crate::alias::alias_slots;
 use crate::gpu_types::{
     GpuLight, GpuPunctualLight, LIGHT_KIND_ENVIRONMENT, LIGHT_KIND_PUNCTUAL, LIGHT_KIND_SHIFT,
     LIGHT_KIND_TRIANGLE, LIGHT_PRIM_MASK, NO_LIGHT, PUNCTUAL_DIRECTIONAL, PUNCTUAL_POINT,

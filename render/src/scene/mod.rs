@@ -2,7 +2,6 @@
 //! is uploaded. Everything is in world space and linear units; see docs/src/scenes.md,
 //! "Units and images".
 
-pub mod alias;
 pub mod animation;
 pub mod builtin;
 pub mod bvh;
@@ -11,6 +10,7 @@ pub mod gltf_loader;
 pub mod lights;
 pub mod load;
 mod uv_transform;
+pub mod validate;
 
 pub use camera::Camera;
 pub use gltf_loader::extensions::{ExtensionStatus, ExtensionUse};

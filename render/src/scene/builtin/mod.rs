@@ -16,7 +16,7 @@ pub(crate) mod rng;
 mod shapes;
 
 use super::Scene;
-use super::load::SceneError;
+use super::validate::SceneError;
 use cornell::cornell_box;
 use many_lights::{diffuse_floor, glossy_floor, many_lights_room};
 

@@ -13,7 +13,7 @@ use crate::scene::animation::{
     CameraBinding, Channel, Clip, Hierarchy, Interpolation, Keyframes, Local, MaterialBinding,
     MeshBinding, Node, PunctualBinding, SceneAnimation, Target, Track, Trs,
 };
-use crate::scene::load::SceneError;
+use crate::scene::validate::SceneError;
 
 /// What the walker saw on moving nodes (and every punctual light instance).
 #[derive(Default)]

@@ -18,7 +18,7 @@ use std::collections::BTreeMap;
 use meshoptimizer_rs::codec::{BufferView, Filter, Mode};
 use serde_json::{Value, json};
 
-use super::super::load::SceneError;
+use super::super::validate::SceneError;
 
 pub(super) const DRACO: &str = "KHR_draco_mesh_compression";
 pub(super) const MESHOPT: &str = "EXT_meshopt_compression";

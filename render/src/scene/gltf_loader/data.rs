@@ -9,7 +9,7 @@ use std::path::Path;
 use gltf::accessor::{Accessor, DataType, Dimensions};
 use gltf::buffer::{self, View};
 
-use super::super::load::{SceneError, one_line};
+use super::super::validate::{SceneError, one_line};
 use super::compressed;
 
 /// A label for a buffer in messages: its URI, or where its bytes live.

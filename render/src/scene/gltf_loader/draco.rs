@@ -7,10 +7,9 @@
 //! The accessors of a Draco primitive have no buffer view: only their type is checked here.
 //! The decoded points and faces then take the same path as plain data (`primitives`): the
 //! index range check, the node transform and the finite-position check, and later
-//! `load::validate`. A stream that does not decode, or decodes to nothing usable, is one line
+//! `validate::validate`. A stream that does not decode, or decodes to nothing usable, is one line
 //! naming the primitive and the extension.
 
-use std::collections::HashMap;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::rc::Rc;
 
@@ -19,15 +18,11 @@ use glam::{Vec2, Vec3};
 use gltf::accessor::{DataType, Dimensions};
 
 use super::super::Vertex;
-use super::super::load::{SceneError, one_line};
+use super::super::validate::{SceneError, one_line};
 use super::compressed::{DRACO, DracoPrimitive};
 use super::data;
-use super::primitives::{PrimitiveId, Sources};
 use super::quantized::dequantize;
-
-/// Decoded streams by buffer view: a mesh instanced by several nodes is decoded once.
-#[derive(Default)]
-pub(super) struct DracoCache(HashMap<usize, Rc<Mesh>>);
+use super::sources::{PrimitiveId, Sources};
 
 /// The primitive's local vertices (POSITION, NORMAL, TEXCOORD_`uv_set`) and its triangle
 /// list, from the Draco stream.

@@ -7,7 +7,7 @@ use std::path::Path;
 use glam::{Vec3, Vec4};
 use gltf::texture::WrappingMode;
 
-use super::super::load::{SceneError, one_line};
+use super::super::validate::{SceneError, one_line};
 use super::super::{AlphaMode, Material, Texture, TextureRef, UvTransform, Wrap};
 use super::compressed::{BASISU, WEBP};
 use super::{data, ktx2};

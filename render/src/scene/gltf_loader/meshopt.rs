@@ -13,7 +13,7 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 
 use meshoptimizer_rs::Workspace;
 
-use super::super::load::SceneError;
+use super::super::validate::SceneError;
 use super::compressed::MeshoptView;
 
 /// Decode every view of `views` into `buffers` (fallback buffers are empty until here).

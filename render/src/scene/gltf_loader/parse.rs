@@ -2,7 +2,7 @@
 //! (1.4) cannot read taken out first (KHR_animation_pointer channels, the compression
 //! extensions), then the crate's schema validation.
 
-use super::super::load::{SceneError, one_line};
+use super::super::validate::{SceneError, one_line};
 use super::compressed::{self, Compression};
 use super::extensions::{self, ExtensionStatus, ExtensionUse};
 use super::pointer_channels::{self, PointerChannel};

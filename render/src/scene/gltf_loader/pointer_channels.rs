@@ -6,7 +6,7 @@
 
 use serde_json::Value;
 
-use super::super::load::{SceneError, one_line};
+use super::super::validate::{SceneError, one_line};
 
 /// What a pointer names (JSON pointer paths of KHR_animation_pointer).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

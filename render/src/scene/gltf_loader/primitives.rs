@@ -6,41 +6,13 @@ use glam::{Mat3, Mat4, Vec2, Vec3};
 use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::Mode;
 
-use super::super::load::SceneError;
+use super::super::validate::SceneError;
 use super::super::{Scene, Triangle, Vertex};
-use super::compressed::{Compression, DRACO};
+use super::compressed::DRACO;
 use super::data::check_accessor;
-use super::draco::{self, DracoCache};
+use super::draco;
 use super::quantized::read_floats;
-
-/// Where a primitive sits in the file, for error messages.
-pub(super) struct PrimitiveId<'a> {
-    pub mesh: &'a gltf::Mesh<'a>,
-    pub index: usize,
-}
-
-impl std::fmt::Display for PrimitiveId<'_> {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self.mesh.name() {
-            Some(name) => write!(
-                f,
-                "mesh {} ('{name}') primitive {}",
-                self.mesh.index(),
-                self.index
-            ),
-            None => write!(f, "mesh {} primitive {}", self.mesh.index(), self.index),
-        }
-    }
-}
-
-/// What primitives are read from: the buffers (meshopt views already decoded into them) and
-/// the Draco streams, decoded on first use.
-pub(super) struct Sources<'a> {
-    pub doc: &'a gltf::Document,
-    pub buffers: &'a [Vec<u8>],
-    pub compression: &'a Compression,
-    pub draco: DracoCache,
-}
+use super::sources::{PrimitiveId, Sources};
 
 /// Append `primitive`, transformed by `world`, with every triangle using `material`.
 /// Returns the vertices in the primitive's local space (kept for nodes that move).

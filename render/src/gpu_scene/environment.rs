@@ -7,7 +7,7 @@
 
 use wgpu::util::DeviceExt;
 
-use super::Environment;
+use crate::environment::Environment;
 use crate::gpu::{Gpu, texture_2d};
 use crate::gpu_types::{GpuEnvTexel, GpuEnvironment, NO_LIGHT};
 
@@ -16,10 +16,6 @@ pub struct EnvironmentResources {
     pub radiance: wgpu::TextureView,
     pub uniform: wgpu::Buffer,
 }
-
-/// The first environment binding of the scene group (table, radiance, uniform follow;
-/// their layout entries are in gpu_scene/layout.rs with the rest of the group).
-pub use crate::gpu_scene::layout::ENVIRONMENT_FIRST_BINDING;
 
 impl EnvironmentResources {
     pub fn upload(gpu: &Gpu, env: Option<&Environment>, light: u32) -> EnvironmentResources {

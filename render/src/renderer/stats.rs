@@ -48,7 +48,7 @@ pub struct FrameReport {
     pub frame: u64,
     pub counters: FrameCounters,
     pub pass_ms: Vec<(&'static str, f64)>,
-    pub inspection: Option<crate::renderer::PixelInspection>,
+    pub inspection: Option<super::PixelInspection>,
 }
 
 impl FrameReport {

@@ -61,7 +61,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         in_front = walk.in_front;
         add_stat(STAT_SHADOW_RAYS + PASS_GBUFFER, walk.shadow_rays);
         if walk.hit.t < 0.0 {
-            // Nothing behind the glass: the background, tinted (shade.wgsl).
+            // Nothing behind the glass: the background, tinted (di/shade.wgsl).
             s.emission = in_front;
             surfaces[index] = s;
             return;

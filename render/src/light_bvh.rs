@@ -60,7 +60,7 @@ impl DirectionCone {
         // is rounding noise): about any axis perpendicular to a's then, with θ_d taken as π
         // so that the cone still holds b's (a small threshold on the cross product instead
         // would jump between cones for parallel walls, and the GPU's refit,
-        // light_bvh_refit.wgsl, would land on either side of the jump).
+        // lights/light_bvh_refit.wgsl, would land on either side of the jump).
         let (axis, theta_o) = if theta_d < pi - LIGHT_BVH_NEARLY_OPPOSITE {
             let axis = a.w.cross(b.w).normalize_or(perpendicular(a.w));
             (axis, (theta_a + theta_d + theta_b) / 2.0)
@@ -79,7 +79,7 @@ impl DirectionCone {
 }
 
 /// A unit vector perpendicular to unit `w`, smooth near the coordinate axes where scenes'
-/// normals gather (light_bvh_refit.wgsl's `perpendicular` is the same).
+/// normals gather (lights/light_bvh_refit.wgsl's `perpendicular` is the same).
 pub fn perpendicular(w: Vec3) -> Vec3 {
     let e = if w.z.abs() > 0.9 { Vec3::X } else { Vec3::Z };
     w.cross(e).normalize()

@@ -252,7 +252,7 @@ pub mod pairwise_reuse;
 pub mod gi;
 /// ReSTIR GI's reconnection shift: the Jacobian, its singularities and its window.
 pub mod gi_jacobian;
-/// MCMC mutation of a resampled light sample (decorrelation): shaders/mutation.wgsl's mirror.
+/// MCMC mutation of a resampled light sample (decorrelation): shaders/di/mutation.wgsl's mirror.
 pub mod mcmc;
 
 /// Deterministic randomness and goodness-of-fit checks shared by the crate's statistical

@@ -124,7 +124,7 @@ wgsl_constants! {
     pub const PASS_SPATIAL: u32 = 3;
     pub const PASS_SHADE: u32 = 4;
     pub const PASS_REFERENCE: u32 = 5;
-    /// The MCMC mutation of DI's samples (mutation.wgsl; docs/src/mcmc-mutation.md).
+    /// The MCMC mutation of DI's samples (di/mutation.wgsl; docs/src/mcmc-mutation.md).
     pub const PASS_MUTATION: u32 = 6;
 }
 pub const GUARDED_PASS_NAMES: [&str; 7] = [
@@ -264,7 +264,7 @@ wgsl_constants! {
     /// LIGHT_BVH_NOT_IN_TREE has no leaf (no power or no position: PDF 0).
     pub const LIGHT_BVH_LEAF: u32 = 0x80000000;
     pub const LIGHT_BVH_NOT_IN_TREE: u32 = 0xffffffff;
-    /// The refit on the GPU (light_bvh_refit.wgsl): invocations per workgroup, and how many
+    /// The refit on the GPU (lights/light_bvh_refit.wgsl): invocations per workgroup, and how many
     /// levels (dispatches) a refit may have, each with its slot of the levels uniform.
     pub const LIGHT_BVH_REFIT_WORKGROUP: u32 = 64;
     pub const MAX_LIGHT_BVH_LEVELS: u32 = 72;
@@ -295,7 +295,7 @@ wgsl_constants! {
     pub const BIAS_NEGLIGIBLE: f32 = 0.01;
     /// Widening of each light-BVH node's normals cone (radians), so that the octahedral
     /// encoding of its axis (≈ 1e-4 rad of error) never makes the bound exclude a direction
-    /// it holds (the records of light_sampler.rs and light_bvh_refit.wgsl alike).
+    /// it holds (the records of light_sampler.rs and lights/light_bvh_refit.wgsl alike).
     pub const LIGHT_BVH_CONE_SLACK: f32 = 1e-3;
     /// Normals' cones whose axes are this close to opposite (radians) are joined about a
     /// fixed perpendicular (light_bvh.rs, `DirectionCone::union`).

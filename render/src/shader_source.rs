@@ -191,7 +191,7 @@ mod tests {
 
     #[test]
     fn includes_each_module_once() {
-        let src = compose("initial.wgsl", &defines(&["AREA_LIGHTS"])).unwrap();
+        let src = compose("di/initial.wgsl", &defines(&["AREA_LIGHTS"])).unwrap();
         assert_eq!(src.matches("struct Reservoir {").count(), 1);
         assert!(src.contains("fn reservoir_update"));
     }

@@ -512,7 +512,7 @@ fn light_node_gaps(
     gaps
 }
 
-/// The light BVH refitted on the GPU (light_bvh_refit.wgsl) equals the CPU's refit: boxes,
+/// The light BVH refitted on the GPU (lights/light_bvh_refit.wgsl) equals the CPU's refit: boxes,
 /// powers and links bit for bit, the normals' cones within float rounding (tolerances
 /// below). Planted: a light left out of the change list shows in the boxes.
 #[test]

@@ -312,10 +312,10 @@ fn environment_code_is_compiled_only_with_an_environment() {
     // The plane under its light cannot occlude anything: no shadow rays without a sky.
     assert!(!without.contains(Effect::Shadows));
     for pass in [
-        "initial.wgsl",
-        "shade.wgsl",
+        "di/initial.wgsl",
+        "di/shade.wgsl",
         "reference.wgsl",
-        "temporal.wgsl",
+        "di/temporal.wgsl",
     ] {
         let src = compose(pass, &without.defines()).unwrap();
         assert!(
@@ -328,6 +328,6 @@ fn environment_code_is_compiled_only_with_an_environment() {
     assert!(with.contains(Effect::Environment) && with.contains(Effect::BsdfCandidates));
     // Rays toward the sky leave the convex region the proof is about: shadows come on.
     assert!(with.contains(Effect::Shadows));
-    let src = compose("initial.wgsl", &with.defines()).unwrap();
+    let src = compose("di/initial.wgsl", &with.defines()).unwrap();
     assert!(src.contains("fn env_sample_uv"));
 }

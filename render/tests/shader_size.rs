@@ -76,12 +76,12 @@ fn copies_in(pass_shader: &str, function: &str) -> usize {
 /// StainedGlassLamp went from 148 s to 33 s (docs/bench.md "Compile time").
 const BUDGETS: &[(&str, usize, usize)] = &[
     ("gbuffer_resolve.wgsl", 3, 32),
-    ("presample_lights.wgsl", 0, 1),
-    ("initial.wgsl", 2, 13),
-    ("temporal.wgsl", 1, 9),
-    ("spatial.wgsl", 1, 7),
-    ("shade.wgsl", 1, 5),
-    ("mutation.wgsl", 1, 7),
+    ("lights/presample_lights.wgsl", 0, 1),
+    ("di/initial.wgsl", 2, 13),
+    ("di/temporal.wgsl", 1, 9),
+    ("di/spatial.wgsl", 1, 7),
+    ("di/shade.wgsl", 1, 5),
+    ("di/mutation.wgsl", 1, 7),
     ("reference.wgsl", 5, 48),
     ("gi/initial.wgsl", 2, 19),
     ("gi/temporal.wgsl", 2, 8),

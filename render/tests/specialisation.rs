@@ -106,10 +106,10 @@ fn a_diffuse_scene_compiles_no_ggx_punctual_or_texture_code() {
         EffectSet::detect(&SceneFeatures::of(&cornell), &Settings::default(), false).defines();
     let general = EffectSet::all().defines();
     for pass in [
-        "initial.wgsl",
-        "temporal.wgsl",
-        "spatial.wgsl",
-        "shade.wgsl",
+        "di/initial.wgsl",
+        "di/temporal.wgsl",
+        "di/spatial.wgsl",
+        "di/shade.wgsl",
         "reference.wgsl",
         "gbuffer_resolve.wgsl",
         "gbuffer_raster.wgsl",
@@ -135,7 +135,7 @@ fn a_diffuse_scene_compiles_no_ggx_punctual_or_texture_code() {
         );
     }
     assert!(
-        compose("initial.wgsl", &general)
+        compose("di/initial.wgsl", &general)
             .unwrap()
             .contains("fn ggx_d")
     );

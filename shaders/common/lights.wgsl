@@ -90,7 +90,7 @@ fn light_point(light_id: u32, uv: vec2<f32>) -> LightPoint {
 // A light sample's point this frame, or (`previous`, animated scenes) the same light (same
 // slot: its identity) as it was last frame: last frame's triangle, emission and punctual
 // record. Pairwise MIS needs the latter for the canonical sample's target and visibility
-// at the previous pixel (temporal.wgsl).
+// at the previous pixel (di/temporal.wgsl).
 fn light_point_in_frame(light_id: u32, uv: vec2<f32>, previous: bool) -> LightPoint {
     let light = lights[light_id];
     var lp: LightPoint;

@@ -1,7 +1,7 @@
 // ReGIR's grid (docs/src/light-samplers.md, "ReGIR"; Boksansky, Jukarainen & Wyman 2021,
 // RTXDI's grid mode): regir_grid³ cells of side regir_cell_size × the scene's diagonal,
 // centred on the camera and snapped to whole cells, each with regir_slots light samples
-// resampled every frame toward the cell's target (regir_fill.wgsl). A pixel reads a cell
+// resampled every frame toward the cell's target (lights/regir_fill.wgsl). A pixel reads a cell
 // at its position jittered by up to ± regir_jitter / 2 cells; outside the grid, the power
 // table. The slots' contribution weights W are unbiased estimates of 1 / p(light) (RIS),
 // so a candidate read from a slot weighs p̂ · W — never p̂ / p_power, which is the planted

@@ -1,5 +1,5 @@
 // Direct light at a shading point by resampled importance sampling: the `ris` mode's
-// estimator (initial.wgsl's candidates, docs/src/ris.md) without a reservoir to keep.
+// estimator (di/initial.wgsl's candidates, docs/src/ris.md) without a reservoir to keep.
 // N_l light points from the vertex sampler (vertex_light.wgsl) and N_b BSDF rays that
 // find an emitter, each weighted p̂ / (N_l p_light + N_b p_bsdf) (the balance heuristic),
 // one survivor picked in proportion, one shadow ray for it: f·Le·G·V · w_sum / p̂(survivor).

@@ -13,7 +13,7 @@
 #ifdef ANIMATION
 // Last frame's triangles, materials and punctual lights, same slots as the current ones
 // (render/src/gpu_scene/update.rs): object motion vectors (gbuffer_resolve.wgsl) and the
-// pairwise MIS canonical term at the previous pixel (temporal.wgsl). A static scene binds
+// pairwise MIS canonical term at the previous pixel (di/temporal.wgsl). A static scene binds
 // the current buffers here.
 @group(1) @binding(8) var<storage, read> prev_triangles: array<Triangle>;
 @group(1) @binding(9) var<storage, read> prev_materials: array<Material>;

@@ -158,7 +158,7 @@ fn light_transmittance(sp: ShadingPoint, lp: LightPoint, c: LightContribution) -
 // The visibility factor V of a target p̂·V (visibility in the target, the pairwise MIS
 // terms): the luminance of the transmittance. In an opaque scene it is exactly 0 or 1; with
 // glass it is a valid target factor (> 0 wherever light gets through), used alike in every
-// term, while shading multiplies by the full colour (shade.wgsl).
+// term, while shading multiplies by the full colour (di/shade.wgsl).
 fn light_visibility_in(sp: ShadingPoint, lp: LightPoint, c: LightContribution, geometry: u32) -> f32 {
     return luminance(light_transmittance_in(sp, lp, c, geometry).value);
 }

@@ -116,7 +116,7 @@ struct LightBvhNode {
 }
 
 // A light-BVH node's bounds in full precision (light_bvh.rs's LightBounds), which the
-// GPU refit unions (light_bvh_refit.wgsl): its record above holds them quantised.
+// GPU refit unions (lights/light_bvh_refit.wgsl): its record above holds them quantised.
 struct LightBounds {
     min: vec3<f32>,
     phi: f32,

@@ -2,7 +2,7 @@
 // "At every vertex"): next-event estimation at GI's secondary hit and at PT's path vertices,
 // the light of transparent layers, and the reference's vertices. With VERTEX_LIGHT_BVH the
 // lights with a position are drawn by the light BVH's walk at the vertex, as DI's candidates
-// are (initial.wgsl); otherwise by the power table. Either way a light point's `source_pdf`
+// are (di/initial.wgsl); otherwise by the power table. Either way a light point's `source_pdf`
 // is the PDF of the sampler that drew it at this vertex, and the BSDF strategy's MIS
 // weight reads the same PDF for the emitter its ray found, so the balance heuristic
 // compares the two strategies that actually ran. Without VERTEX_LIGHT_BVH both functions

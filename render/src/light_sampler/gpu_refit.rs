@@ -1,6 +1,6 @@
 //! The light BVH's refit on the GPU (docs/src/light-samplers.md, "Moving lights"): the CPU
 //! finds the nodes above the changed lights (a climb with early stop, the cheap part) and
-//! lists them by level; shaders/light_bvh_refit.wgsl rewrites them, one dispatch per
+//! lists them by level; shaders/lights/light_bvh_refit.wgsl rewrites them, one dispatch per
 //! level, the changed leaves first and then the interior nodes from the deepest up (wgpu
 //! orders the dispatches' storage accesses). The unions and the record encoding, the
 //! CPU refit's cost, run on the device. Full-precision bounds live beside the records on
@@ -62,7 +62,7 @@ fn storage_entry(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
 impl GpuRefit {
     /// The pipeline and the full-precision bounds of `tree` as it is now.
     pub fn new(gpu: &Gpu, tree: &LightBvh) -> Result<GpuRefit, GpuError> {
-        let module = shader_module(gpu, "light_bvh_refit.wgsl", &Default::default())?;
+        let module = shader_module(gpu, "lights/light_bvh_refit.wgsl", &Default::default())?;
         let layout = gpu
             .device
             .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {

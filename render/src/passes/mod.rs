@@ -10,20 +10,15 @@ pub mod resources;
 
 pub mod bias_view;
 pub mod denoise;
+pub mod di;
 pub mod display;
 pub mod gbuffer;
 pub mod gi;
-pub mod initial;
+pub mod lights;
 pub mod moments;
-pub mod mutation;
-pub mod presample;
 pub mod pt;
 pub mod ray_bench;
 pub mod reference;
-pub mod regir;
-pub mod shade;
-pub mod spatial;
-pub mod temporal;
 pub mod temporal_window;
 pub mod window_view;
 
@@ -37,13 +32,13 @@ pub use pass::PassDef;
 pub const ALL: [&PassDef; 32] = [
     &gbuffer::RASTER,
     &gbuffer::RESOLVE,
-    &presample::PASS,
-    &regir::FILL,
-    &initial::PASS,
-    &temporal::PASS,
-    &spatial::PASS,
-    &mutation::PASS,
-    &shade::PASS,
+    &lights::presample::PASS,
+    &lights::regir::FILL,
+    &di::initial::PASS,
+    &di::temporal::PASS,
+    &di::spatial::PASS,
+    &di::mutation::PASS,
+    &di::shade::PASS,
     &gi::initial::PASS,
     &gi::temporal::PASS,
     &gi::spatial::PASS,

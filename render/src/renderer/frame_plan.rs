@@ -8,10 +8,12 @@
 
 use std::ops::Range;
 
+use crate::passes::di::{initial, mutation, shade, spatial, temporal};
+use crate::passes::lights::{presample, regir};
 use crate::passes::resources::{Chain, RESERVOIRS};
 use crate::passes::{
-    PassDef, bias_view, denoise, display, gbuffer, gi, initial, moments, mutation, presample, pt,
-    reference, regir, shade, spatial, temporal, temporal_window, window_view,
+    PassDef, bias_view, denoise, display, gbuffer, gi, moments, pt, reference, temporal_window,
+    window_view,
 };
 
 /// One pass of the frame.

@@ -1,6 +1,6 @@
 //! MCMC mutation of a resampled light sample (docs/src/mcmc-mutation.md; Sawhney et al.
 //! 2024, "Decorrelating ReSTIR Samplers via MCMC Mutations"), the plain-Rust mirror of
-//! `shaders/mutation.wgsl`, step for step.
+//! `shaders/di/mutation.wgsl`, step for step.
 //!
 //! After resampling, a reservoir holds a sample `Y` and a contribution weight `W` with
 //! `E[f(Y) W] = ∫ f`. A Markov kernel `K` that leaves the target `T` invariant

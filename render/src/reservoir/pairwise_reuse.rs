@@ -1,4 +1,4 @@
-//! One pairwise-MIS reuse step of direct light as `temporal.wgsl` and `spatial.wgsl` make it
+//! One pairwise-MIS reuse step of direct light as `di/temporal.wgsl` and `di/spatial.wgsl` make it
 //! (docs/src/mis-and-bias.md, "The two rules of unbiased reuse"): which candidates take part, what
 //! each contributes, and the weights, in plain Rust so that the rules can be checked against exact
 //! integrals (`pairwise_reuse_tests.rs`).

@@ -1,13 +1,13 @@
-//! Spatial reuse (spatial.wgsl): one dispatch per pass, reading the previous pass's
+//! Spatial reuse (di/spatial.wgsl): one dispatch per pass, reading the previous pass's
 //! reservoirs and writing new ones; the pass index (a `PassInfo` slot) decorrelates the
 //! passes' random numbers.
 
-use super::pass::{Dispatch, PassDef, read, write};
-use super::resources::{DEBUG, RESERVOIRS, Resource::*, Role};
+use crate::passes::pass::{Dispatch, PassDef, read, write};
+use crate::passes::resources::{DEBUG, RESERVOIRS, Resource::*, Role};
 
 pub const PASS: PassDef = PassDef {
     name: "spatial",
-    shader: "spatial.wgsl",
+    shader: "di/spatial.wgsl",
     group: &[
         read(Surfaces),
         read(Chain(&RESERVOIRS, Role::In)),

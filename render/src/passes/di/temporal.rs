@@ -1,12 +1,12 @@
-//! Temporal reuse (temporal.wgsl): reprojection, validation with a rejection mask,
+//! Temporal reuse (di/temporal.wgsl): reprojection, validation with a rejection mask,
 //! target re-evaluation and the merge with the previous frame's reservoir.
 
-use super::pass::{Dispatch, PassDef, read, write};
-use super::resources::{DEBUG, RESERVOIRS, Resource::*, Role};
+use crate::passes::pass::{Dispatch, PassDef, read, write};
+use crate::passes::resources::{DEBUG, RESERVOIRS, Resource::*, Role};
 
 pub const PASS: PassDef = PassDef {
     name: "temporal",
-    shader: "temporal.wgsl",
+    shader: "di/temporal.wgsl",
     group: &[
         read(Surfaces),
         read(PrevSurfaces),

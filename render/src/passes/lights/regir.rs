@@ -1,14 +1,14 @@
-//! ReGIR's fill (regir_fill.wgsl): every slot of every cell around the camera resampled
+//! ReGIR's fill (lights/regir_fill.wgsl): every slot of every cell around the camera resampled
 //! toward its cell's lights, once per frame before the initial pass reads them
 //! (docs/src/light-samplers.md, "ReGIR").
 
-use super::pass::{Dispatch, PassDef, read, write};
-use super::resources::{LightData, Resource::*};
+use crate::passes::pass::{Dispatch, PassDef, read, write};
+use crate::passes::resources::{LightData, Resource::*};
 use crate::shader_constants::MAX_REGIR_SLOTS_TOTAL;
 
 pub const FILL: PassDef = PassDef {
     name: "regir fill",
-    shader: "regir_fill.wgsl",
+    shader: "lights/regir_fill.wgsl",
     group: &[
         write(Lights(LightData::Presampled)),
         read(Lights(LightData::BvhNodes)),

@@ -1,11 +1,11 @@
-//! Initial RIS candidates (initial.wgsl): surfaces → reservoir (M = 1) + debug record.
+//! Initial RIS candidates (di/initial.wgsl): surfaces → reservoir (M = 1) + debug record.
 
-use super::pass::{Dispatch, PassDef, read, write};
-use super::resources::{DEBUG, LightData, RESERVOIRS, Resource::*, Role};
+use crate::passes::pass::{Dispatch, PassDef, read, write};
+use crate::passes::resources::{DEBUG, LightData, RESERVOIRS, Resource::*, Role};
 
 pub const PASS: PassDef = PassDef {
     name: "initial",
-    shader: "initial.wgsl",
+    shader: "di/initial.wgsl",
     group: &[
         read(Surfaces),
         write(Chain(&RESERVOIRS, Role::Out)),

@@ -14,8 +14,8 @@
 @group(2) @binding(1) var<storage, read_write> reservoirs_out: array<Reservoir>;
 @group(2) @binding(2) var<storage, read_write> debug: array<PixelDebug>;
 // The light samplers' data (docs/src/light-samplers.md), each a one-element placeholder
-// unless its sampler is on: presampled lights (the light tiles, presample_lights.wgsl, or
-// ReGIR's slots, regir_fill.wgsl) and the light BVH (render/src/light_sampler.rs).
+// unless its sampler is on: presampled lights (the light tiles, lights/presample_lights.wgsl, or
+// ReGIR's slots, lights/regir_fill.wgsl) and the light BVH (render/src/light_sampler.rs).
 @group(2) @binding(3) var<storage, read> presampled: array<PresampledLight>;
 @group(2) @binding(4) var<storage, read> light_bvh_nodes: array<LightBvhNode>;
 @group(2) @binding(5) var<storage, read> light_bvh_trails: array<LightBvhTrail>;

@@ -1,12 +1,12 @@
-//! Final shading (shade.wgsl): one shadow ray for the survivor plus emission; writes the
+//! Final shading (di/shade.wgsl): one shadow ray for the survivor plus emission; writes the
 //! frame's radiance and adds it to the accumulation.
 
-use super::pass::{Dispatch, PassDef, read, write};
-use super::resources::{ACCUMULATION, DEBUG, RADIANCE, RESERVOIRS, Resource::*, Role};
+use crate::passes::pass::{Dispatch, PassDef, read, write};
+use crate::passes::resources::{ACCUMULATION, DEBUG, RADIANCE, RESERVOIRS, Resource::*, Role};
 
 pub const PASS: PassDef = PassDef {
     name: "shade",
-    shader: "shade.wgsl",
+    shader: "di/shade.wgsl",
     group: &[
         read(Surfaces),
         read(Chain(&RESERVOIRS, Role::In)),

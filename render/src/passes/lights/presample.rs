@@ -1,13 +1,13 @@
-//! Light tiles (presample_lights.wgsl): power-sampled lights packed into tiles once per
+//! Light tiles (lights/presample_lights.wgsl): power-sampled lights packed into tiles once per
 //! frame, before the initial pass reads them.
 
-use super::pass::{Dispatch, PassDef, write};
-use super::resources::{LightData, Resource::*};
+use crate::passes::pass::{Dispatch, PassDef, write};
+use crate::passes::resources::{LightData, Resource::*};
 use crate::shader_constants::{LIGHT_TILE_COUNT, LIGHT_TILE_SIZE};
 
 pub const PASS: PassDef = PassDef {
     name: "presample lights",
-    shader: "presample_lights.wgsl",
+    shader: "lights/presample_lights.wgsl",
     group: &[write(Lights(LightData::Presampled))],
     dispatch: Dispatch::Threads {
         invocations: LIGHT_TILE_COUNT * LIGHT_TILE_SIZE,

@@ -248,8 +248,24 @@ fn scenes_and_params_list_everything() {
     let scenes = viewer(&["scenes"]);
     assert!(scenes.status.success());
     let text = String::from_utf8_lossy(&scenes.stdout);
+    // Each line: the name (padded), two spaces, a one-line description.
+    let entries: Vec<(&str, &str)> = text
+        .lines()
+        .map(|l| {
+            let (name, line) = l.split_once("  ").unwrap_or((l, ""));
+            (name.trim(), line.trim())
+        })
+        .collect();
     assert!(
-        text.lines().any(|l| l == "builtin:concourse (default)"),
+        entries
+            .iter()
+            .all(|(n, line)| n.starts_with("builtin:") && !line.is_empty()),
+        "every line names a scene and says what it is: {text}"
+    );
+    assert!(
+        entries
+            .iter()
+            .any(|(n, _)| *n == "builtin:concourse (default)"),
         "the showcase is the marked default: {text}"
     );
     for name in [
@@ -263,19 +279,20 @@ fn scenes_and_params_list_everything() {
         "builtin:dynamic:many-lights",
     ] {
         assert!(
-            text.lines().any(|l| l == name),
+            entries.iter().any(|(n, _)| *n == name),
             "{name} missing from `scenes`"
         );
     }
-    assert!(text.lines().all(|l| l.starts_with("builtin:")));
-    // The families too, so that a newcomer finds the city.
+    // The families too, with their range, so that a newcomer finds the city.
     for family in [
         "builtin:city:N",
         "builtin:city-traffic:N",
         "builtin:many-lights:N",
     ] {
         assert!(
-            text.lines().any(|l| l.starts_with(&format!("{family} ("))),
+            entries
+                .iter()
+                .any(|(n, _)| *n == format!("{family} (N lights, 1 to 4194304)")),
             "{family} missing from `scenes`: {text}"
         );
     }

@@ -3,7 +3,7 @@
 use std::fmt::Write as _;
 
 use restir_render::Settings;
-use restir_render::scene::builtin::{DEFAULT_SCENE, builtin_names};
+use restir_render::scene::builtin::DEFAULT_SCENE;
 use restir_render::settings::pixel_units::{MIN_SPATIAL_RADIUS_PX, REFERENCE_HEIGHT};
 use restir_render::settings::{PARAMS, ParamDef, ParamKind, Stage};
 
@@ -167,21 +167,26 @@ fn write_param(w: &mut String, p: &ParamDef) {
     let _ = writeln!(w, "{}", p.doc);
 }
 
-/// One `builtin:NAME` per line, the viewer's default marked ` (default)`; then the
-/// families, `builtin:NAME:N` with the range of N.
+/// One `builtin:NAME` per line with what it is, the viewer's default marked ` (default)`;
+/// then the families, `builtin:NAME:N` with the range of N.
 pub fn print_scenes() {
-    for name in builtin_names() {
-        let mark = if name == DEFAULT_SCENE {
-            " (default)"
+    let catalogue = restir_render::scene::builtin::catalogue();
+    let max = restir_render::scene::builtin::MAX_LIGHT_COUNT;
+    let label = |name: &str| {
+        if name == DEFAULT_SCENE {
+            format!("{name} (default)")
+        } else if name.ends_with(":N") {
+            format!("{name} (N lights, 1 to {max})")
         } else {
-            ""
-        };
-        println!("{name}{mark}");
-    }
-    for family in restir_render::scene::builtin::family_names() {
-        println!(
-            "{family} (N lights, 1 to {})",
-            restir_render::scene::builtin::MAX_LIGHT_COUNT
-        );
+            name.to_string()
+        }
+    };
+    let width = catalogue
+        .iter()
+        .map(|(n, _)| label(n).len())
+        .max()
+        .unwrap_or(0);
+    for (name, line) in &catalogue {
+        println!("{:width$}  {line}", label(name));
     }
 }

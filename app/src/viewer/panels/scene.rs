@@ -3,7 +3,7 @@
 //! the environment part is `environment.rs`.
 
 use egui::Ui;
-use restir_render::scene::builtin::builtin_names;
+use restir_render::scene::builtin::catalogue;
 
 use super::environment;
 use super::scene_rows::{facts, open_row};
@@ -62,8 +62,14 @@ pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
     egui::ComboBox::from_label("Built-in scene")
         .selected_text(builtin_label(&scene.spec))
         .show_ui(ui, |ui| {
-            for name in builtin_names() {
-                if ui.selectable_label(scene.spec == name, &name).clicked() {
+            for (name, line) in catalogue() {
+                // A family (`city:N`) needs its count: type `builtin:city:4096` in the
+                // path box below, or pass it to `--scene`.
+                if name.ends_with(":N") {
+                    continue;
+                }
+                let row = ui.selectable_label(scene.spec == name, &name);
+                if row.on_hover_text(line).clicked() {
                     pick = Some(name);
                 }
             }

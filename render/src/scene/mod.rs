@@ -305,6 +305,43 @@ impl Aabb {
 }
 
 impl Scene {
+    /// The rectangle `center ± u ± v` (half-extents), front face along `u × v`, flat-shaded:
+    /// the built-ins' building block, and the tests'.
+    pub fn push_rect(&mut self, center: Vec3, u: Vec3, v: Vec3, material: u32) {
+        let corners = [
+            center - u - v,
+            center + u - v,
+            center + u + v,
+            center - u + v,
+        ];
+        let uvs = [Vec2::ZERO, Vec2::X, Vec2::ONE, Vec2::Y];
+        let normal = u.cross(v).normalize_or_zero();
+        self.push_flat(&corners, &uvs, normal, &[[0, 1, 2], [0, 2, 3]], material);
+    }
+
+    /// Vertices `p` with texture coordinates `uv` and one shared `normal`, and the triangles
+    /// `tris` (indices into `p`), all with `material`.
+    pub fn push_flat(
+        &mut self,
+        p: &[Vec3],
+        uv: &[Vec2],
+        normal: Vec3,
+        tris: &[[u32; 3]],
+        material: u32,
+    ) {
+        let base = self.vertices.len() as u32;
+        self.vertices
+            .extend(p.iter().zip(uv).map(|(&position, &uv)| Vertex {
+                position,
+                normal,
+                uv,
+            }));
+        self.triangles.extend(tris.iter().map(|t| Triangle {
+            indices: t.map(|i| base + i),
+            material,
+        }));
+    }
+
     pub fn bounds(&self) -> Aabb {
         let mut b = Aabb::EMPTY;
         for v in &self.vertices {

@@ -3,34 +3,13 @@
 
 use std::sync::Arc;
 
-use glam::{Vec2, Vec3};
-use restir_render::scene::{Camera, Material, PunctualKind, PunctualLight, Triangle, Vertex};
+use glam::Vec3;
+use restir_render::scene::{Camera, Material, PunctualKind, PunctualLight};
 use restir_render::{Scene, load_environment, load_scene};
 
-/// The rectangle `center ± u ± v`, front face along u × v.
+/// The rectangle `center ± u ± v`, front face along u × v (the built-ins' own).
 pub fn rect(scene: &mut Scene, center: Vec3, u: Vec3, v: Vec3, material: u32) {
-    let base = scene.vertices.len() as u32;
-    let normal = u.cross(v).normalize();
-    let corners = [
-        center - u - v,
-        center + u - v,
-        center + u + v,
-        center - u + v,
-    ];
-    let uvs = [Vec2::ZERO, Vec2::X, Vec2::ONE, Vec2::Y];
-    for (position, uv) in corners.into_iter().zip(uvs) {
-        scene.vertices.push(Vertex {
-            position,
-            normal,
-            uv,
-        });
-    }
-    for t in [[0, 1, 2], [0, 2, 3]] {
-        scene.triangles.push(Triangle {
-            indices: t.map(|i| base + i),
-            material,
-        });
-    }
+    scene.push_rect(center, u, v, material);
 }
 
 pub fn material(scene: &mut Scene, m: Material) -> u32 {

@@ -4,7 +4,7 @@
 
 use glam::{Quat, Vec2, Vec3};
 
-use crate::scene::{Camera, Material, Scene, Triangle, Vertex};
+use crate::scene::{Camera, Material, Scene, Vertex};
 
 /// The six faces of an axis-aligned box, in the order `BoxFaces` arrays use.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -86,20 +86,13 @@ impl SceneBuilder {
     pub(super) fn triangle(&mut self, p: [Vec3; 3], material: u32) {
         let normal = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero();
         let uvs = [Vec2::ZERO, Vec2::X, Vec2::Y];
-        self.push(&p, &uvs, normal, &[[0, 1, 2]], material);
+        self.scene
+            .push_flat(&p, &uvs, normal, &[[0, 1, 2]], material);
     }
 
     /// The rectangle `center ± u ± v` (half-extents), front face along `u × v`.
     pub(super) fn rect(&mut self, center: Vec3, u: Vec3, v: Vec3, material: u32) {
-        let corners = [
-            center - u - v,
-            center + u - v,
-            center + u + v,
-            center - u + v,
-        ];
-        let uvs = [Vec2::ZERO, Vec2::X, Vec2::ONE, Vec2::Y];
-        let normal = u.cross(v).normalize_or_zero();
-        self.push(&corners, &uvs, normal, &[[0, 1, 2], [0, 2, 3]], material);
+        self.scene.push_rect(center, u, v, material);
     }
 
     /// A box of half-size `half`, rotated by `rotation` about its centre. `materials[i]` is
@@ -142,21 +135,6 @@ impl SceneBuilder {
     pub(super) fn finish(mut self, camera: Option<Camera>) -> Scene {
         self.scene.camera = camera;
         self.scene
-    }
-
-    fn push(&mut self, p: &[Vec3], uv: &[Vec2], normal: Vec3, tris: &[[u32; 3]], material: u32) {
-        let base = self.scene.vertices.len() as u32;
-        self.scene
-            .vertices
-            .extend(p.iter().zip(uv).map(|(&position, &uv)| Vertex {
-                position,
-                normal,
-                uv,
-            }));
-        self.scene.triangles.extend(tris.iter().map(|t| Triangle {
-            indices: t.map(|i| base + i),
-            material,
-        }));
     }
 }
 

@@ -7,7 +7,7 @@
 //! the GPU, since a union of quantised records would widen a little at every refit.
 
 use super::storage;
-use crate::gpu::{Gpu, GpuError};
+use crate::gpu::{Gpu, GpuError, bindings};
 use crate::gpu_types::{GpuLightBounds, GpuRefitLevel};
 use crate::light_bvh::{EmissiveTriangle, LightBounds, LightBvh, NO_NODE};
 use crate::passes::compile::{compute_pipeline, shader_module};
@@ -39,26 +39,6 @@ pub struct GpuRefit {
     depth: Vec<u8>,
 }
 
-fn entry(binding: u32, ty: wgpu::BindingType) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty,
-        count: None,
-    }
-}
-
-fn storage_entry(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
-    entry(
-        binding,
-        wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-    )
-}
-
 impl GpuRefit {
     /// The pipeline and the full-precision bounds of `tree` as it is now.
     pub fn new(gpu: &Gpu, tree: &LightBvh) -> Result<GpuRefit, GpuError> {
@@ -68,20 +48,22 @@ impl GpuRefit {
             .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some("light bvh refit"),
                 entries: &[
-                    storage_entry(0, false),
-                    storage_entry(1, false),
-                    storage_entry(2, true),
-                    storage_entry(3, true),
-                    entry(
-                        4,
-                        wgpu::BindingType::Buffer {
+                    bindings::storage(0, false),
+                    bindings::storage(1, false),
+                    bindings::storage(2, true),
+                    bindings::storage(3, true),
+                    wgpu::BindGroupLayoutEntry {
+                        binding: 4,
+                        visibility: wgpu::ShaderStages::COMPUTE,
+                        ty: wgpu::BindingType::Buffer {
                             ty: wgpu::BufferBindingType::Uniform,
                             has_dynamic_offset: true,
                             min_binding_size: wgpu::BufferSize::new(
                                 std::mem::size_of::<GpuRefitLevel>() as u64,
                             ),
                         },
-                    ),
+                        count: None,
+                    },
                 ],
             });
         let pipeline_layout = gpu

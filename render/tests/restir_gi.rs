@@ -204,6 +204,11 @@ fn the_inspector_shows_the_gi_reservoir_after_each_stage() {
     assert_eq!(gi.stages[0].reservoir.m, 1.0);
     assert!(gi.stages[1].reservoir.m > 1.0, "{:?}", gi.stages[1]);
     assert!(gi.debug.jacobian.is_finite());
+    // The DI part of the same record: its last stage is the reservoir the frame shaded
+    // with, its surface the G-buffer's (the staging record's offsets, both sides).
+    let last = inspection.stages.last().expect("DI's stages").reservoir;
+    assert_eq!(last, r.read_final_reservoirs()[index]);
+    assert_eq!(inspection.surface, r.read_surfaces()[index]);
     // Without GI the inspection has no GI part.
     let mut off = render(&scene, &[], None, 0);
     off.set_inspected_pixel(Some(pixel));

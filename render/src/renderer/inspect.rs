@@ -2,34 +2,51 @@
 //! reservoir after each stage, its surface and its debug record into a small buffer that
 //! comes back asynchronously with the frame's report.
 
-use super::inspect_pt::{PT_BYTES, PT_DEBUG_BYTES, PtInspection};
+use super::inspect_pt::PtInspection;
 use crate::gpu::readback::ReadbackRing;
 use crate::gpu_types::{
-    GpuDenoiseHistory, GpuGiPixelDebug, GpuGiReservoir, GpuPixelDebug, GpuReservoir, GpuSurface,
-    NO_LIGHT,
+    GpuDenoiseHistory, GpuGiPixelDebug, GpuGiReservoir, GpuPixelDebug, GpuPtPixelDebug,
+    GpuPtProbeStage, GpuReservoir, GpuSurface, NO_LIGHT,
 };
 use crate::shader_constants::*;
 
-const SURFACE_BYTES: u64 = std::mem::size_of::<GpuSurface>() as u64;
-const DEBUG_BYTES: u64 = std::mem::size_of::<GpuPixelDebug>() as u64;
-const RESERVOIR_BYTES: u64 = std::mem::size_of::<GpuReservoir>() as u64;
-/// initial, temporal and up to 8 spatial passes.
-const MAX_STAGES: u64 = 10;
-const DI_BYTES: u64 = SURFACE_BYTES + DEBUG_BYTES + MAX_STAGES * RESERVOIR_BYTES;
-/// ReSTIR GI, after the DI part: its debug record, then gi initial, temporal, spatial.
-const GI_DEBUG_BYTES: u64 = std::mem::size_of::<GpuGiPixelDebug>() as u64;
-const GI_RESERVOIR_BYTES: u64 = std::mem::size_of::<GpuGiReservoir>() as u64;
-const MAX_GI_STAGES: u64 = 3;
-const GI_BYTES: u64 = GI_DEBUG_BYTES + MAX_GI_STAGES * GI_RESERVOIR_BYTES;
-/// Last, the pixel's radiance this frame (what the image shows there before tonemapping).
-const RADIANCE_BYTES: u64 = 16;
-/// Then ReSTIR PT's debug record and path probe (inspect_pt.rs).
-const PT_AT: u64 = DI_BYTES + GI_BYTES + RADIANCE_BYTES;
-/// Then the denoiser's history record and temporal gradient.
-const DENOISE_AT: u64 = PT_AT + PT_BYTES;
-const DENOISE_HISTORY_BYTES: u64 = std::mem::size_of::<GpuDenoiseHistory>() as u64;
-const GRADIENT_BYTES: u64 = 16;
-pub const INSPECT_BYTES: u64 = DENOISE_AT + DENOISE_HISTORY_BYTES + GRADIENT_BYTES;
+/// DI's stages: initial, temporal and up to 8 spatial passes.
+const MAX_STAGES: usize = 10;
+/// GI's stages: gi initial, temporal, spatial.
+const MAX_GI_STAGES: usize = 3;
+
+/// The staging record a capture fills, one field per thing it copies: each copy lands at
+/// its field's offset and the readback is one read, so no offset is summed by hand.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct InspectRecord {
+    surface: GpuSurface,
+    debug: GpuPixelDebug,
+    reservoirs: [GpuReservoir; MAX_STAGES],
+    gi_debug: GpuGiPixelDebug,
+    gi_reservoirs: [GpuGiReservoir; MAX_GI_STAGES],
+    /// The pixel's radiance this frame (what the image shows there before tonemapping).
+    radiance: [f32; 4],
+    /// ReSTIR PT's debug record and path probe (inspect_pt.rs).
+    pt_debug: GpuPtPixelDebug,
+    pt_probe: [GpuPtProbeStage; PT_PROBE_STAGES as usize],
+    /// The denoiser's history record and temporal gradient (gradient, before, now, -).
+    denoise_history: GpuDenoiseHistory,
+    gradient: [f32; 4],
+}
+
+pub const INSPECT_BYTES: u64 = size_of::<InspectRecord>() as u64;
+
+/// Where `field` of the staging record starts, in bytes.
+macro_rules! at {
+    ($field:ident) => {
+        std::mem::offset_of!(InspectRecord, $field) as u64
+    };
+}
+/// The size of one `T` in bytes: what a copy of one pixel's record moves.
+const fn bytes<T>() -> u64 {
+    size_of::<T>() as u64
+}
 
 /// One stage's reservoir at the inspected pixel.
 #[derive(Clone, Debug, PartialEq)]
@@ -226,7 +243,7 @@ impl InspectCapture {
         reservoirs: &wgpu::Buffer,
         stage: &str,
     ) {
-        let slot = self.stages.len() as u64;
+        let slot = self.stages.len();
         if slot >= MAX_STAGES {
             return;
         }
@@ -243,13 +260,9 @@ impl InspectCapture {
             stage.to_string()
         };
         self.stages.push(name);
-        encoder.copy_buffer_to_buffer(
-            reservoirs,
-            self.index * RESERVOIR_BYTES,
-            &self.staging,
-            SURFACE_BYTES + DEBUG_BYTES + slot * RESERVOIR_BYTES,
-            RESERVOIR_BYTES,
-        );
+        let size = bytes::<GpuReservoir>();
+        let to = at!(reservoirs) + slot as u64 * size;
+        encoder.copy_buffer_to_buffer(reservoirs, self.index * size, &self.staging, to, size);
     }
 
     /// Copies the pixel's GI reservoir from `reservoirs` as the next GI stage.
@@ -259,29 +272,26 @@ impl InspectCapture {
         reservoirs: &wgpu::Buffer,
         stage: &str,
     ) {
-        let slot = self.gi_stages.len() as u64;
+        let slot = self.gi_stages.len();
         if slot >= MAX_GI_STAGES {
             return;
         }
         self.gi_stages.push(stage.to_string());
-        encoder.copy_buffer_to_buffer(
-            reservoirs,
-            self.index * GI_RESERVOIR_BYTES,
-            &self.staging,
-            DI_BYTES + GI_DEBUG_BYTES + slot * GI_RESERVOIR_BYTES,
-            GI_RESERVOIR_BYTES,
-        );
+        let size = bytes::<GpuGiReservoir>();
+        let to = at!(gi_reservoirs) + slot as u64 * size;
+        encoder.copy_buffer_to_buffer(reservoirs, self.index * size, &self.staging, to, size);
     }
 
     /// Copies the pixel's GI debug record (frames where GI ran).
     pub fn copy_gi_debug(&mut self, encoder: &mut wgpu::CommandEncoder, gi_debug: &wgpu::Buffer) {
         self.gi = true;
+        let size = bytes::<GpuGiPixelDebug>();
         encoder.copy_buffer_to_buffer(
             gi_debug,
-            self.index * GI_DEBUG_BYTES,
+            self.index * size,
             &self.staging,
-            DI_BYTES,
-            GI_DEBUG_BYTES,
+            at!(gi_debug),
+            size,
         );
     }
 
@@ -294,20 +304,16 @@ impl InspectCapture {
         pt_probe: &wgpu::Buffer,
     ) {
         self.pt = true;
+        let size = bytes::<GpuPtPixelDebug>();
         encoder.copy_buffer_to_buffer(
             pt_debug,
-            self.index * PT_DEBUG_BYTES,
+            self.index * size,
             &self.staging,
-            PT_AT,
-            PT_DEBUG_BYTES,
+            at!(pt_debug),
+            size,
         );
-        encoder.copy_buffer_to_buffer(
-            pt_probe,
-            0,
-            &self.staging,
-            PT_AT + PT_DEBUG_BYTES,
-            PT_BYTES - PT_DEBUG_BYTES,
-        );
+        let size = PT_PROBE_STAGES as u64 * bytes::<GpuPtProbeStage>();
+        encoder.copy_buffer_to_buffer(pt_probe, 0, &self.staging, at!(pt_probe), size);
     }
 
     /// Copies the pixel's surface, final debug record and radiance.
@@ -345,13 +351,13 @@ impl InspectCapture {
             use crate::passes::denoise::{GRADIENT, HISTORY};
             self.denoise = true;
             let history = targets.chain(&HISTORY, buffer);
-            let at = self.index * DENOISE_HISTORY_BYTES;
-            let to = DENOISE_AT;
-            encoder.copy_buffer_to_buffer(history, at, &self.staging, to, DENOISE_HISTORY_BYTES);
-            let at = self.index * GRADIENT_BYTES;
-            let to = DENOISE_AT + DENOISE_HISTORY_BYTES;
+            let size = bytes::<GpuDenoiseHistory>();
+            let to = at!(denoise_history);
+            encoder.copy_buffer_to_buffer(history, self.index * size, &self.staging, to, size);
             let gradient = targets.pixels(&GRADIENT);
-            encoder.copy_buffer_to_buffer(gradient, at, &self.staging, to, GRADIENT_BYTES);
+            let size = bytes::<[f32; 4]>();
+            let to = at!(gradient);
+            encoder.copy_buffer_to_buffer(gradient, self.index * size, &self.staging, to, size);
         }
     }
 
@@ -362,28 +368,12 @@ impl InspectCapture {
         debug: &wgpu::Buffer,
         radiance: &wgpu::Buffer,
     ) {
-        let index = self.index;
-        encoder.copy_buffer_to_buffer(
-            radiance,
-            index * RADIANCE_BYTES,
-            &self.staging,
-            DI_BYTES + GI_BYTES,
-            RADIANCE_BYTES,
-        );
-        encoder.copy_buffer_to_buffer(
-            surfaces,
-            index * SURFACE_BYTES,
-            &self.staging,
-            0,
-            SURFACE_BYTES,
-        );
-        encoder.copy_buffer_to_buffer(
-            debug,
-            index * DEBUG_BYTES,
-            &self.staging,
-            SURFACE_BYTES,
-            DEBUG_BYTES,
-        );
+        let copy = |encoder: &mut wgpu::CommandEncoder, from: &wgpu::Buffer, to: u64, size: u64| {
+            encoder.copy_buffer_to_buffer(from, self.index * size, &self.staging, to, size)
+        };
+        copy(encoder, radiance, at!(radiance), bytes::<[f32; 4]>());
+        copy(encoder, surfaces, at!(surface), bytes::<GpuSurface>());
+        copy(encoder, debug, at!(debug), bytes::<GpuPixelDebug>());
     }
 
     /// Queues the readback of everything copied this frame.
@@ -422,39 +412,24 @@ impl PendingInspection {
         if (bytes.len() as u64) < INSPECT_BYTES {
             return None;
         }
-        let surface: GpuSurface = bytemuck::pod_read_unaligned(&bytes[..SURFACE_BYTES as usize]);
-        let debug: GpuPixelDebug = bytemuck::pod_read_unaligned(
-            &bytes[SURFACE_BYTES as usize..(SURFACE_BYTES + DEBUG_BYTES) as usize],
-        );
-        let gi = self.gi.then(|| {
-            let at = DI_BYTES as usize;
-            let debug: GpuGiPixelDebug =
-                bytemuck::pod_read_unaligned(&bytes[at..at + GI_DEBUG_BYTES as usize]);
-            let stages = self
+        let record: InspectRecord = bytemuck::pod_read_unaligned(&bytes[..INSPECT_BYTES as usize]);
+        let gi = self.gi.then(|| GiInspection {
+            debug: record.gi_debug,
+            stages: self
                 .gi_stages
                 .iter()
-                .enumerate()
-                .map(|(slot, stage)| {
-                    let start =
-                        (DI_BYTES + GI_DEBUG_BYTES + slot as u64 * GI_RESERVOIR_BYTES) as usize;
-                    GiStageReservoir {
-                        stage: stage.clone(),
-                        reservoir: bytemuck::pod_read_unaligned(
-                            &bytes[start..start + GI_RESERVOIR_BYTES as usize],
-                        ),
-                    }
+                .zip(record.gi_reservoirs)
+                .map(|(stage, reservoir)| GiStageReservoir {
+                    stage: stage.clone(),
+                    reservoir,
                 })
-                .collect();
-            GiInspection { debug, stages }
+                .collect(),
         });
         let stages = self
             .stages
             .into_iter()
-            .enumerate()
-            .map(|(slot, stage)| {
-                let start = (SURFACE_BYTES + DEBUG_BYTES + slot as u64 * RESERVOIR_BYTES) as usize;
-                let reservoir: GpuReservoir =
-                    bytemuck::pod_read_unaligned(&bytes[start..start + RESERVOIR_BYTES as usize]);
+            .zip(record.reservoirs)
+            .map(|(stage, reservoir)| {
                 let sample_point = (reservoir.light != NO_LIGHT)
                     .then(|| sample_point(reservoir.light, reservoir.uv))
                     .flatten();
@@ -466,34 +441,24 @@ impl PendingInspection {
                 }
             })
             .collect();
-        let at = (DI_BYTES + GI_BYTES) as usize;
-        let radiance: [f32; 4] =
-            bytemuck::pod_read_unaligned(&bytes[at..at + RADIANCE_BYTES as usize]);
+        let radiance = record.radiance;
         Some(PixelInspection {
             frame,
             pixel: self.pixel,
-            surface,
-            debug,
+            surface: record.surface,
+            debug: record.debug,
             stages,
             gi,
             pt: self
                 .pt
-                .then(|| PtInspection::decode(&bytes[PT_AT as usize..]))
-                .flatten(),
+                .then(|| PtInspection::decode(&record.pt_debug, &record.pt_probe)),
             radiance: [radiance[0], radiance[1], radiance[2]],
             light_pdfs: None,
-            denoise: self.denoise.then(|| {
-                let at = DENOISE_AT as usize;
-                let history =
-                    bytemuck::pod_read_unaligned(&bytes[at..at + DENOISE_HISTORY_BYTES as usize]);
-                let at = (DENOISE_AT + DENOISE_HISTORY_BYTES) as usize;
-                let g: [f32; 4] = bytemuck::pod_read_unaligned(&bytes[at..at + 16]);
-                DenoiseInspection {
-                    history,
-                    gradient: g[0],
-                    gradient_before: g[1],
-                    gradient_now: g[2],
-                }
+            denoise: self.denoise.then(|| DenoiseInspection {
+                history: record.denoise_history,
+                gradient: record.gradient[0],
+                gradient_before: record.gradient[1],
+                gradient_now: record.gradient[2],
             }),
         })
     }

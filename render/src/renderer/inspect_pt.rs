@@ -6,9 +6,6 @@
 use crate::gpu_types::{GpuPtPixelDebug, GpuPtProbeStage, GpuPtReservoir};
 use crate::shader_constants::*;
 
-pub const PT_DEBUG_BYTES: u64 = std::mem::size_of::<GpuPtPixelDebug>() as u64;
-const PT_PROBE_STAGE_BYTES: u64 = std::mem::size_of::<GpuPtProbeStage>() as u64;
-pub const PT_BYTES: u64 = PT_DEBUG_BYTES + PT_PROBE_STAGES as u64 * PT_PROBE_STAGE_BYTES;
 /// The probe's stages, in its slot order.
 pub const PT_STAGE_NAMES: [&str; PT_PROBE_STAGES as usize] =
     ["pt initial", "pt temporal", "pt spatial"];
@@ -95,21 +92,13 @@ pub struct PtInspection {
 }
 
 impl PtInspection {
-    /// The PT bytes of an inspection: the debug record, then the probe's stages.
-    pub fn decode(bytes: &[u8]) -> Option<PtInspection> {
-        if (bytes.len() as u64) < PT_BYTES {
-            return None;
-        }
-        let debug: GpuPtPixelDebug =
-            bytemuck::pod_read_unaligned(&bytes[..PT_DEBUG_BYTES as usize]);
+    /// The PT part of an inspection: the debug record and the probe's stages, in slot order.
+    pub fn decode(debug: &GpuPtPixelDebug, probe: &[GpuPtProbeStage]) -> PtInspection {
+        let debug = *debug;
         let stages = PT_STAGE_NAMES
             .iter()
-            .enumerate()
-            .filter_map(|(slot, &stage)| {
-                let start = (PT_DEBUG_BYTES + slot as u64 * PT_PROBE_STAGE_BYTES) as usize;
-                let probe: GpuPtProbeStage = bytemuck::pod_read_unaligned(
-                    &bytes[start..start + PT_PROBE_STAGE_BYTES as usize],
-                );
+            .zip(probe)
+            .filter_map(|(&stage, probe)| {
                 (probe.written == 1).then(|| PtStagePath {
                     stage,
                     reservoir: probe.reservoir,
@@ -129,7 +118,7 @@ impl PtInspection {
                 })
             })
             .collect();
-        Some(PtInspection { debug, stages })
+        PtInspection { debug, stages }
     }
 
     /// The previous path's shift to this pixel, by name (None: none was tried).

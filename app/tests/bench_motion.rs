@@ -132,3 +132,52 @@ fn bad_camera_paths_knobs_and_targets_get_one_line() {
     let err = bad(&["--knob", "light_candidates=1,2", "--target-rmse=-1"]);
     assert!(err.contains("--target-rmse"), "{err}");
 }
+
+/// A knob the renderer overrides is refused before anything renders: under `auto` the city
+/// samples with the light BVH at most 4 candidates, so `light_candidates=4,8` would measure
+/// one frame twice. Named (`light_sampler=bvh`), the same sweep runs.
+#[test]
+fn a_knob_that_auto_overrides_is_refused_and_a_named_sampler_runs() {
+    let out = temp("knob_overridden");
+    let o = out.to_str().unwrap();
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "bench",
+            "--scene",
+            "builtin:city:4096",
+            "--size",
+            "8x8",
+            "--frames",
+            "1",
+            "--warmup",
+            "0",
+            "--reference-spp",
+            "8",
+            "--configs",
+            "ris",
+            "--knob",
+            "light_candidates=4,8",
+            "--quiet",
+            "--out",
+            o,
+        ];
+        args.extend(extra);
+        viewer(&args)
+    };
+    let refused = run(&[]);
+    let err = String::from_utf8_lossy(&refused.stderr).into_owned();
+    assert!(
+        !refused.status.success() && refused.status.code() != Some(101),
+        "{err}"
+    );
+    assert!(
+        err.contains("--knob light_candidates") && err.contains("would render with 4"),
+        "{err}"
+    );
+    let named = run(&["--set", "light_sampler=bvh"]);
+    assert!(
+        named.status.success(),
+        "{}",
+        String::from_utf8_lossy(&named.stderr)
+    );
+}

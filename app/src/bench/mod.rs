@@ -235,7 +235,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     scene.pose(timeline.time_of(0), ClipChoice::All);
     let gpu = Gpu::new_headless()?;
     // One renderer per configuration, so their frames can interleave (see run_loop.rs).
-    let renderers = configs
+    let mut renderers = configs
         .iter()
         .map(|_| Renderer::new(gpu.clone(), &scene, size.0, size.1, base.clone()))
         .collect::<Result<Vec<_>, _>>()?;
@@ -245,6 +245,9 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         configs.len(),
         started.elapsed().as_secs_f64()
     );
+    if let Some(knob) = &args.knob {
+        check_knob_points(&mut renderers[0], &configs, knob)?;
+    }
     // The references get a renderer of their own: a configuration's frames then depend on
     // its seed alone, never on whether its renderer rendered a reference first (so a sweep
     // split into jobs measures what one process measures; docs/src/headless.md).
@@ -315,7 +318,6 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     // Light events are found on the first configuration's references; each configuration
     // measures its lag against the references of its own max_bounces.
     drop(reference_renderer);
-    let mut renderers = renderers;
     // Every seed runs every configuration; the image figures are stated over the seeds
     // (seed_figures.rs), the lag metrics averaged over them.
     let mut per_seed: Vec<Vec<ConfigResult>> = vec![Vec::new(); configs.len()];
@@ -422,6 +424,40 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         std::fs::write(&path, md).with_context(|| format!("{}: cannot write", path.display()))?;
         if !args.quiet {
             println!("{section}");
+        }
+    }
+    Ok(())
+}
+
+/// Refuses a sweep whose knob the renderer overrides at some point (auto's light BVH
+/// draws at most `AUTO_BVH_CANDIDATES`; `nee` draws one candidate): such points render the
+/// same frames under different names, and the cost curve would be a flat line that says
+/// nothing. Checked on one renderer before anything is rendered.
+fn check_knob_points(
+    renderer: &mut Renderer,
+    configs: &[configs::Config],
+    knob: &str,
+) -> anyhow::Result<()> {
+    let name = knob.split_once('=').map_or(knob, |(n, _)| n).trim();
+    for c in configs {
+        renderer.set_mode(c.mode);
+        renderer.set_settings(c.settings.clone());
+        let asked = c.settings.get(name);
+        let ran = renderer.effective_settings().get(name);
+        if asked != ran {
+            let show = |v: Option<restir_render::settings::ParamValue>| {
+                v.map_or("-".to_string(), |v| v.to_string())
+            };
+            bail!(
+                "--knob {name}: configuration '{}' asks for {name} = {} but would render with \
+                 {} (its mode or `auto` chooses it: auto's light BVH draws at most {} \
+                 candidates); name the choice (e.g. --set light_sampler=bvh) or leave the \
+                 configuration out of the sweep",
+                c.name,
+                show(asked),
+                show(ran),
+                restir_render::effects::AUTO_BVH_CANDIDATES,
+            );
         }
     }
     Ok(())

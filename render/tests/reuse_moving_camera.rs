@@ -22,11 +22,7 @@ impl CpuVisibility {
             .map(|t| scene.triangle_positions(t))
             .collect();
         let bvh = restir_render::scene::bvh::Bvh::build(&soup);
-        let triangles = bvh
-            .triangle_order
-            .iter()
-            .map(|&i| soup[i as usize])
-            .collect();
+        let triangles = bvh.in_leaf_order(&soup);
         CpuVisibility { bvh, triangles }
     }
 

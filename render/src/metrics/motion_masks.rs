@@ -80,11 +80,7 @@ struct SurfaceHit {
 impl MaskTracer {
     pub fn new(positions: &[[Vec3; 3]]) -> MaskTracer {
         let bvh = Bvh::build(positions);
-        let ordered = bvh
-            .triangle_order
-            .iter()
-            .map(|&i| positions[i as usize])
-            .collect();
+        let ordered = bvh.in_leaf_order(positions);
         MaskTracer { bvh, ordered }
     }
 

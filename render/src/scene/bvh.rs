@@ -53,6 +53,15 @@ struct Task {
 }
 
 impl Bvh {
+    /// `items` (one per input triangle) in the order the leaves hold the triangles: what a
+    /// traversal indexes by the hit's slot.
+    pub fn in_leaf_order<T: Copy>(&self, items: &[T]) -> Vec<T> {
+        self.triangle_order
+            .iter()
+            .map(|&i| items[i as usize])
+            .collect()
+    }
+
     pub fn build(triangles: &[[Vec3; 3]]) -> Bvh {
         assert!(
             triangles.len() <= (1 << 30),

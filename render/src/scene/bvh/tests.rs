@@ -54,10 +54,7 @@ fn random_ray(rng: &mut Rng) -> Ray {
 }
 
 fn in_bvh_order(bvh: &Bvh, tris: &[[Vec3; 3]]) -> Vec<[Vec3; 3]> {
-    bvh.triangle_order
-        .iter()
-        .map(|&i| tris[i as usize])
-        .collect()
+    bvh.in_leaf_order(tris)
 }
 
 fn brute_force(tris: &[[Vec3; 3]], ray: &Ray) -> Option<f32> {

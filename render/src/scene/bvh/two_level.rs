@@ -78,16 +78,9 @@ impl TwoLevelBvh {
             .map(|(slot, m)| {
                 let positions: Vec<[Vec3; 3]> = m.iter().map(|x| x.1).collect();
                 let blas = Bvh::build(&positions);
-                let triangles = blas
-                    .triangle_order
-                    .iter()
-                    .map(|&i| m[i as usize].0)
-                    .collect();
-                let local = blas
-                    .triangle_order
-                    .iter()
-                    .map(|&i| positions[i as usize])
-                    .collect();
+                let ids: Vec<_> = m.iter().map(|x| x.0).collect();
+                let triangles = blas.in_leaf_order(&ids);
+                let local = blas.in_leaf_order(&positions);
                 Instance {
                     triangles,
                     local,

@@ -1,6 +1,6 @@
 //! What a primitive is read from and how it is named in errors: shared by the plain reader
-//! (`primitives`) and the Draco decoder (`draco`), which sit beside each other and neither
-//! above the other.
+//! (`primitives`) and the Draco decoder (`draco`) it hands compressed primitives to, and
+//! kept below both so that the decoder need not import its caller.
 
 use std::collections::HashMap;
 use std::rc::Rc;

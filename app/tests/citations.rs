@@ -125,7 +125,7 @@ impl Repo {
     }
 
     /// The files a path written in `from` can mean: relative to `from`'s folder, to the
-    /// root, or (a partial path such as `reservoir/gi.rs`) any file that ends with it.
+    /// root, or (a partial path such as `gi/model.rs`) any file that ends with it.
     fn resolve(&self, from: &str, path: &str) -> Vec<String> {
         let dir = from.rfind('/').map_or("", |i| &from[..i]);
         let beside = normalise(&format!("{dir}/{path}"));
@@ -216,7 +216,7 @@ fn check_line(repo: &Repo, file: &str, line: &str, out: &mut Vec<String>) {
         let data = file.ends_with(".rs") && before == Some('"') && after == Some('"');
         let stripped = token.trim_start_matches(['.', '/']);
         let rooted = ROOTS.iter().any(|r| stripped.starts_with(r));
-        // Partial paths (`reservoir/gi.rs`), source files by name, Markdown link targets.
+        // Partial paths (`gi/model.rs`), source files by name, Markdown link targets.
         let linked = file.ends_with(".md") && line[..chars[start].0].ends_with("](");
         let named =
             (token.contains('/') || token.ends_with(".rs") || token.ends_with(".wgsl") || linked)

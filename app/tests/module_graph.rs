@@ -4,10 +4,10 @@
 //! is a strongly connected set of two or more modules: none may exist in either crate. The planted
 //! twin at the end shows the detector catches one back import.
 //!
-//! Above the files, each crate's top-level modules stand on floors, drawn in the book's
-//! "Layers" block; a module may import from its own floor and the ones below, never from
-//! above, and every top-level module stands on exactly one floor (so the picture cannot
-//! drift from the code). No GPU: it reads the sources and the page as text.
+//! Above the files, each crate's modules stand on floors, drawn in the book's "Layers"
+//! block (top-level modules, and the parts of a technique's folder); a module may import
+//! from its own floor and the ones below, never from above, and every module stands on
+//! exactly one floor (so the picture cannot drift from the code). No GPU: it reads the sources and the page as text.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -272,41 +272,57 @@ fn documented_floors(crate_src: &str) -> Vec<Vec<String>> {
     floors
 }
 
-/// Imports between top-level modules that climb to a higher floor, and top-level modules
-/// on no floor or on several (floors bottom first; a module's top level is its first segment).
+/// The floor a module stands on: that of the longest floor entry its path starts with, by
+/// whole segments (`di::passes` holds `di::passes::initial`; `scene` holds `scene::bvh`).
+fn floor_of(module: &str, floor_of_entry: &BTreeMap<String, usize>) -> Option<usize> {
+    let segments: Vec<&str> = module.split("::").collect();
+    (1..=segments.len())
+        .rev()
+        .find_map(|k| floor_of_entry.get(&segments[..k].join("::")).copied())
+}
+
+/// Imports that climb to a higher floor, and modules on no floor or entries on several
+/// (floors bottom first). An entry is a top-level module or, inside a technique's folder,
+/// one of its parts (`di::model`, `di::passes`): a technique's files stand on different
+/// floors. The folder's own `mod.rs` may stand on none when it only lists its parts.
 fn floor_violations(
     edges: &BTreeMap<String, BTreeSet<String>>,
     floors: &[Vec<String>],
 ) -> Vec<String> {
-    let top = |m: &str| m.split("::").next().unwrap_or("").to_string();
-    let mut floor_of: BTreeMap<String, usize> = BTreeMap::new();
+    let mut floor_of_entry: BTreeMap<String, usize> = BTreeMap::new();
     let mut out = Vec::new();
     for (i, floor) in floors.iter().enumerate() {
         for name in floor {
-            if floor_of.insert(name.clone(), i).is_some() {
+            if floor_of_entry.insert(name.clone(), i).is_some() {
                 out.push(format!("{name} stands on two floors"));
             }
         }
     }
-    let tops: BTreeSet<String> = edges
-        .keys()
-        .map(|m| top(m))
-        .filter(|t| !t.is_empty())
-        .collect();
-    for t in &tops {
-        if !floor_of.contains_key(t) {
-            out.push(format!("{t} stands on no floor"));
+    let within =
+        |module: &str, entry: &str| module == entry || module.starts_with(&format!("{entry}::"));
+    for (module, targets) in edges {
+        if module.is_empty() || floor_of(module, &floor_of_entry).is_some() {
+            continue;
+        }
+        let lists_parts = floor_of_entry
+            .keys()
+            .any(|e| within(e, module) && e != module);
+        if !(lists_parts && targets.is_empty()) {
+            out.push(format!("{module} stands on no floor"));
         }
     }
-    for name in floor_of.keys() {
-        if !tops.contains(name) {
+    for name in floor_of_entry.keys() {
+        if !edges.keys().any(|m| within(m, name)) {
             out.push(format!("{name} is on a floor but is no module"));
         }
     }
     for (from, targets) in edges {
         for to in targets {
-            let (a, b) = (top(from), top(to));
-            if let (Some(fa), Some(fb)) = (floor_of.get(&a), floor_of.get(&b))
+            let (fa, fb) = (
+                floor_of(from, &floor_of_entry),
+                floor_of(to, &floor_of_entry),
+            );
+            if let (Some(fa), Some(fb)) = (fa, fb)
                 && fb > fa
             {
                 out.push(format!("{from} (floor {fa}) imports {to} (floor {fb})"));
@@ -347,6 +363,32 @@ fn planted_climb_between_floors_is_caught() {
             .iter()
             .any(|b| b == "stats stands on no floor")
     );
+}
+
+#[test]
+fn planted_climb_inside_a_technique_folder_is_caught() {
+    // A technique's model on the lower floor, its passes on the upper one; the folder's
+    // mod.rs lists them and stands on no floor.
+    let floors = vec![
+        vec!["core".to_string(), "gi::model".to_string()],
+        vec!["gi::passes".to_string()],
+    ];
+    let mut m: BTreeMap<String, String> = BTreeMap::new();
+    m.insert("core".into(), String::new());
+    m.insert("gi".into(), String::new());
+    m.insert("gi::model".into(), "use crate::core::X;".into());
+    m.insert(
+        "gi::passes".into(),
+        "use crate::gi::model::Reservoir;".into(),
+    );
+    assert!(floor_violations(&graph(&m), &floors).is_empty());
+    m.insert("gi::model".into(), "use crate::gi::passes::PASS;".into());
+    let bad = floor_violations(&graph(&m), &floors);
+    assert_eq!(bad, ["gi::model (floor 0) imports gi::passes (floor 1)"]);
+    m.insert("gi::model".into(), String::new());
+    m.insert("gi".into(), "use crate::core::X;".into());
+    let bad = floor_violations(&graph(&m), &floors);
+    assert_eq!(bad, ["gi stands on no floor"]);
 }
 
 #[test]

@@ -473,7 +473,7 @@ pub struct GpuEnvironment {
     pub _pad: [u32; 2],
 }
 
-/// A ReSTIR GI reservoir (docs/src/restir-gi.md; the math is reservoir/gi.rs, the WGSL
+/// A ReSTIR GI reservoir (docs/src/restir-gi.md; the math is gi/model.rs, the WGSL
 /// functions gi/reservoir.wgsl): the sample point, its normal and the radiance cached toward
 /// the pixel that drew it, and the reservoir's weights, in 48 bytes. The visible point it
 /// belongs to is the pixel's `GpuSurface`. The sample's source pdf is not stored: after

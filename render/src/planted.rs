@@ -106,7 +106,7 @@ pub const PLANTED: &[PlantedSwitch] = &[
     switch(
         "PLANTED_GI_NO_JACOBIAN",
         &[],
-        "GI reuse as if the reconnection Jacobian were 1; no GPU test plants it: the CPU model plants the same error (render/src/reservoir/gi_tests.rs)",
+        "GI reuse as if the reconnection Jacobian were 1; no GPU test plants it: the CPU model plants the same error (render/src/gi/model/tests.rs)",
     ),
     switch(
         "PLANTED_GI_INVERTED_JACOBIAN",

@@ -221,12 +221,12 @@ fn is_positive_finite(x: f32) -> bool {
 }
 
 /// Negative, NaN and infinite confidences count as nothing seen.
-fn sanitize(x: f32) -> f32 {
+pub(crate) fn sanitize(x: f32) -> f32 {
     if x.is_finite() { x.max(0.0) } else { 0.0 }
 }
 
 /// `c / c_total` clamped to [0, 1]; 0 when either is degenerate.
-fn share(c: f32, c_total: f32) -> f32 {
+pub(crate) fn share(c: f32, c_total: f32) -> f32 {
     clamp_unit(sanitize(c) / sanitize(c_total))
 }
 
@@ -236,24 +236,12 @@ fn balance(a: f32, b: f32) -> f32 {
     clamp_unit(a / (a + sanitize(b)))
 }
 
-fn clamp_unit(x: f32) -> f32 {
+pub(crate) fn clamp_unit(x: f32) -> f32 {
     if x.is_nan() { 0.0 } else { x.clamp(0.0, 1.0) }
 }
 
 #[cfg(test)]
 mod tests;
-
-/// One pairwise-MIS reuse step of direct light with the rules of the shaders: which
-/// candidates take part, windows and visibility in the targets (docs/src/mis-and-bias.md,
-/// "The two rules of unbiased reuse").
-pub mod pairwise_reuse;
-
-/// ReSTIR GI: the GI sample and reservoir, its target, merges and one reuse step.
-pub mod gi;
-/// ReSTIR GI's reconnection shift: the Jacobian, its singularities and its window.
-pub mod gi_jacobian;
-/// MCMC mutation of a resampled light sample (decorrelation): shaders/di/mutation.wgsl's mirror.
-pub mod mcmc;
 
 /// Deterministic randomness and goodness-of-fit checks shared by the crate's statistical
 /// tests (no rand crate: the seeds and streams must never change under us).

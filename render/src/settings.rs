@@ -432,7 +432,7 @@ parameter_table! {
         gi_jacobian_max: f32 = 10.0, ParamKind::Float { min: 1.0, max: 1000.0 }, "GI Jacobian window",
             "Reject a reconnected sample when its Jacobian |J| is outside [1/max, max]: a sample that the other pixel saw much larger or smaller than this one would (near geometry, grazing angles) carries a weight out of proportion, the source of GI fireflies. Symmetric, so pairwise MIS stays unbiased; 1 accepts only |J| = 1.";
         gi_spatial_visibility: bool = true, ParamKind::Bool, "GI reconnection visibility",
-            "Trace a shadow ray from this pixel's visible point to each spatial neighbour's sample point and drop the sample when occluded. Off: one ray fewer per neighbour, biased: light leaks through occluders (+9 % behind a blocker hiding 40 % of the light in the CPU test scene, reservoir/gi_visibility_tests.rs).";
+            "Trace a shadow ray from this pixel's visible point to each spatial neighbour's sample point and drop the sample when occluded. Off: one ray fewer per neighbour, biased: light leaks through occluders (+9 % behind a blocker hiding 40 % of the light in the CPU test scene, gi/model/visibility_tests.rs).";
         gi_mis_visibility: bool = true, ParamKind::Bool, "GI MIS visibility",
             "Pairwise, with GI reconnection visibility: also trace from each neighbour's visible point to this pixel's own sample point, so its MIS weight knows which neighbours could have found it. Off: one ray fewer per neighbour, darker behind occluders (−5 % in the same test; unbiased with it on).";
         gi_bias_correction: BiasCorrection = BiasCorrection::Pairwise, ParamKind::Choice(BIAS_CORRECTION_NAMES), "GI bias correction",

@@ -324,7 +324,7 @@ wgsl_constants! {
     /// mask's bits 0..5 are the DI checks with the same bits and meaning (`REJECT_OFFSCREEN` ..
     /// `REJECT_RESERVOIR`, so a `surface_dissimilarity` mask is used as it is); these three are
     /// GI's own. The reconnection shift is undefined: the sample point is (nearly) on the receiver,
-    /// seen at a grazing angle, or the receiver is behind the sample's surface (gi_jacobian.rs).
+    /// seen at a grazing angle, or the receiver is behind the sample's surface (gi/model/jacobian.rs).
     pub const GI_REJECT_RECONNECTION: u32 = 1 << 6;
     /// The reconnection Jacobian is outside [1/gi_jacobian_max, gi_jacobian_max].
     pub const GI_REJECT_JACOBIAN: u32 = 1 << 7;
@@ -353,7 +353,7 @@ wgsl_constants! {
     pub const GI_FLAGS_MASK: u32 = 0xfff;
     pub const GI_AGE_SHIFT: u32 = 16;
     pub const GI_AGE_MAX: u32 = 0xffff;
-    /// Thresholds of the reconnection Jacobian (reservoir/gi_jacobian.rs), the same on both sides.
+    /// Thresholds of the reconnection Jacobian (gi/model/jacobian.rs), the same on both sides.
     /// Shortest reconnection (world units, squared) with a usable direction. Positions are f32:
     /// at a scene scale of ~100 one ulp is ~7.6e-6, so below ~1e-5 the direction from x_s to the
     /// receiver is rounding noise, and the Jacobian's `1/d²` runs away.

@@ -1,5 +1,5 @@
 //! The WGSL GI library (shaders/gi/reservoir.wgsl) computes what its Rust mirror
-//! (render/src/reservoir/gi.rs, gi_jacobian.rs) computes, so the Rust statistical tests vouch
+//! (render/src/gi/model.rs and model/jacobian.rs) computes, so the Rust statistical tests vouch
 //! for the shader: a compute kernel evaluates the Jacobian, the shift's rejection bits, the
 //! target and a small 1/M merge for random and singular configurations, and the results are
 //! compared with the Rust functions'. Runs on any adapter (lavapipe here).
@@ -10,9 +10,9 @@ use std::collections::BTreeSet;
 
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
+use restir_render::gi::model::jacobian::reconnection_shift;
+use restir_render::gi::model::*;
 use restir_render::gpu::readback::read_buffer;
-use restir_render::reservoir::gi::*;
-use restir_render::reservoir::gi_jacobian::reconnection_shift;
 use restir_render::shader_source::compose;
 use wgpu::util::DeviceExt;
 
@@ -156,8 +156,8 @@ fn expected(c: &Case) -> Outcome {
         v(c.reused_at),
     );
     let shift = reconnection_shift(xs, n, from, to, c.j_max);
-    let jacobian = restir_render::reservoir::gi_jacobian::reconnection_jacobian(xs, n, from, to)
-        .unwrap_or(0.0);
+    let jacobian =
+        restir_render::gi::model::jacobian::reconnection_jacobian(xs, n, from, to).unwrap_or(0.0);
     let rejection = shift.err().unwrap_or(0);
     let usable = shift.unwrap_or(0.0);
     let radiance = Vec3::new(1.0, 0.5, 0.25);

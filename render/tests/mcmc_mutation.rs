@@ -1,7 +1,7 @@
 //! MCMC mutation (docs/src/mcmc-mutation.md) keeps ReSTIR DI unbiased on the GPU, on two
 //! scenes against the brute-force reference, and each planted error in the acceptance
 //! ratio darkens or brightens the image past the test's noise. The CPU mirror
-//! (render/src/reservoir/mcmc.rs) proves the same with exact integrals; these tests show that
+//! (render/src/di/model/mcmc.rs) proves the same with exact integrals; these tests show that
 //! the shader does what the mirror does.
 //!
 //! Sizes are tiny (lavapipe on two cores); every tolerance says where it comes from.

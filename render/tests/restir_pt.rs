@@ -149,7 +149,7 @@ fn restir_pt_in_the_furnace_adds_exactly_its_bounces() {
 /// hybrid by 3.9 % (reconnection 4.7 %; random replay only +1.1 %, inside the tolerance: its
 /// Jacobian, a ratio of lobe densities, stays near 1 here, and pairwise weights built with
 /// the same wrong |J| mask part of it, so that error is caught on the CPU, against finite
-/// differences: render/src/path_reuse/jacobian_tests.rs). The biased Jacobian clamp
+/// differences: render/src/pt/model/jacobian_tests.rs). The biased Jacobian clamp
 /// (`pt_jacobian_clamp=1.5`) darkens reconnection by 3.3 %: the option is named biased
 /// and this is its measure.
 #[test]

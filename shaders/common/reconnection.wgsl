@@ -1,7 +1,7 @@
 // What ReSTIR GI and ReSTIR PT share: a sample (GI's secondary vertex, PT's reconnection
 // vertex) found from one point and reused from another, and pairwise MIS across pixels
-// whose targets live in different measures. Mirrored in render/src/reservoir/gi.rs and
-// gi_jacobian.rs, tested against an exactly integrated scene.
+// whose targets live in different measures. Mirrored in render/src/gi/model.rs and
+// render/src/gi/model/jacobian.rs, tested against an exactly integrated scene.
 #include "common/math.wgsl"
 #include "common/reservoir.wgsl"
 
@@ -11,7 +11,7 @@ fn reconnection_distance_in_range(d2: f32) -> bool {
     return d2 >= RECONNECTION_MIN_DISTANCE_SQ && d2 <= RECONNECTION_MAX_DISTANCE_SQ;
 }
 
-// ---- pairwise MIS with shifted samples (gi.rs, resample_with) ----
+// ---- pairwise MIS with shifted samples (render/src/gi/model.rs, resample_with) ----
 // A sample reused at another pixel moves through a shift with Jacobian |J| (GI's
 // reconnection, PT's shift mappings): every target in these weights is expressed in this
 // pixel's measure.
@@ -27,7 +27,7 @@ fn shifted_pairwise_noncanonical(c_total: f32, c_canonical: f32, c_i: f32, p_hat
 // p̂_j(y_c) · |J_{here→j}|. Pass jacobian_here_to_j = 0 when that shift fails, is outside
 // the window, or x_j does not see y_c's point (GI's MIS visibility; a PT path that
 // cannot be shifted there): then j could not have found y_c, and counting it anyway
-// darkens reuse behind occluders (render/src/reservoir/gi.rs).
+// darkens reuse behind occluders (render/src/gi/model.rs).
 fn shifted_pairwise_canonical_term(c_total: f32, c_canonical: f32, c_j: f32, p_hat_here_at_yc: f32, p_hat_j_at_yc: f32, jacobian_here_to_j: f32) -> f32 {
     let p_j = p_hat_j_at_yc * sanitize(jacobian_here_to_j);
     return pairwise_mis_canonical_term(c_total, c_canonical, c_j, p_hat_here_at_yc, p_j);

@@ -281,7 +281,7 @@ struct Environment {
 }
 
 // A ReSTIR GI reservoir (docs/src/restir-gi.md; functions in gi/reservoir.wgsl, math in
-// render/src/reservoir/gi.rs). The pixel's Surface is its visible point.
+// render/src/gi/model.rs). The pixel's Surface is its visible point.
 struct GiReservoir {
     position: vec3<f32>,  // x_s, the secondary hit
     normal: u32,          // octahedral n_s, either orientation
@@ -294,7 +294,7 @@ struct GiReservoir {
 }
 
 // A ReSTIR PT path reservoir (docs/src/restir-pt.md; functions in pt/reservoir.wgsl and
-// pt/path.wgsl, the CPU model in render/src/path_reuse). The pixel's Surface is the
+// pt/path.wgsl, the CPU model in render/src/pt/model). The pixel's Surface is the
 // path's first vertex x_1; the path x_1 → … → x_n → z (a light point) is stored as what
 // its shifts need: its random seed (replay), its reconnection vertex x_{k+1} and what lies
 // beyond it (reconnection), and the densities and geometry of the side it was found on.

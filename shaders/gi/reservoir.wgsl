@@ -1,5 +1,5 @@
 // ReSTIR GI reservoir math (Ouyang et al. 2021; docs/src/restir-gi.md), mirrored line by line in
-// render/src/reservoir/gi.rs and gi_jacobian.rs, where it is tested against an exactly
+// render/src/gi/model.rs and model/jacobian.rs, where it is tested against an exactly
 // integrated scene. Same streaming, finalisation and null-sample rules as reservoir.wgsl.
 // A GI sample lives in solid angle at its pixel's visible point: reuse at another pixel
 // goes through the reconnection Jacobian, in the resampling weight (p̂_here · W · |J|) and
@@ -50,7 +50,7 @@ fn gi_reservoir_is_corrupt(r: GiReservoir) -> bool {
     return !(weights && is_finite_vec3(r.position) && is_finite_vec3(r.radiance));
 }
 
-// ---- the reconnection shift (gi_jacobian.rs) ----
+// ---- the reconnection shift (render/src/gi/model/jacobian.rs) ----
 
 
 // |J| = (|cos φ_to| / |cos φ_from|) · (‖seen_from − x_s‖² / ‖reused_at − x_s‖²) for a sample at
@@ -95,7 +95,7 @@ fn gi_shift_rejection(j: f32, j_max: f32) -> u32 {
     return select(GI_REJECT_JACOBIAN, 0u, gi_jacobian_in_window(j, j_max));
 }
 
-// ---- target and weights (gi.rs) ----
+// ---- target and weights (render/src/gi/model.rs) ----
 
 // p̂ = luminance(f_r · L_o · cos θ): the sample's contribution at the receiving pixel.
 fn gi_target(f_r: vec3<f32>, radiance: vec3<f32>, cos_theta: f32) -> f32 {
@@ -172,7 +172,7 @@ fn gi_reservoir_merge_mis(r: ptr<function, GiReservoir>, other: GiReservoir, tar
 }
 
 // 1/M merge of a shifted reservoir standing for `m_rep` candidates: M grows by m_rep even
-// when the sample cannot be used here (1/M with rejection, see gi.rs).
+// when the sample cannot be used here (1/M with rejection, see render/src/gi/model.rs).
 fn gi_reservoir_merge(r: ptr<function, GiReservoir>, other: GiReservoir, target_here: f32, jacobian: f32, m_rep: f32, packed: u32, u: f32) -> bool {
     (*r).m = min((*r).m + sanitize(m_rep), FLT_MAX);
     return gi_reservoir_merge_mis(r, other, target_here, jacobian, m_rep, packed, u);

@@ -1,6 +1,6 @@
 // What every ReSTIR GI pass shares (docs/src/restir-gi.md): a GI sample's target at a shading
 // point, the guard against corrupt reservoirs, and the per-pixel GI debug record. The reservoir
-// math itself is gi/reservoir.wgsl (mirrored and tested in reservoir/gi.rs).
+// math itself is gi/reservoir.wgsl (mirrored and tested in gi/model.rs).
 #include "common/frame_bindings.wgsl"
 #include "common/stats_bindings.wgsl"
 #include "common/shading_point.wgsl"

@@ -44,7 +44,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         // `mask`: surface checks, which drop the neighbour. `unusable`: its sample cannot
         // reach this pixel (no reconnection, Jacobian outside the window, occluded): the
         // neighbour stays in the MIS (its confidence counts) with weight 0 here, as the
-        // tested rules in reservoir/gi.rs do; dropping it would bias the weights.
+        // tested rules in gi/model.rs do; dropping it would bias the weights.
         var mask = 0u;
         var unusable = 0u;
         var n = GiNeighbour(0u, 0.0, 0.0);

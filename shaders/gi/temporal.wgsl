@@ -51,7 +51,7 @@ fn gi_validate_previous(pixel: vec2<i32>, s: Surface, sp: ShadingPoint) -> GiTem
         return c;
     }
     // A sample that cannot reach this point (no reconnection, Jacobian outside the window)
-    // still merges its confidence, with weight 0 (the rules tested in reservoir/gi.rs).
+    // still merges its confidence, with weight 0 (the rules tested in gi/model.rs).
     let shift = gi_shift(prev, ps.position, s.position);
     c.unusable = shift.reject;
     if shift.reject == 0u {

@@ -1,4 +1,4 @@
-// ReSTIR PT paths (docs/src/restir-pt.md; the CPU model is render/src/path_reuse, whose module docs
+// ReSTIR PT paths (docs/src/restir-pt.md; the CPU model is render/src/pt/model, whose module docs
 // define the shifts): tracing a pixel's path with its sub-paths as candidates, and moving
 // a path found at one pixel to another by reconnection, random replay or the hybrid.
 //

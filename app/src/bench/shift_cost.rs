@@ -1,6 +1,6 @@
 //! `bench-shifts`: the path shifts of ReSTIR PT (docs/src/restir-pt.md, "The CPU model") on
 //! the CPU toy scene of
-//! `restir_render::path_reuse`: for each place and shift, the mean of one pairwise spatial
+//! `restir_render::pt::model`: for each place and shift, the mean of one pairwise spatial
 //! step against the place's path-traced reference, its standard error (and variance
 //! against reconnection's), and how the neighbours' paths fared when shifted (moved, moved
 //! but carrying under 1 % of their target, or why not) with their mean |log2 |J||. A Markdown table; `--csv` writes the rows.
@@ -8,11 +8,11 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use restir_render::path_reuse::experiment::{
+use restir_render::pt::model::experiment::{
     HYBRID, PLACES, Trials, glossy_scene, pixel, reference, spatial_trials,
 };
-use restir_render::path_reuse::pairwise::Planted;
-use restir_render::path_reuse::shift::Shift;
+use restir_render::pt::model::pairwise::Planted;
+use restir_render::pt::model::shift::Shift;
 
 #[derive(Args, Debug)]
 pub struct ShiftCostArgs {
@@ -61,7 +61,7 @@ pub fn run(args: ShiftCostArgs) -> anyhow::Result<()> {
         }
     }
     println!(
-        "Path shifts on the CPU toy scene (render/src/path_reuse): one pairwise spatial step, \
+        "Path shifts on the CPU toy scene (render/src/pt/model): one pairwise spatial step, \
          4 neighbours, {} trials each; references {} paths.\n\n{md}",
         args.trials, args.reference_paths
     );

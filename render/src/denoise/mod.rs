@@ -1,8 +1,10 @@
-//! The denoiser's computation in plain Rust (`model`), pass for pass as the WGSL under
-//! `shaders/denoise/` does it, and its tests. The passes themselves are declared in
-//! `passes::denoise` (docs/src/denoiser.md).
+//! The denoiser, an SVGF-class filter after shading (docs/src/denoiser.md), in one folder:
+//! its computation in plain Rust (`model`), pass for pass as the WGSL under
+//! `shaders/denoise/` does it, with its tests, and its passes. The folder's files stand on
+//! the floors `di/mod.rs` names.
 
 pub mod model;
+pub mod passes;
 
 #[cfg(test)]
 mod tests;

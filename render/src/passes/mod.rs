@@ -9,14 +9,10 @@ pub mod pass;
 pub mod resources;
 
 pub mod bias_view;
-pub mod denoise;
-pub mod di;
 pub mod display;
 pub mod gbuffer;
-pub mod gi;
 pub mod lights;
 pub mod moments;
-pub mod pt;
 pub mod ray_bench;
 pub mod reference;
 pub mod temporal_window;
@@ -34,31 +30,31 @@ pub const ALL: [&PassDef; 32] = [
     &gbuffer::RESOLVE,
     &lights::presample::PASS,
     &lights::regir::FILL,
-    &di::initial::PASS,
-    &di::temporal::PASS,
-    &di::spatial::PASS,
-    &di::mutation::PASS,
-    &di::shade::PASS,
-    &gi::initial::PASS,
-    &gi::temporal::PASS,
-    &gi::spatial::PASS,
-    &gi::shade::PASS,
-    &pt::initial::PASS,
-    &pt::temporal::PASS,
-    &pt::spatial::PASS,
-    &pt::shade::PASS,
-    &denoise::gradient::PASS,
-    &denoise::temporal::PASS,
-    &denoise::variance::PASS,
-    &denoise::atrous::PASS,
-    &denoise::modulate::PASS,
+    &crate::di::passes::initial::PASS,
+    &crate::di::passes::temporal::PASS,
+    &crate::di::passes::spatial::PASS,
+    &crate::di::passes::mutation::PASS,
+    &crate::di::passes::shade::PASS,
+    &crate::gi::passes::initial::PASS,
+    &crate::gi::passes::temporal::PASS,
+    &crate::gi::passes::spatial::PASS,
+    &crate::gi::passes::shade::PASS,
+    &crate::pt::passes::initial::PASS,
+    &crate::pt::passes::temporal::PASS,
+    &crate::pt::passes::spatial::PASS,
+    &crate::pt::passes::shade::PASS,
+    &crate::denoise::passes::gradient::PASS,
+    &crate::denoise::passes::temporal::PASS,
+    &crate::denoise::passes::variance::PASS,
+    &crate::denoise::passes::atrous::PASS,
+    &crate::denoise::passes::modulate::PASS,
     &reference::PASS,
     &moments::PASS,
     &temporal_window::PASS,
     &display::PASS,
-    &gi::view::PASS,
-    &pt::view::PASS,
-    &denoise::view::PASS,
+    &crate::gi::passes::view::PASS,
+    &crate::pt::passes::view::PASS,
+    &crate::denoise::passes::view::PASS,
     &bias_view::PASS,
     &window_view::PASS,
     &ray_bench::PASS,

@@ -8,13 +8,13 @@
 
 use std::ops::Range;
 
-use crate::passes::di::{initial, mutation, shade, spatial, temporal};
+use crate::di::passes::{initial, mutation, shade, spatial, temporal};
 use crate::passes::lights::{presample, regir};
 use crate::passes::resources::{Chain, RESERVOIRS};
 use crate::passes::{
-    PassDef, bias_view, denoise, display, gbuffer, gi, moments, pt, reference, temporal_window,
-    window_view,
+    PassDef, bias_view, display, gbuffer, moments, reference, temporal_window, window_view,
 };
+use crate::{denoise::passes as denoise, gi::passes as gi, pt::passes as pt};
 
 /// One pass of the frame.
 #[derive(Clone, Debug)]

@@ -328,9 +328,9 @@ impl InspectCapture {
         pt: bool,
         denoise_history: Option<usize>,
     ) {
-        use crate::passes::gi::initial::GI_DEBUG;
-        use crate::passes::pt::initial::{PT_DEBUG, PT_PROBE};
+        use crate::gi::passes::initial::GI_DEBUG;
         use crate::passes::resources::{DEBUG, RADIANCE};
+        use crate::pt::passes::initial::{PT_DEBUG, PT_PROBE};
         self.copy_pixel_records(
             encoder,
             &targets.surfaces[surfaces],
@@ -348,7 +348,7 @@ impl InspectCapture {
             );
         }
         if let Some(buffer) = denoise_history {
-            use crate::passes::denoise::{GRADIENT, HISTORY};
+            use crate::denoise::passes::{GRADIENT, HISTORY};
             self.denoise = true;
             let history = targets.chain(&HISTORY, buffer);
             let size = bytes::<GpuDenoiseHistory>();

@@ -1,10 +1,10 @@
 //! Blocking reads of the last frame's outputs (headless rendering, tests, the inspector).
 
 use super::Renderer;
+use crate::gi::passes::initial::GI_RESERVOIRS;
 use crate::gpu::readback::{read_buffer, read_rgba8_texture};
 use crate::gpu_types::{GpuPixelDebug, GpuReservoir, GpuSurface};
 use crate::image::LinearImage;
-use crate::passes::gi::initial::GI_RESERVOIRS;
 use crate::passes::resources::{ACCUMULATION, DEBUG, RADIANCE, RESERVOIRS};
 
 impl Renderer {
@@ -78,7 +78,7 @@ impl Renderer {
 
     /// The last frame's final ReSTIR PT path reservoirs (empty unless the last frame ran PT).
     pub fn read_pt_reservoirs(&self) -> Vec<crate::gpu_types::GpuPtReservoir> {
-        use crate::passes::pt::initial::PT_RESERVOIRS;
+        use crate::pt::passes::initial::PT_RESERVOIRS;
         if !self.history.carried.has_history(&PT_RESERVOIRS) {
             return Vec::new();
         }
@@ -89,7 +89,7 @@ impl Renderer {
     /// The last frame's ReSTIR PT debug records (the PT views' data; meaningful only after a
     /// frame that ran PT).
     pub fn read_pt_debug(&self) -> Vec<crate::gpu_types::GpuPtPixelDebug> {
-        self.pixel_records(self.targets.pixels(&crate::passes::pt::initial::PT_DEBUG))
+        self.pixel_records(self.targets.pixels(&crate::pt::passes::initial::PT_DEBUG))
     }
 
     /// The last frame's G-buffer surfaces.
@@ -102,12 +102,12 @@ impl Renderer {
     /// The last frame's radiance before the denoiser (its `denoise-input` view); meaningful
     /// only after a frame that denoised.
     pub fn read_denoise_input(&self) -> LinearImage {
-        self.read_image(self.targets.pixels(&crate::passes::denoise::INPUT), 1.0)
+        self.read_image(self.targets.pixels(&crate::denoise::passes::INPUT), 1.0)
     }
 
     /// The denoiser's temporal history after the last frame (empty unless it denoised).
     pub fn read_denoise_history(&self) -> Vec<crate::gpu_types::GpuDenoiseHistory> {
-        use crate::passes::denoise::HISTORY;
+        use crate::denoise::passes::HISTORY;
         if !self.history.carried.has_history(&HISTORY) {
             return Vec::new();
         }

@@ -11,16 +11,16 @@ use super::inspect::InspectCapture;
 use super::resolve::resolve;
 use super::{PipelineVariant, Renderer};
 
+use crate::denoise::passes as denoise;
 use crate::effects::{Effect, EffectSet};
+use crate::gi::passes::initial::GI_RESERVOIRS;
 use crate::gpu::timing::FrameRecorder;
 use crate::gpu::{Gpu, GpuError};
-use crate::passes::denoise;
 use crate::passes::gbuffer::RasterPass;
-use crate::passes::gi::initial::GI_RESERVOIRS;
 use crate::passes::pass::Dispatch;
-use crate::passes::pt::initial::{PT_PROBE, PT_RESERVOIRS};
 use crate::passes::resources::RESERVOIRS;
 use crate::passes::{ComputePass, PASS_INFO_SLOTS, PASS_INFO_STRIDE, PassDef, PassLayouts};
+use crate::pt::passes::initial::{PT_PROBE, PT_RESERVOIRS};
 use crate::settings::{LightSampler, Settings};
 use crate::shader_constants::{
     LIGHT_TILE_COUNT, LIGHT_TILE_SIZE, MAX_DENOISE_ITERATIONS, MAX_SPATIAL_PASSES,

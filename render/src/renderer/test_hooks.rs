@@ -69,7 +69,7 @@ impl Renderer {
     /// The same for the ReSTIR GI history (after a frame with GI): NaN and infinite
     /// weights and positions, which the next GI temporal pass must count and drop.
     pub fn poison_gi_history_for_tests(&mut self) {
-        use crate::passes::gi::initial::GI_RESERVOIRS;
+        use crate::gi::passes::initial::GI_RESERVOIRS;
         if !self.history.carried.has_history(&GI_RESERVOIRS) {
             return;
         }
@@ -95,7 +95,7 @@ impl Renderer {
     /// The same for the ReSTIR PT history (after a frame with PT): NaN and infinite values,
     /// weights and geometry, which the next PT temporal pass must count and drop.
     pub fn poison_pt_history_for_tests(&mut self) {
-        use crate::passes::pt::initial::PT_RESERVOIRS;
+        use crate::pt::passes::initial::PT_RESERVOIRS;
         if !self.history.carried.has_history(&PT_RESERVOIRS) {
             return;
         }

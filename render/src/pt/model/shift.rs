@@ -5,7 +5,7 @@ use glam::Vec3;
 
 use super::path::{PathSample, Pixel, lobe_at, w_in};
 use super::toy_scene::{Hit, Kind, ToyScene};
-use crate::reservoir::gi_jacobian::reconnection_jacobian;
+use crate::gi::model::jacobian::reconnection_jacobian;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Shift {

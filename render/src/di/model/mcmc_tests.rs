@@ -4,9 +4,9 @@
 //! polynomials in the barycentrics (exact means over a triangle: u, v → 1/3; u², v² → 1/6;
 //! uv → 1/12).
 
-use super::super::Reservoir;
-use super::super::test_support::{Rng, mean_and_se};
 use super::*;
+use crate::reservoir::Reservoir;
+use crate::reservoir::test_support::{Rng, mean_and_se};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Sample {

@@ -168,7 +168,7 @@ fn hybrid_jacobian_matches_finite_differences_and_needs_both_factors() {
     });
     let (analytic, numeric) = check(&quads, HYBRID);
     let next = path.vertices[3];
-    let geometric = crate::reservoir::gi_jacobian::reconnection_jacobian(
+    let geometric = crate::gi::model::jacobian::reconnection_jacobian(
         next.position,
         next.normal,
         path.vertices[2].position,

@@ -23,7 +23,9 @@
 //!   neighbour's sample and in the canonical sample's term; the pair's weights still sum to
 //!   one. Rejecting the neighbour's sample alone is a sample-dependent decision (biased).
 
-use super::{Reservoir, clamp_unit, pairwise_mis_canonical_term, pairwise_mis_noncanonical, share};
+use crate::reservoir::{
+    Reservoir, clamp_unit, pairwise_mis_canonical_term, pairwise_mis_noncanonical, share,
+};
 
 /// What a sample-dependent check does under pairwise MIS.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

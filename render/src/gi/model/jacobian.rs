@@ -101,5 +101,5 @@ pub fn reconnection_shift(
 }
 
 #[cfg(test)]
-#[path = "gi_jacobian_tests.rs"]
+#[path = "jacobian_tests.rs"]
 mod tests;

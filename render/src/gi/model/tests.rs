@@ -1,4 +1,4 @@
-//! Statistical tests of GI reuse in the toy scene of gi_toy_scene.rs, which is integrated
+//! Statistical tests of GI reuse in the toy scene of toy_scene.rs, which is integrated
 //! exactly: reuse moves each pixel's initial samples between pixels with the reconnection
 //! Jacobian, and "unbiased" is |mean − exact| < 4 standard errors over independent trials
 //! (a 6e-5 false-alarm rate for a normal mean); every planted error below is worth more

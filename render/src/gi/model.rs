@@ -6,7 +6,7 @@
 //! indirect light along one direction; the sample is the secondary hit `x_s` with its normal
 //! and the outgoing radiance `L_o(x_s → x_v)` cached when it was found. Its domain is the
 //! hemisphere at `x_v`, in solid angle, so reuse at another pixel goes through the
-//! reconnection shift (`gi_jacobian.rs`): the neighbour's sample counts with weight
+//! reconnection shift (`model/jacobian.rs`): the neighbour's sample counts with weight
 //! `p̂_here(y) · W · |J|`, and in pairwise MIS every target seen from another domain is
 //! expressed in this pixel's measure (`p̂_j · |J_{here→j}|`).
 //!
@@ -24,19 +24,19 @@
 //! is not merged at all: the set of domains depends on the geometry only. A neighbour whose
 //! *sample* cannot be used here (reconnection undefined, Jacobian outside the window,
 //! reconnection occluded) is a candidate seen with target 0 here: in 1/M mode its M counts
-//! (the darkening bias of 1/M with rejection, measured in gi_tests.rs); in pairwise mode its
+//! (the darkening bias of 1/M with rejection, measured in model/tests.rs); in pairwise mode its
 //! confidence is part of `c_total` and its MIS weight is 0, which stays unbiased because the
 //! shift's validity is symmetric, and, behind occluders, only when the canonical sample's
 //! MIS weight also knows which neighbours see its point (`GiReuse::mis_visibility`,
-//! measured in gi_visibility_tests.rs).
+//! measured in model/visibility_tests.rs).
 
 use glam::Vec3;
 
-use super::gi_jacobian::{jacobian_in_window, normalized, reconnection_jacobian};
-use super::{
+use crate::reservoir::{
     Reservoir, clamp_unit, pairwise_mis_canonical_term, pairwise_mis_noncanonical, sanitize, share,
 };
 use crate::shader_constants::{GI_REJECT_JACOBIAN, GI_REJECT_OCCLUDED, GI_REJECT_RECONNECTION};
+use jacobian::{jacobian_in_window, normalized, reconnection_jacobian};
 
 /// One GI sample: the secondary hit and the radiance it sends toward the pixel that found it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -205,7 +205,7 @@ pub struct GiReuse {
     /// sample's point, and count the neighbour's target there as 0 when occluded (the
     /// neighbour could not have found that sample). Without it the canonical sample's MIS
     /// weight assumes every neighbour sees it, and reuse behind occluders darkens (measured
-    /// in gi_tests.rs: −5 % where a blocker hides 40 % of the light). One more ray per
+    /// in model/tests.rs: −5 % where a blocker hides 40 % of the light). One more ray per
     /// neighbour.
     pub mis_visibility: bool,
 }
@@ -335,18 +335,17 @@ pub fn gi_cap_confidence(r: &mut GiReservoir, m_cap: f32) {
     r.m = r.m.min(sanitize(m_cap));
 }
 
+/// The reconnection shift: the Jacobian, its singularities and its window.
+pub mod jacobian;
+
 #[cfg(test)]
-#[path = "gi_toy_scene.rs"]
 mod toy_scene;
 
 #[cfg(test)]
-#[path = "gi_tests.rs"]
 mod tests;
 
 #[cfg(test)]
-#[path = "gi_visibility_tests.rs"]
 mod visibility_tests;
 
 #[cfg(test)]
-#[path = "gi_unit_tests.rs"]
 mod unit_tests;

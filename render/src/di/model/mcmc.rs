@@ -40,7 +40,7 @@ pub enum Planted {
 /// one whose stored target is not positive stays as it is.
 pub fn mutate<D: MutationDomain>(
     domain: &D,
-    r: &mut super::Reservoir<D::Sample>,
+    r: &mut crate::reservoir::Reservoir<D::Sample>,
     steps: u32,
     step: f32,
     rand: &mut impl FnMut() -> f32,

@@ -1,0 +1,7 @@
+//! ReSTIR PT, multi-bounce path reuse (GRIS, Lin et al. 2022; docs/src/restir-pt.md), in one
+//! folder: its CPU model (paths, the three shifts and their Jacobians, pairwise MIS on a toy
+//! scene) and its passes (shaders under shaders/pt/). The folder's files stand on the floors
+//! `di/mod.rs` names.
+
+pub mod model;
+pub mod passes;

@@ -8,11 +8,12 @@ use std::collections::VecDeque;
 use std::path::Path;
 
 use anyhow::{Context, bail};
+use restir_render::di::constants::{AGE_SHIFT, SOURCE_MASK};
 use restir_render::gpu_types::NO_LIGHT;
 use restir_render::image::luminance;
 use restir_render::renderer::PixelInspection;
 use restir_render::scene::animation::{ClipChoice, SceneAnimation};
-use restir_render::shader_constants::{AGE_SHIFT, SOURCE_MASK, SOURCE_NAMES};
+use restir_render::shader_constants::SOURCE_NAMES;
 
 /// One frame at the probed pixel.
 #[derive(Clone, Debug, PartialEq)]

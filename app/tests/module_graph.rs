@@ -252,7 +252,8 @@ fn the_render_crate_has_no_import_circle() {
 
 /// One crate's floors from the "Layers" block of docs/src/source-layout.md, bottom first:
 /// after a line `CRATE/src, top floor first` come lines `floor name:  module  module ...`
-/// up to the first line that is not indented.
+/// (a line with no floor name goes on naming the floor above it) up to the first line that
+/// is not indented.
 fn documented_floors(crate_src: &str) -> Vec<Vec<String>> {
     let page = std::fs::read_to_string(repo().join("docs/src/source-layout.md")).unwrap();
     let header = format!("{crate_src}, top floor first");
@@ -261,13 +262,21 @@ fn documented_floors(crate_src: &str) -> Vec<Vec<String>> {
         lines.next().is_some(),
         "source-layout.md has no '{header}' block"
     );
-    let mut floors: Vec<Vec<String>> = lines
-        .take_while(|l| l.starts_with("  "))
-        .map(|l| {
-            let (_, names) = l.split_once(':').expect("a floor line is 'name: modules'");
-            names.split_whitespace().map(str::to_string).collect()
-        })
-        .collect();
+    let mut floors: Vec<Vec<String>> = Vec::new();
+    for line in lines.take_while(|l| l.starts_with("  ")) {
+        // `floor name:  a  b::c`, or a line of more modules for the floor above it.
+        let names = match line.split_once(": ") {
+            Some((floor, names)) if !floor.contains("::") => {
+                floors.push(Vec::new());
+                names
+            }
+            _ => line,
+        };
+        let floor = floors
+            .last_mut()
+            .expect("the block opens with a floor line");
+        floor.extend(names.split_whitespace().map(str::to_string));
+    }
     floors.reverse();
     floors
 }

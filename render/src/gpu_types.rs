@@ -6,6 +6,11 @@
 
 use bytemuck::{Pod, Zeroable};
 
+use crate::denoise::params::GpuDenoiseParams;
+use crate::di::params::GpuDiParams;
+use crate::gi::params::GpuGiParams;
+use crate::pt::params::GpuPtParams;
+
 wgsl_constants! {
     fn absent_markers;
     /// Marks "no light" in a reservoir and "not an emitter" in `GpuTriangle::light`.
@@ -342,55 +347,22 @@ pub struct GpuFrame {
     pub finite_light_share: f32,
 }
 
-/// Pipeline parameters as the shaders see them (built from `Settings`).
+/// Pipeline parameters as the shaders see them (built from `Settings::gpu_params`): the
+/// fields no one technique owns, then each technique's struct, declared in its folder
+/// (`di::params`, …). A struct member of a uniform starts on 16 bytes: the shared part is
+/// padded to 48.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
 pub struct GpuParams {
-    pub light_candidates: u32,
-    pub bsdf_candidates: u32,
-    pub m_cap: f32,
     pub normal_threshold: f32,
     pub depth_threshold: f32,
-    /// 0 disables the target-ratio test.
-    pub target_ratio_clamp: f32,
     /// `REJECT_*` bits of the enabled validation checks.
     pub checks: u32,
-    /// `PARAM_FLAG_*` bits.
+    /// `PARAM_FLAG_*` bits (each technique's in its `constants.rs`).
     pub flags: u32,
-    pub spatial_neighbours: u32,
-    pub spatial_radius: f32,
     pub reference_spp: u32,
-    /// Boiling filter threshold k (0 = off): a spatial survivor whose W·p̂ exceeds k × the
-    /// neighbourhood mean is dropped.
-    pub boiling_filter: f32,
-    // The Indirect stage (ReSTIR GI); its switches are `PARAM_FLAG_GI_*` bits of `flags`.
-    pub gi_m_cap: f32,
-    pub gi_spatial_neighbours: u32,
-    /// In pixels of this image (scaled from the 1080p value).
-    pub gi_spatial_radius: f32,
-    /// The Jacobian window [1/max, max], max ≥ 1.
-    pub gi_jacobian_max: f32,
     /// Path vertices the reference shades, 1..=MAX_BOUNCES (1 = direct light only).
     pub max_bounces: u32,
-    // ReSTIR PT (docs/src/restir-pt.md).
-    /// `PT_SHIFT_*`.
-    pub pt_shift: u32,
-    pub pt_rough_threshold: f32,
-    /// A fraction of `scene_scale` (the scene bounds' diagonal), not world units.
-    pub pt_min_distance: f32,
-    pub pt_spatial_neighbours: u32,
-    /// In pixels of this image (scaled from the 1080p value).
-    pub pt_spatial_radius: f32,
-    pub pt_m_cap: f32,
-    /// The biased Jacobian clamp [1/c, c] (0 = off).
-    pub pt_jacobian_clamp: f32,
-    /// The denoiser (settings `denoise_*`; docs/src/denoiser.md).
-    pub denoise_alpha: f32,
-    pub denoise_moments_alpha: f32,
-    pub denoise_phi_luminance: f32,
-    pub denoise_phi_normal: f32,
-    pub denoise_phi_depth: f32,
-    pub denoise_history_cap: f32,
     /// ReGIR (settings `regir_*`; docs/src/light-samplers.md): cells per side, slots per
     /// cell (as used), cell side as a fraction of `scene_scale`, build samples, jitter.
     pub regir_grid: u32,
@@ -398,12 +370,11 @@ pub struct GpuParams {
     pub regir_cell_size: f32,
     pub regir_build_samples: u32,
     pub regir_jitter: f32,
-    /// MCMC mutations per pixel after DI's reuse (0 = off) and the local step in
-    /// barycentric units (docs/src/mcmc-mutation.md).
-    pub mutations: u32,
-    pub mutation_step: f32,
-    /// Light candidates at GI's secondary vertex (resolved: never 0 unless DI's is).
-    pub gi_light_candidates: u32,
+    pub _pad: u32,
+    pub di: GpuDiParams,
+    pub gi: GpuGiParams,
+    pub pt: GpuPtParams,
+    pub denoise: GpuDenoiseParams,
 }
 
 /// What the display pass shows and how (view settings, not pipeline parameters).
@@ -502,24 +473,24 @@ pub struct GpuGiReservoir {
 impl GpuGiReservoir {
     /// `packed` from its parts; flags beyond 12 bits are dropped, the age saturates.
     pub fn pack(source: u32, flags: u32, age: u32) -> u32 {
-        use crate::shader_constants::*;
+        use crate::gi::constants::*;
         (source & GI_SOURCE_MASK)
             | ((flags & GI_FLAGS_MASK) << GI_FLAGS_SHIFT)
             | (age.min(GI_AGE_MAX) << GI_AGE_SHIFT)
     }
 
     pub fn source(&self) -> u32 {
-        self.packed & crate::shader_constants::GI_SOURCE_MASK
+        self.packed & crate::gi::constants::GI_SOURCE_MASK
     }
 
     /// The GI rejection bits (`REJECT_*` 0..5, `GI_REJECT_*`) of the stage that wrote it.
     pub fn flags(&self) -> u32 {
-        use crate::shader_constants::*;
+        use crate::gi::constants::*;
         (self.packed >> GI_FLAGS_SHIFT) & GI_FLAGS_MASK
     }
 
     pub fn age(&self) -> u32 {
-        self.packed >> crate::shader_constants::GI_AGE_SHIFT
+        self.packed >> crate::gi::constants::GI_AGE_SHIFT
     }
 }
 
@@ -606,7 +577,7 @@ pub struct GpuPtProbeStage {
     pub _pad: [u32; 2],
     pub reservoir: GpuPtReservoir,
     /// xyz; w holds `PT_VERTEX_*` bits (as f32 bits).
-    pub vertices: [[f32; 4]; crate::shader_constants::PT_PROBE_VERTICES as usize],
+    pub vertices: [[f32; 4]; crate::pt::constants::PT_PROBE_VERTICES as usize],
 }
 
 /// One pixel's temporal window (the `temporal window` pass, passes/temporal_window.rs):

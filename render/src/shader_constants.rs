@@ -1,6 +1,9 @@
-//! Constants both sides need (bit masks, counter indices, enum values). They are defined
-//! once, here, and written into every WGSL module as a generated prelude, so the host and
-//! the shaders cannot drift apart.
+//! Constants both sides need (bit masks, counter indices, enum values) that belong to no one
+//! technique: validation, sources, counters, streams and limits, views. Each technique's own
+//! are in its folder (`di/constants.rs`, `gi/constants.rs`, `pt/constants.rs`,
+//! `denoise/constants.rs`). They are defined once and written into every WGSL module as a
+//! generated prelude (`shader_source::wgsl_prelude`), so the host and the shaders cannot
+//! drift apart.
 
 wgsl_constants! {
     fn rejection_bits;
@@ -81,41 +84,10 @@ pub const PROPOSER_NAMES: [&str; 6] = [
     "light BVH",
 ];
 wgsl_constants! {
-    fn packing_and_flags;
-    /// `Reservoir.source` holds the SOURCE_* in its low bits and the sample's age (frames
-    /// since it was first drawn) above AGE_SHIFT: no new field, so the reservoir layout and
-    /// its memory traffic stay what they are.
-    pub const SOURCE_MASK: u32 = 0xff;
-    pub const AGE_SHIFT: u32 = 8;
-    /// The largest age stored (24 bits).
-    pub const AGE_MAX: u32 = (1 << (32 - AGE_SHIFT)) - 1;
-
-    pub const DEBUG_FLAG_TEMPORAL_CAP: u32 = 1 << 0;
-    pub const DEBUG_FLAG_SPATIAL_CAP: u32 = 1 << 1;
-    pub const DEBUG_FLAG_FALLBACK_TRIED: u32 = 1 << 2;
-    pub const DEBUG_FLAG_FALLBACK_USED: u32 = 1 << 3;
-    pub const DEBUG_FLAG_TEMPORAL_MERGED: u32 = 1 << 4;
-    /// The survivor at shading is an environment direction (the source view lightens it).
-    pub const DEBUG_FLAG_ENVIRONMENT_SAMPLE: u32 = 1 << 5;
-
-    pub const PARAM_FLAG_PERMUTATION: u32 = 1 << 0;
-    pub const PARAM_FLAG_PAIRWISE: u32 = 1 << 1;
+    fn shared_flags_and_passes;
+    /// `Params.flags` bits every technique's shading reads; each technique's own bits are
+    /// in its folder (`di::constants`, `gi::constants`, `denoise::constants`).
     pub const PARAM_FLAG_JITTER: u32 = 1 << 2;
-    pub const PARAM_FLAG_INITIAL_VISIBILITY: u32 = 1 << 3;
-    /// Pairwise MIS evaluates the canonical sample at the previous pixel with last frame's
-    /// lights (`previous_lights`; only compiled in for animated scenes).
-    pub const PARAM_FLAG_PREVIOUS_LIGHTS: u32 = 1 << 10;
-    /// Pairwise MIS with visibility in the target (`mis_visibility`): every pairwise term is
-    /// p̂·V, so reuse traces the shadow rays the MIS weights need and shading traces none.
-    pub const PARAM_FLAG_MIS_VISIBILITY: u32 = 1 << 11;
-    /// Pairwise MIS traces the canonical sample's visibility at the previous pixel against last
-    /// frame's geometry (`previous_geometry`; only compiled in for animated scenes).
-    pub const PARAM_FLAG_PREVIOUS_GEOMETRY: u32 = 1 << 12;
-    /// The temporal pass runs for the denoiser's gradients only (temporal reuse off): it
-    /// shades the history's sample here and drops the merge (docs/src/denoiser.md).
-    pub const PARAM_FLAG_GRADIENT_ONLY: u32 = 1 << 13;
-    /// The denoiser's temporal pass shortens the history by the temporal gradient.
-    pub const PARAM_FLAG_DENOISE_GRADIENTS: u32 = 1 << 14;
 
     /// Passes that count non-finite values (a GPU-side guard; docs/src/ris.md, "Conventions").
     pub const PASS_GBUFFER: u32 = 0;
@@ -345,110 +317,9 @@ pub const GI_REJECT_REASON_NAMES: [&str; GI_REJECT_REASON_COUNT] = [
     "occluded",
 ];
 wgsl_constants! {
-    fn gi_packing_and_flags;
-    /// `GiReservoir.packed`: SOURCE_* in bits 0..4, the GI rejection mask of the stage that
-    /// wrote it in bits 4..16, the sample's age in frames in bits 16..32 (saturating).
-    pub const GI_SOURCE_MASK: u32 = 0xf;
-    pub const GI_FLAGS_SHIFT: u32 = 4;
-    pub const GI_FLAGS_MASK: u32 = 0xfff;
-    pub const GI_AGE_SHIFT: u32 = 16;
-    pub const GI_AGE_MAX: u32 = 0xffff;
-    /// Thresholds of the reconnection Jacobian (gi/model/jacobian.rs), the same on both sides.
-    /// Shortest reconnection (world units, squared) with a usable direction. Positions are f32:
-    /// at a scene scale of ~100 one ulp is ~7.6e-6, so below ~1e-5 the direction from x_s to the
-    /// receiver is rounding noise, and the Jacobian's `1/d²` runs away.
-    pub const RECONNECTION_MIN_DISTANCE_SQ: f32 = 1e-10;
-    /// Longest reconnection (squared; 1e10 units, far beyond any scene). With the two bounds and
-    /// `RECONNECTION_MIN_COS` every quotient below stays finite: J ≤ 1e6 · 1e20 / 1e-10 = 1e36 < f32::MAX,
-    /// which matters on the GPU, where WGSL leaves an overflowing division indeterminate.
-    pub const RECONNECTION_MAX_DISTANCE_SQ: f32 = 1e20;
-    /// Smallest |cos φ| at the sample point (from either receiver): below it the patch has no
-    /// solid angle to speak of (J = 0 or ∞ up to rounding), and no window in the settings'
-    /// range (j_max ≤ 1000) could accept the result anyway.
-    pub const RECONNECTION_MIN_COS: f32 = 1e-6;
-    /// `Params.flags` bits of the Indirect stage.
-    pub const PARAM_FLAG_GI: u32 = 1 << 4;
-    pub const PARAM_FLAG_GI_TEMPORAL: u32 = 1 << 5;
-    pub const PARAM_FLAG_GI_SPATIAL: u32 = 1 << 6;
-    pub const PARAM_FLAG_GI_SPATIAL_VISIBILITY: u32 = 1 << 7;
-    pub const PARAM_FLAG_GI_PAIRWISE: u32 = 1 << 8;
-    pub const PARAM_FLAG_GI_MIS_VISIBILITY: u32 = 1 << 9;
-
-    /// ReSTIR PT's shift mappings (`Params.pt_shift`, settings `pt_shift`).
-    pub const PT_SHIFT_RECONNECTION: u32 = 0;
-    pub const PT_SHIFT_RANDOM_REPLAY: u32 = 1;
-    pub const PT_SHIFT_HYBRID: u32 = 2;
-    /// A path reservoir's `packed` word (shaders/pt/reservoir.wgsl): source | n << 4 | end << 8 |
-    /// k << 9 | lobes << 13. The end technique of x_n → z:
-    pub const PT_END_NEE: u32 = 0;
-    pub const PT_END_BSDF: u32 = 1;
-    /// k for a path that is replayed whole (no reconnection).
-    pub const PT_RC_NONE: u32 = 15;
-    pub const PT_LOBE_DIFFUSE: u32 = 0;
-    pub const PT_LOBE_SPECULAR: u32 = 1;
-    /// Why a path could not be moved to another pixel (pt_shift in shaders/pt/path.wgsl; the CPU
-    /// model's `path_reuse::shift::Failure`). `PT_FAIL_NONE`: it moved and carries light there.
-    pub const PT_FAIL_NONE: u32 = 0;
-    /// The replayed prefix left the path (missed, met another lobe's zero, left the scene).
-    pub const PT_FAIL_REPLAY: u32 = 1;
-    /// The reconnection is undefined (too near or far, grazing, the other side of its surface).
-    pub const PT_FAIL_UNDEFINED: u32 = 2;
-    /// The reconnection segment is blocked.
-    pub const PT_FAIL_OCCLUDED: u32 = 3;
-    /// Hybrid: the shifted path would reconnect at another bounce (not a bijection there).
-    pub const PT_FAIL_ELSEWHERE: u32 = 4;
-    /// Moved, but its integrand is zero at the new pixel (below the surface, outside the lobe).
-    pub const PT_FAIL_ZERO: u32 = 5;
-    pub const PT_FAIL_REASON_COUNT: usize = 6;
-}
-pub const PT_FAIL_NAMES: [&str; PT_FAIL_REASON_COUNT] = [
-    "moved",
-    "replay left the path",
-    "reconnection undefined",
-    "reconnection occluded",
-    "reconnects elsewhere (hybrid)",
-    "zero where moved",
-];
-wgsl_constants! {
-    fn pt_probe;
-    /// `PtPixelDebug.temporal_failure` when no temporal shift was tried (no history, or the
-    /// previous surface failed the G-buffer checks).
-    pub const PT_FAIL_NOT_TRIED: u32 = 0xff;
-    /// The PT stages the pixel inspector's path probe keeps (pt initial, temporal, spatial),
-    /// and the vertices one stage's path can have: x_1 … x_n and the light point z.
-    pub const PT_PROBE_STAGES: u32 = 3;
-    pub const PT_PROBE_VERTICES: u32 = MAX_BOUNCES + 1;
-    /// `PtProbeVertex.flags` bits.
-    pub const PT_VERTEX_RECONNECTION: u32 = 1;
-    pub const PT_VERTEX_LIGHT: u32 = 2;
-    /// The light end is a direction (the environment), not a point.
-    pub const PT_VERTEX_DIRECTION: u32 = 4;
+    fn inspector;
     /// `GpuFrame.inspect_pixel` when no pixel is inspected.
     pub const NO_INSPECT_PIXEL: u32 = 0xffff_ffff;
-}
-
-wgsl_constants! {
-    fn denoiser;
-    /// The denoiser's fixed choices (docs/src/denoiser.md). Demodulation never divides by
-    /// less than this: a black surface's lighting is multiplied back by the same floor.
-    pub const DENOISE_ALBEDO_FLOOR: f32 = 0.01;
-    /// A reprojected history tap is this pixel's surface seen again when the normals agree
-    /// to this cosine (25°, as the reuse validation's default) …
-    pub const DENOISE_NORMAL_COS: f32 = 0.906;
-    /// … and the points are closer than this fraction of the view depth (jitter moves the
-    /// point within a pixel, ~0.003 of the depth at 480 lines; a bilinear tap is ≤ 1.5 px away).
-    pub const DENOISE_POSITION_TOLERANCE: f32 = 0.05;
-    /// Below this many frames of history the variance comes from the neighbourhood.
-    pub const DENOISE_MIN_HISTORY: u32 = 4;
-    /// The neighbourhood's radius (7 × 7, as SVGF).
-    pub const DENOISE_VARIANCE_RADIUS: u32 = 3;
-    /// À-trous iterations at most (taps 2^4 = 16 px apart in the last).
-    pub const MAX_DENOISE_ITERATIONS: u32 = 5;
-    /// The gradient's neighbourhood: (2 × taps + 1)² taps, this many pixels apart.
-    pub const DENOISE_GRADIENT_TAPS: u32 = 2;
-    pub const DENOISE_GRADIENT_STRIDE: u32 = 3;
-    /// The temporal pass's `PassInfo` slot when last frame left a valid history (0: none).
-    pub const DENOISE_HISTORY_SLOT: u32 = 1;
 }
 
 #[cfg(test)]
@@ -518,34 +389,5 @@ mod stream_tests {
             next += size;
         }
         assert_eq!(next, STAT_COUNT);
-    }
-
-    /// Every `Params.flags` bit has one meaning (DI, GI and dynamic-scene switches were
-    /// added on different branches).
-    #[test]
-    fn every_param_flag_is_its_own_bit() {
-        let flags = [
-            PARAM_FLAG_PERMUTATION,
-            PARAM_FLAG_PAIRWISE,
-            PARAM_FLAG_JITTER,
-            PARAM_FLAG_INITIAL_VISIBILITY,
-            PARAM_FLAG_PREVIOUS_LIGHTS,
-            PARAM_FLAG_MIS_VISIBILITY,
-            PARAM_FLAG_PREVIOUS_GEOMETRY,
-            PARAM_FLAG_GRADIENT_ONLY,
-            PARAM_FLAG_DENOISE_GRADIENTS,
-            PARAM_FLAG_GI,
-            PARAM_FLAG_GI_TEMPORAL,
-            PARAM_FLAG_GI_SPATIAL,
-            PARAM_FLAG_GI_SPATIAL_VISIBILITY,
-            PARAM_FLAG_GI_PAIRWISE,
-            PARAM_FLAG_GI_MIS_VISIBILITY,
-        ];
-        let mut seen = 0u32;
-        for f in flags {
-            assert_eq!(f.count_ones(), 1);
-            assert_eq!(seen & f, 0, "flag {f:#x} used twice");
-            seen |= f;
-        }
     }
 }

@@ -146,12 +146,14 @@ pub fn all_shader_files() -> Vec<&'static str> {
 }
 
 /// The WGSL prelude: every constant declared in a `wgsl_constants!` block (in
-/// shader_constants.rs, gpu_types.rs and view.rs) as a WGSL `const`: one row emits the Rust
+/// shader_constants.rs, gpu_types.rs, view.rs and each technique's constants.rs) as a WGSL `const`: one row emits the Rust
 /// constant and its WGSL line. It is assembled here, above the blocks, so that the constant
 /// modules need not know one another (docs/src/source-layout.md, "Layers").
 pub fn wgsl_prelude() -> String {
-    let mut out = String::from("// Generated from render/src/shader_constants.rs: edit there.\n");
-    let blocks: [fn() -> Vec<(&'static str, WgslValue)>; 19] = [
+    let mut out = String::from(
+        "// Generated from the wgsl_constants! blocks (render/src/shader_constants.rs, each technique's constants.rs): edit there.\n",
+    );
+    let blocks: [fn() -> Vec<(&'static str, WgslValue)>; 22] = [
         gpu_types::absent_markers,
         gpu_types::material_flags,
         gpu_types::texture_packing,
@@ -162,15 +164,19 @@ pub fn wgsl_prelude() -> String {
         k::surface_checks,
         k::sources,
         k::proposers,
-        k::packing_and_flags,
+        k::shared_flags_and_passes,
         k::counters,
         k::indirect_techniques,
         k::streams_and_limits,
         k::motion_and_view_limits,
         k::tonemappers_and_gi_rejections,
-        k::gi_packing_and_flags,
-        k::pt_probe,
-        k::denoiser,
+        k::inspector,
+        // Each technique's own constants.
+        crate::di::constants::packing_and_flags,
+        crate::gi::constants::packing_and_flags,
+        crate::pt::constants::shifts_and_failures,
+        crate::pt::constants::probe,
+        crate::denoise::constants::denoiser,
     ];
     for block in blocks {
         for (name, value) in block() {

@@ -24,7 +24,10 @@ fn frame(r: &mut Renderer) {
 }
 
 fn model_params(r: &Renderer) -> Params {
-    Params::from_settings(r.settings(), Params::pixel_angle(r.camera().yfov, H))
+    restir_render::denoise::settings::model_params(
+        r.settings(),
+        Params::pixel_angle(r.camera().yfov, H),
+    )
 }
 
 fn rgb(img: &LinearImage) -> Vec<Vec3> {

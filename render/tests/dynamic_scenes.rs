@@ -6,6 +6,7 @@
 
 mod common;
 
+use restir_render::di::constants::*;
 use restir_render::effects::Effect;
 use restir_render::gpu_types::NO_LIGHT;
 use restir_render::scene::animation::{ClipChoice, SceneChange};

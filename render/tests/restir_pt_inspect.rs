@@ -5,8 +5,8 @@
 mod common;
 
 use common::indirect::render_planted;
+use restir_render::pt::constants::*;
 use restir_render::renderer::PtStagePath;
-use restir_render::shader_constants::*;
 use restir_render::view::{DebugView, ViewSettings};
 use restir_render::{Renderer, load_scene};
 

@@ -8,6 +8,7 @@
 
 mod common;
 
+use restir_render::di::constants::*;
 use restir_render::gpu_types::GpuPixelDebug;
 use restir_render::shader_constants::*;
 use restir_render::{Mode, Renderer};

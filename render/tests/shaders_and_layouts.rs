@@ -7,8 +7,12 @@
 
 use std::collections::BTreeSet;
 
+use restir_render::denoise::params::GpuDenoiseParams;
+use restir_render::di::params::GpuDiParams;
 use restir_render::effects::{Effect, EffectSet};
+use restir_render::gi::params::GpuGiParams;
 use restir_render::gpu_types::*;
+use restir_render::pt::params::GpuPtParams;
 use restir_render::shader_source::compose;
 
 use restir_render::passes::pass::Access;
@@ -414,44 +418,76 @@ fn host_structs_match_wgsl_layouts() {
         "Params",
         GpuParams,
         [
-            light_candidates,
-            bsdf_candidates,
-            m_cap,
             normal_threshold,
             depth_threshold,
-            target_ratio_clamp,
             checks,
             flags,
-            spatial_neighbours,
-            spatial_radius,
             reference_spp,
-            boiling_filter,
-            gi_m_cap,
-            gi_spatial_neighbours,
-            gi_spatial_radius,
-            gi_jacobian_max,
             max_bounces,
-            pt_shift,
-            pt_rough_threshold,
-            pt_min_distance,
-            pt_spatial_neighbours,
-            pt_spatial_radius,
-            pt_m_cap,
-            pt_jacobian_clamp,
-            denoise_alpha,
-            denoise_moments_alpha,
-            denoise_phi_luminance,
-            denoise_phi_normal,
-            denoise_phi_depth,
-            denoise_history_cap,
             regir_grid,
             regir_slots,
             regir_cell_size,
             regir_build_samples,
             regir_jitter,
+            di,
+            gi,
+            pt,
+            denoise
+        ]
+    );
+    check_struct!(
+        m,
+        "DiParams",
+        GpuDiParams,
+        [
+            light_candidates,
+            bsdf_candidates,
+            m_cap,
+            target_ratio_clamp,
+            spatial_neighbours,
+            spatial_radius,
+            boiling_filter,
             mutations,
-            mutation_step,
-            gi_light_candidates
+            mutation_step
+        ]
+    );
+    check_struct!(
+        m,
+        "GiParams",
+        GpuGiParams,
+        [
+            m_cap,
+            spatial_neighbours,
+            spatial_radius,
+            jacobian_max,
+            light_candidates
+        ]
+    );
+    check_struct!(
+        m,
+        "PtParams",
+        GpuPtParams,
+        [
+            shift,
+            rough_threshold,
+            min_distance,
+            spatial_neighbours,
+            spatial_radius,
+            m_cap,
+            jacobian_clamp
+        ]
+    );
+    check_struct!(
+        m,
+        "DenoiseParams",
+        GpuDenoiseParams,
+        [
+            alpha,
+            moments_alpha,
+            phi_luminance,
+            phi_normal,
+            phi_depth,
+            history_cap
         ]
     );
     check_struct!(

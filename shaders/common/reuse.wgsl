@@ -158,7 +158,7 @@ fn mis_visibility() -> bool {
 // Whether t_here / t_there lies in [1/clamp, clamp] (the target-ratio clamp; true when it
 // is off). A zero on either side is outside: the two targets do not agree at all.
 fn target_ratio_in_window(t_here: f32, t_there: f32) -> bool {
-    let k = params.target_ratio_clamp;
+    let k = params.di.target_ratio_clamp;
     if k <= 0.0 {
         return true;
     }

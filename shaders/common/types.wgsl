@@ -1,6 +1,11 @@
 // GPU structs shared by every pass. Each one has a `#[repr(C)]` twin in
 // render/src/gpu_types.rs; render/tests/shaders_and_layouts.rs checks sizes and offsets match.
 
+#include "di/params.wgsl"
+#include "gi/params.wgsl"
+#include "pt/params.wgsl"
+#include "denoise/params.wgsl"
+
 struct Triangle {
     p0: vec3<f32>,
     material: u32,
@@ -196,50 +201,28 @@ struct Frame {
     finite_light_share: f32,      // Σ select_pdf of lights with a position (light BVH)
 }
 
+// The pipeline parameters (`GpuParams`, built from the settings table). The fields no
+// one technique owns are here; each technique's are its struct, declared in its folder
+// (di/params.wgsl, gi/, pt/, denoise/): `gi_m_cap` in the settings is `params.gi.m_cap`.
+// In the uniform address space a struct member starts on 16 bytes, hence the padding.
 struct Params {
-    light_candidates: u32,
-    bsdf_candidates: u32,
-    m_cap: f32,
     normal_threshold: f32,
     depth_threshold: f32,
-    target_ratio_clamp: f32,      // 0 = test off
     checks: u32,                  // enabled REJECT_* checks
     flags: u32,                   // PARAM_FLAG_*
-    spatial_neighbours: u32,
-    spatial_radius: f32,
     reference_spp: u32,
-    boiling_filter: f32,          // 0 = off
-    // Indirect stage (ReSTIR GI); switches are PARAM_FLAG_GI_* bits of `flags`
-    gi_m_cap: f32,
-    gi_spatial_neighbours: u32,
-    gi_spatial_radius: f32,       // pixels of this image
-    gi_jacobian_max: f32,         // window [1/max, max]
     max_bounces: u32,             // path vertices the reference shades (1 = direct only)
-    // ReSTIR PT (docs/src/restir-pt.md; pt on): the shift mapping and the hybrid's thresholds
-    pt_shift: u32,                // PT_SHIFT_*
-    pt_rough_threshold: f32,
-    pt_min_distance: f32,         // fraction of frame.scene_scale (bounds diagonal)
-    pt_spatial_neighbours: u32,
-    pt_spatial_radius: f32,       // pixels of this image
-    pt_m_cap: f32,
-    pt_jacobian_clamp: f32,       // biased: |J| clamped into [1/c, c]; 0 = off
-    // The denoiser (docs/src/denoiser.md)
-    denoise_alpha: f32,           // smallest weight of this frame in the history blend
-    denoise_moments_alpha: f32,
-    denoise_phi_luminance: f32,
-    denoise_phi_normal: f32,
-    denoise_phi_depth: f32,
-    denoise_history_cap: f32,     // frames
     // ReGIR (docs/src/light-samplers.md, "ReGIR")
     regir_grid: u32,              // cells per side
     regir_slots: u32,             // slots per cell
     regir_cell_size: f32,         // a fraction of frame.scene_scale
     regir_build_samples: u32,
     regir_jitter: f32,            // cells
-    // MCMC mutation of DI's samples (docs/src/mcmc-mutation.md)
-    mutations: u32,               // steps per pixel (0 = off)
-    mutation_step: f32,           // largest local slide, barycentric units
-    gi_light_candidates: u32,     // RIS candidates at GI's secondary vertex
+    _pad0: u32,
+    di: DiParams,
+    gi: GiParams,
+    pt: PtParams,
+    denoise: DenoiseParams,
 }
 
 struct Display {

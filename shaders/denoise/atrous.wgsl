@@ -79,7 +79,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
 #else
             let spread = centre_variance + max(q.w, 0.0);
 #endif
-            w *= exp(-abs(l - luminance(q.rgb)) / (params.denoise_phi_luminance * sqrt(spread) + 1e-10));
+            w *= exp(-abs(l - luminance(q.rgb)) / (params.denoise.phi_luminance * sqrt(spread) + 1e-10));
 #endif
             illum += w * q.rgb;
             variance += w * w * q.w;

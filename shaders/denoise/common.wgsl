@@ -48,9 +48,9 @@ fn denoise_geometry_weight(a: DenoiseCentre, b: Surface, distance: f32, pixel_an
 #ifdef PLANTED_NO_EDGE_STOPPING
     return 1.0;  // test only: a plain blur, which the edge test must catch
 #else
-    let normal = pow(max(dot(a.normal, oct_decode(b.normal)), 0.0), params.denoise_phi_normal);
+    let normal = pow(max(dot(a.normal, oct_decode(b.normal)), 0.0), params.denoise.phi_normal);
     let plane = abs(dot(a.geo_normal, b.position - a.position));
-    let reach = params.denoise_phi_depth * a.depth * pixel_angle * distance + 1e-6 * a.depth;
+    let reach = params.denoise.phi_depth * a.depth * pixel_angle * distance + 1e-6 * a.depth;
     return normal * exp(-plane / reach);
 #endif
 }

@@ -68,13 +68,13 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     out.length = 1.0;
     out.moments = moments;
     if sum_w > 1e-3 {
-        let length = min(sum_length / sum_w + 1.0, max(params.denoise_history_cap, 1.0));
+        let length = min(sum_length / sum_w + 1.0, max(params.denoise.history_cap, 1.0));
         var lambda = 0.0;
         if (params.flags & PARAM_FLAG_DENOISE_GRADIENTS) != 0u {
             lambda = gradient[index].x;
         }
-        let alpha = mix(max(params.denoise_alpha, 1.0 / length), 1.0, lambda);
-        let moments_alpha = mix(max(params.denoise_moments_alpha, 1.0 / length), 1.0, lambda);
+        let alpha = mix(max(params.denoise.alpha, 1.0 / length), 1.0, lambda);
+        let moments_alpha = mix(max(params.denoise.moments_alpha, 1.0 / length), 1.0, lambda);
         out.illumination = mix(sum_illum / sum_w, illum, alpha);
         out.moments = mix(sum_moments / sum_w, moments, moments_alpha);
         out.length = length;

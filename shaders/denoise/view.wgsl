@@ -27,7 +27,7 @@ fn denoise_color(index: u32) -> vec3<f32> {
     let h = history[index];
     switch display.view {
         case VIEW_HISTORY_LENGTH: {
-            return heatmap(h.length / max(params.denoise_history_cap, 1.0));
+            return heatmap(h.length / max(params.denoise.history_cap, 1.0));
         }
         case VIEW_DENOISE_VARIANCE: {
             let sigma = sqrt(max(h.moments.y - h.moments.x * h.moments.x, 0.0));

@@ -133,9 +133,9 @@ struct CandidateTally {
 }
 
 fn stream_light_candidates(sp: ShadingPoint, r: ptr<function, Reservoir>, rng: ptr<function, u32>, pixel: vec2<u32>, tally: ptr<function, CandidateTally>) {
-    let n_l = f32(params.light_candidates);
-    let n_b = f32(params.bsdf_candidates);
-    for (var i = 0u; i < params.light_candidates; i++) {
+    let n_l = f32(params.di.light_candidates);
+    let n_b = f32(params.di.bsdf_candidates);
+    for (var i = 0u; i < params.di.light_candidates; i++) {
         let candidate = light_candidate(sp, rng, pixel);
         let u_select = rand_f32(rng);
         if !(candidate.weight_scale > 0.0) {
@@ -161,9 +161,9 @@ fn stream_light_candidates(sp: ShadingPoint, r: ptr<function, Reservoir>, rng: p
 
 #ifdef BSDF_CANDIDATES
 fn stream_bsdf_candidates(sp: ShadingPoint, r: ptr<function, Reservoir>, rng: ptr<function, u32>, tally: ptr<function, CandidateTally>) {
-    let n_l = f32(params.light_candidates);
-    let n_b = f32(params.bsdf_candidates);
-    for (var j = 0u; j < params.bsdf_candidates; j++) {
+    let n_l = f32(params.di.light_candidates);
+    let n_b = f32(params.di.bsdf_candidates);
+    for (var j = 0u; j < params.di.bsdf_candidates; j++) {
         let u = vec3<f32>(rand_f32(rng), rand_f32(rng), rand_f32(rng));
         let u_select = rand_f32(rng);
         let bs = sample_brdf(sp.brdf, sp.normal, sp.wo, u);
@@ -239,9 +239,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     d.source = reservoir_source(r);
     d.m_initial = r.m;
     d.proposer = select(tally.proposer, PROPOSER_NONE, reservoir_is_null(r));
-    d.useful_candidates = f32(tally.useful) / f32(max(params.light_candidates, 1u));
+    d.useful_candidates = f32(tally.useful) / f32(max(params.di.light_candidates, 1u));
     if surface_is_valid(s) && frame.light_count > 0u {
-        add_stat(STAT_LIGHT_CANDIDATES, params.light_candidates);
+        add_stat(STAT_LIGHT_CANDIDATES, params.di.light_candidates);
         add_stat(STAT_USEFUL_CANDIDATES, tally.useful);
     }
     debug[index] = d;

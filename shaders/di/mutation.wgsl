@@ -1,5 +1,5 @@
 // MCMC mutation of each pixel's DI sample (docs/src/mcmc-mutation.md; Sawhney et al. 2024,
-// "Decorrelating ReSTIR Samplers via MCMC Mutations"): `params.mutations` Metropolis–Hastings
+// "Decorrelating ReSTIR Samplers via MCMC Mutations"): `params.di.mutations` Metropolis–Hastings
 // steps toward this pixel's own target T, after the last reuse pass and before shading.
 // A kernel that leaves T invariant keeps the contribution weight unbiased when
 // W' = W · T(y) / T(y') (the book derives it); w_sum and M stay as they are. Each step is,
@@ -52,7 +52,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let sp = shading_point_from_surface(s, frame.camera_position);
     var rng = pcg_hash(rng_seed(id.xy, STREAM_INITIAL) ^ MUTATION_STREAM_SALT);
     let visibility = pairwise_mis() && mis_visibility();
-    let steps = min(params.mutations, MAX_MUTATIONS);
+    let steps = min(params.di.mutations, MAX_MUTATIONS);
     var rays = 0u;
     var accepted = 0u;
     for (var i = 0u; i < steps; i++) {
@@ -65,7 +65,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             if light_kind_of(lights[r.light]) != LIGHT_KIND_TRIANGLE {
                 continue;
             }
-            y.uv = r.uv + (u_move * 2.0 - 1.0) * params.mutation_step;
+            y.uv = r.uv + (u_move * 2.0 - 1.0) * params.di.mutation_step;
             if !inside_triangle(y.uv) {
                 continue;
             }

@@ -64,9 +64,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     var pass_mask = 0u;
     var c_total = canonical.m;
     var contribution_sum = canonical.p_hat * canonical.weight;
-    let k = min(params.spatial_neighbours, MAX_SPATIAL_NEIGHBOURS);
+    let k = min(params.di.spatial_neighbours, MAX_SPATIAL_NEIGHBOURS);
     for (var i = 0u; i < k; i++) {
-        let offset = disk_neighbour_offset(rand_vec2(&rng), params.spatial_radius);
+        let offset = disk_neighbour_offset(rand_vec2(&rng), params.di.spatial_radius);
         let candidate = reuse_candidate(vec2<i32>(id.xy) + offset, s, false);
         var mask = candidate.mask;
         let q_index = candidate.index;
@@ -93,9 +93,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     // 2. Boiling filter (docs/src/spatial-reuse.md, "The boiling filter"): drop this pixel's
     //    own sample when it outshines the neighbourhood by more than k times; its M still
     //    counts.
-    if params.boiling_filter > 0.0 && n_accepted > 0u {
+    if params.di.boiling_filter > 0.0 && n_accepted > 0u {
         let mean = contribution_sum / f32(n_accepted + 1u);
-        if canonical.p_hat * canonical.weight > params.boiling_filter * mean {
+        if canonical.p_hat * canonical.weight > params.di.boiling_filter * mean {
             count_stat(STAT_BOILING_DROPPED);
             let m = canonical.m;
             canonical = reservoir_empty();
@@ -156,8 +156,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     } else {
         reservoir_finalize(&r, r.m);
     }
-    if r.m > params.m_cap {
-        r.m = params.m_cap;
+    if r.m > params.di.m_cap {
+        r.m = params.di.m_cap;
         d.flags |= DEBUG_FLAG_SPATIAL_CAP;
         count_stat(STAT_SPATIAL_CAP);
     }

@@ -242,11 +242,11 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     var rays = 0u;
     var visibility_here = 1.0;
     if rejecting_checks(cand.mask) == 0u {
-        let m_prev = min(cand.reservoir.m, params.m_cap);
+        let m_prev = min(cand.reservoir.m, params.di.m_cap);
         if merging {
             count_stat(STAT_TEMPORAL_ACCEPTED);
             d.flags |= DEBUG_FLAG_TEMPORAL_MERGED;
-            if cand.reservoir.m > params.m_cap {
+            if cand.reservoir.m > params.di.m_cap {
                 d.flags |= DEBUG_FLAG_TEMPORAL_CAP;
                 count_stat(STAT_TEMPORAL_CAP);
             }
@@ -274,8 +274,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if !merging {
         r = current;
     }
-    if r.m > params.m_cap {
-        r.m = params.m_cap;
+    if r.m > params.di.m_cap {
+        r.m = params.di.m_cap;
         d.flags |= DEBUG_FLAG_TEMPORAL_CAP;
     }
     if reservoir_is_corrupt(r) {

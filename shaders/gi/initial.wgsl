@@ -18,7 +18,7 @@
 
 // f · Le · G · V · W of one RIS-selected light point at `sp` (0 in shadow or without lights).
 fn direct_light_estimate(sp: ShadingPoint, rng: ptr<function, u32>) -> vec3<f32> {
-    let n = params.gi_light_candidates;
+    let n = params.gi.light_candidates;
     if frame.light_count == 0u || n == 0u {
         return vec3<f32>(0.0);
     }

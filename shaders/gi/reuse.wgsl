@@ -62,7 +62,7 @@ struct GiShift {
 
 fn gi_shift(r: GiReservoir, seen_from: vec3<f32>, reused_at: vec3<f32>) -> GiShift {
     let j = gi_reconnection_jacobian(r.position, oct_decode(r.normal), seen_from, reused_at);
-    let reject = gi_shift_rejection(j, params.gi_jacobian_max);
+    let reject = gi_shift_rejection(j, params.gi.jacobian_max);
 #ifdef PLANTED_GI_NO_JACOBIAN
     // Test-only planted error (render/tests/restir_gi.rs): reuse as if |J| were 1.
     return GiShift(select(0.0, 1.0, j > 0.0), reject);

@@ -37,9 +37,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     var n_accepted = 0u;
     var pass_mask = 0u;
     var c_total = canonical.m;
-    let k = min(params.gi_spatial_neighbours, MAX_SPATIAL_NEIGHBOURS);
+    let k = min(params.gi.spatial_neighbours, MAX_SPATIAL_NEIGHBOURS);
     for (var i = 0u; i < k; i++) {
-        let offset = disk_neighbour_offset(rand_vec2(&rng), params.gi_spatial_radius);
+        let offset = disk_neighbour_offset(rand_vec2(&rng), params.gi.spatial_radius);
         let q = vec2<i32>(id.xy) + offset;
         // `mask`: surface checks, which drop the neighbour. `unusable`: its sample cannot
         // reach this pixel (no reconnection, Jacobian outside the window, occluded): the
@@ -129,7 +129,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if gi_source(r) == SOURCE_SPATIAL {
         d.jacobian = picked_jacobian;
     }
-    gi_cap_confidence(&r, params.gi_m_cap);
+    gi_cap_confidence(&r, params.gi.m_cap);
     gi_set_flags(&r, pass_mask);
     r = gi_guarded(r, INDIRECT_PASS_SPATIAL);
     gi_out[index] = r;

@@ -112,7 +112,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if cand.mask == 0u {
         count_stat(STAT_INDIRECT_TEMPORAL_ACCEPTED);
         let prev = cand.reservoir;
-        let m_prev = min(prev.m, params.gi_m_cap);
+        let m_prev = min(prev.m, params.gi.m_cap);
         let temporal_packed = gi_pack(SOURCE_TEMPORAL, 0u, gi_age(prev) + 1u);
         let u_current = rand_f32(&rng);
         let u_prev = rand_f32(&rng);
@@ -145,7 +145,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         }
         d.jacobian = select(1.0, cand.jacobian, picked_previous);
     }
-    gi_cap_confidence(&r, params.gi_m_cap);
+    gi_cap_confidence(&r, params.gi.m_cap);
     gi_set_flags(&r, cand.mask | cand.unusable);
     r = gi_guarded(r, INDIRECT_PASS_TEMPORAL);
     gi_out[index] = r;

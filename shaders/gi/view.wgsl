@@ -32,7 +32,7 @@ fn gi_reason_color(bit: u32) -> vec3<f32> {
 
 // log2 |J| over ±log2(window).
 fn jacobian_color(j: f32) -> vec3<f32> {
-    return log_jacobian_color(j, max(log2(max(params.gi_jacobian_max, 2.0)), 1.0));
+    return log_jacobian_color(j, max(log2(max(params.gi.jacobian_max, 2.0)), 1.0));
 }
 
 fn gi_color(index: u32) -> vec3<f32> {
@@ -50,14 +50,14 @@ fn gi_color(index: u32) -> vec3<f32> {
             return source_color(select(r.packed & GI_SOURCE_MASK, SOURCE_NULL, !(r.weight > 0.0)));
         }
         case VIEW_GI_M: {
-            return heatmap(r.m / max(params.gi_m_cap, 1.0));
+            return heatmap(r.m / max(params.gi.m_cap, 1.0));
         }
         case VIEW_GI_REJECTION: {
             let mask = d.temporal_mask & ((1u << GI_REJECT_REASON_COUNT) - 1u);
             if mask != 0u {
                 return gi_reason_color(firstTrailingBit(mask));
             }
-            let tries = min(params.gi_spatial_neighbours, MAX_SPATIAL_NEIGHBOURS);
+            let tries = min(params.gi.spatial_neighbours, MAX_SPATIAL_NEIGHBOURS);
             if tries == 0u || (params.flags & PARAM_FLAG_GI_SPATIAL) == 0u {
                 return vec3<f32>(0.0);
             }

@@ -82,13 +82,13 @@ fn pt_bounce_factor(sp: ShadingPoint, wi: vec3<f32>, lobe: u32) -> vec3<f32> {
 // Whether a vertex is rough enough for the hybrid to reconnect at: no specular lobe, or
 // roughness ≥ pt_rough_threshold (α = roughness²).
 fn pt_is_rough(sp: ShadingPoint) -> bool {
-    return diffuse_lobe_probability(sp.brdf) >= 1.0 || sp.brdf.alpha >= params.pt_rough_threshold * params.pt_rough_threshold;
+    return diffuse_lobe_probability(sp.brdf) >= 1.0 || sp.brdf.alpha >= params.pt.rough_threshold * params.pt.rough_threshold;
 }
 
 // Whether the hybrid reconnects the step from `a` to `b`.
 fn pt_hybrid_reconnects(a: ShadingPoint, b: ShadingPoint) -> bool {
     let d = b.position - a.position;
-    let min_d = params.pt_min_distance * frame.scene_scale;
+    let min_d = params.pt.min_distance * frame.scene_scale;
     return pt_is_rough(a) && pt_is_rough(b) && dot(d, d) >= min_d * min_d;
 }
 
@@ -309,8 +309,8 @@ fn pt_trace_initial(first: ShadingPoint, seed: u32, r: ptr<function, PtReservoir
         st.rc_prefix_pdf = select(st.rc_prefix_pdf, st.prefix_pdf, st.k == PT_RC_NONE);
         st.prefix_pdf *= bn.lobe_pdf;
         if st.k == PT_RC_NONE {
-            let reconnect = (params.pt_shift == PT_SHIFT_RECONNECTION && b == 1u)
-                || (params.pt_shift == PT_SHIFT_HYBRID && pt_hybrid_reconnects(sp, bn.next));
+            let reconnect = (params.pt.shift == PT_SHIFT_RECONNECTION && b == 1u)
+                || (params.pt.shift == PT_SHIFT_HYBRID && pt_hybrid_reconnects(sp, bn.next));
             if reconnect {
                 st.k = b;
                 st.rc_hit = pt_last_hit;
@@ -395,7 +395,7 @@ fn pt_shift(r: PtReservoir, to: ShadingPoint) -> PtShifted {
     let k = pt_k(r);
     let end = pt_end(r);
     let z = pt_light(r);
-    let hybrid = params.pt_shift == PT_SHIFT_HYBRID;
+    let hybrid = params.pt.shift == PT_SHIFT_HYBRID;
     if n < 2u || n > MAX_BOUNCES || (k != PT_RC_NONE && k + 1u > n) {
         return pt_shift_failed(r, PT_FAIL_UNDEFINED);
     }
@@ -508,9 +508,9 @@ fn pt_shift(r: PtReservoir, to: ShadingPoint) -> PtShifted {
 #ifdef PLANTED_PT_INVERTED_JACOBIAN
     jacobian = 1.0 / jacobian;
 #endif
-    if params.pt_jacobian_clamp > 0.0 && jacobian > 0.0 {
+    if params.pt.jacobian_clamp > 0.0 && jacobian > 0.0 {
         // The biased option (off by default): a wrong change of measure, bounded fireflies.
-        jacobian = clamp(jacobian, 1.0 / params.pt_jacobian_clamp, params.pt_jacobian_clamp);
+        jacobian = clamp(jacobian, 1.0 / params.pt.jacobian_clamp, params.pt.jacobian_clamp);
     }
     out.value = value;
     out.p_hat = luminance(value);

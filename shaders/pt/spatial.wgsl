@@ -37,9 +37,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     var accepted: array<u32, MAX_SPATIAL_NEIGHBOURS>;
     var n_accepted = 0u;
     var c_total = canonical.m;
-    let k = min(params.pt_spatial_neighbours, MAX_SPATIAL_NEIGHBOURS);
+    let k = min(params.pt.spatial_neighbours, MAX_SPATIAL_NEIGHBOURS);
     for (var i = 0u; i < k; i++) {
-        let offset = disk_neighbour_offset(rand_vec2(&rng), params.pt_spatial_radius);
+        let offset = disk_neighbour_offset(rand_vec2(&rng), params.pt.spatial_radius);
         let candidate = reuse_candidate(vec2<i32>(id.xy) + offset, s, false);
         var mask = candidate.mask;
         let q_index = candidate.index;

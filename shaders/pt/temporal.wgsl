@@ -86,7 +86,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if prev_pixel.mask == 0u {
         count_stat(STAT_INDIRECT_TEMPORAL_ACCEPTED);
         let prev = pt_checked(pt_prev[prev_pixel.index], INDIRECT_PASS_TEMPORAL);
-        let m_prev = min(prev.m, params.pt_m_cap);
+        let m_prev = min(prev.m, params.pt.m_cap);
         let c_total = current.m + m_prev;
         // The previous path moved here (a null one is a zero that still stands for M_prev),
         // and this pixel's path moved to the previous pixel: could it have found it?
@@ -115,7 +115,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         pt_merge_mis(&r, current, own, m_current, rand_f32(&rng));
         moved.path.packed = pt_with_source(moved.path.packed, SOURCE_TEMPORAL);
         pt_merge_mis(&r, prev, moved, m_temporal, rand_f32(&rng));
-        r.m = min(c_total, params.pt_m_cap);
+        r.m = min(c_total, params.pt.m_cap);
         pt_reservoir_finalize(&r);
         r = pt_guarded(r, INDIRECT_PASS_TEMPORAL);
     }

@@ -3,8 +3,12 @@
 //! `shaders/denoise/` does it, with its tests, and its passes. The folder's files stand on
 //! the floors `di/mod.rs` names.
 
+pub mod constants;
 pub mod model;
+pub mod params;
 pub mod passes;
+pub mod rows;
+pub mod settings;
 
 #[cfg(test)]
 mod tests;

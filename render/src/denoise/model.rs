@@ -4,11 +4,12 @@
 
 use glam::{Vec2, Vec3, Vec4};
 
-use crate::gpu_types::{GpuDenoiseHistory, GpuSurface};
-use crate::shader_constants::{
+use crate::denoise::constants::{
     DENOISE_ALBEDO_FLOOR, DENOISE_GRADIENT_STRIDE, DENOISE_GRADIENT_TAPS, DENOISE_MIN_HISTORY,
     DENOISE_NORMAL_COS, DENOISE_POSITION_TOLERANCE, DENOISE_VARIANCE_RADIUS,
 };
+use crate::denoise::params::GpuDenoiseParams;
+use crate::gpu_types::{GpuDenoiseHistory, GpuSurface};
 
 /// What the denoiser reads of a pixel's G-buffer surface.
 #[derive(Clone, Copy, Debug, Default)]
@@ -61,15 +62,12 @@ pub fn oct_decode(e: u32) -> Vec3 {
     n.normalize()
 }
 
-/// The denoiser's knobs (the `denoise_*` rows of the settings table).
+/// The denoiser's knobs (the `denoise_*` rows of the settings table; `settings::model_params`
+/// fills them).
 #[derive(Clone, Copy, Debug)]
 pub struct Params {
-    pub alpha: f32,
-    pub moments_alpha: f32,
-    pub phi_luminance: f32,
-    pub phi_normal: f32,
-    pub phi_depth: f32,
-    pub history_cap: f32,
+    /// The knobs the shaders read too (`params.denoise`), exactly as the GPU gets them.
+    pub uniform: GpuDenoiseParams,
     pub iterations: u32,
     /// The angle between neighbouring pixels' camera rays (the world footprint of a pixel
     /// is its depth times this).
@@ -77,21 +75,6 @@ pub struct Params {
 }
 
 impl Params {
-    /// The settings' `denoise_*` rows, for an image whose neighbouring pixels' rays are
-    /// `pixel_angle` apart.
-    pub fn from_settings(s: &crate::Settings, pixel_angle: f32) -> Params {
-        Params {
-            alpha: s.denoise_alpha,
-            moments_alpha: s.denoise_moments_alpha,
-            phi_luminance: s.denoise_phi_luminance,
-            phi_normal: s.denoise_phi_normal,
-            phi_depth: s.denoise_phi_depth,
-            history_cap: s.denoise_history_cap as f32,
-            iterations: s.denoise_iterations,
-            pixel_angle,
-        }
-    }
-
     /// The angle between the image centre's ray and the next pixel's, as the WGSL measures
     /// it (`denoise_pixel_angle`), for a vertical field of view and an image height.
     pub fn pixel_angle(yfov: f32, height: u32) -> f32 {
@@ -236,14 +219,18 @@ pub fn temporal(
             }
             let has_history = acc.3 > 1e-3;
             let (length, alpha, moments_alpha) = if has_history {
-                let length = (acc.1 / acc.3 + 1.0).min(p.history_cap.max(1.0));
+                let length = (acc.1 / acc.3 + 1.0).min(p.uniform.history_cap.max(1.0));
                 // α + (1 − α) λ: a changed neighbourhood weighs this frame more.
                 let lambda = lambda.map_or(0.0, |l| l[i]);
                 let blend = |alpha: f32| {
                     let alpha = alpha.max(1.0 / length);
                     alpha + (1.0 - alpha) * lambda
                 };
-                (length, blend(p.alpha), blend(p.moments_alpha))
+                (
+                    length,
+                    blend(p.uniform.alpha),
+                    blend(p.uniform.moments_alpha),
+                )
             } else {
                 (1.0, 1.0, 1.0)
             };
@@ -276,11 +263,11 @@ fn geometry_weight(a: &Pixel, b: &Pixel, distance: f32, p: &Params, planted: Pla
     if planted.no_edge_stopping {
         return 1.0;
     }
-    let normal = a.normal.dot(b.normal).max(0.0).powf(p.phi_normal);
+    let normal = a.normal.dot(b.normal).max(0.0).powf(p.uniform.phi_normal);
     // Distance from b to a's tangent plane, against how far a pixel reaches at a's depth:
     // zero on the same plane however steep, large across a silhouette.
     let plane = a.geo_normal.dot(b.position - a.position).abs();
-    let reach = p.phi_depth * a.depth * p.pixel_angle * distance + 1e-6 * a.depth;
+    let reach = p.uniform.phi_depth * a.depth * p.pixel_angle * distance + 1e-6 * a.depth;
     normal * (-plane / reach).exp()
 }
 
@@ -386,7 +373,8 @@ pub fn atrous(f: &Frame, input: &[Vec4], step: i32, p: &Params, planted: Planted
                             var_centre + q.w.max(0.0)
                         };
                         let lq = luminance(q.truncate());
-                        w *= (-(l - lq).abs() / (p.phi_luminance * spread.sqrt() + 1e-10)).exp();
+                        w *= (-(l - lq).abs() / (p.uniform.phi_luminance * spread.sqrt() + 1e-10))
+                            .exp();
                     }
                     illum += w * q.truncate();
                     var += w * w * q.w;

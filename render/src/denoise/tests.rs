@@ -11,7 +11,7 @@ const H: u32 = 32;
 const PIXEL_ANGLE: f32 = 0.01;
 
 fn params() -> Params {
-    Params::from_settings(&crate::Settings::default(), PIXEL_ANGLE)
+    super::settings::model_params(&crate::Settings::default(), PIXEL_ANGLE)
 }
 
 /// A wall facing the camera at depth `depth(x)` per column, grey, not moving.

@@ -7,5 +7,9 @@
 //! ("Layers"), the same names in `di/`, `gi/`, `pt/` and `denoise/`: `model` is a CPU model,
 //! `passes` stands with the frame's other passes.
 
+pub mod constants;
 pub mod model;
+pub mod params;
 pub mod passes;
+pub mod rows;
+pub mod settings;

@@ -3,5 +3,9 @@
 //! target, merges, one reuse step and the Jacobian) and its passes (shaders under
 //! shaders/gi/). The folder's files stand on the floors `di/mod.rs` names.
 
+pub mod constants;
 pub mod model;
+pub mod params;
 pub mod passes;
+pub mod rows;
+pub mod settings;

@@ -3,5 +3,9 @@
 //! scene) and its passes (shaders under shaders/pt/). The folder's files stand on the floors
 //! `di/mod.rs` names.
 
+pub mod constants;
 pub mod model;
+pub mod params;
 pub mod passes;
+pub mod rows;
+pub mod settings;

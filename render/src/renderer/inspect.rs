@@ -3,11 +3,13 @@
 //! comes back asynchronously with the frame's report.
 
 use super::inspect_pt::PtInspection;
+use crate::gi::constants::*;
 use crate::gpu::readback::ReadbackRing;
 use crate::gpu_types::{
     GpuDenoiseHistory, GpuGiPixelDebug, GpuGiReservoir, GpuPixelDebug, GpuPtPixelDebug,
     GpuPtProbeStage, GpuReservoir, GpuSurface, NO_LIGHT,
 };
+use crate::pt::constants::*;
 use crate::shader_constants::*;
 
 /// DI's stages: initial, temporal and up to 8 spatial passes.

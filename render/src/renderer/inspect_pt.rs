@@ -4,6 +4,7 @@
 //! vertex, lobes, |J|.
 
 use crate::gpu_types::{GpuPtPixelDebug, GpuPtProbeStage, GpuPtReservoir};
+use crate::pt::constants::*;
 use crate::shader_constants::*;
 
 /// The probe's stages, in its slot order.

@@ -11,6 +11,7 @@ use super::inspect::InspectCapture;
 use super::resolve::resolve;
 use super::{PipelineVariant, Renderer};
 
+use crate::denoise::constants::MAX_DENOISE_ITERATIONS;
 use crate::denoise::passes as denoise;
 use crate::effects::{Effect, EffectSet};
 use crate::gi::passes::initial::GI_RESERVOIRS;
@@ -23,8 +24,7 @@ use crate::passes::{ComputePass, PASS_INFO_SLOTS, PASS_INFO_STRIDE, PassDef, Pas
 use crate::pt::passes::initial::{PT_PROBE, PT_RESERVOIRS};
 use crate::settings::{LightSampler, Settings};
 use crate::shader_constants::{
-    LIGHT_TILE_COUNT, LIGHT_TILE_SIZE, MAX_DENOISE_ITERATIONS, MAX_SPATIAL_PASSES,
-    REFERENCE_SAMPLES_PER_DISPATCH,
+    LIGHT_TILE_COUNT, LIGHT_TILE_SIZE, MAX_SPATIAL_PASSES, REFERENCE_SAMPLES_PER_DISPATCH,
 };
 use crate::tracing::RayBackend;
 use crate::view::{DebugView, Mode};

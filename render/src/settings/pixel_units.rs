@@ -98,13 +98,13 @@ mod tests {
     #[test]
     fn the_uniform_carries_the_effective_radius() {
         let s = Settings::default();
-        assert_eq!(s.gpu_params(180).spatial_radius, 5.0);
-        assert_eq!(s.gpu_params(1080).spatial_radius, 30.0);
+        assert_eq!(s.gpu_params(180).di.spatial_radius, 5.0);
+        assert_eq!(s.gpu_params(1080).di.spatial_radius, 30.0);
         let gi = Settings {
             gi_spatial_radius: 40.0,
             ..Settings::default()
         };
-        assert_eq!(gi.gpu_params(540).gi_spatial_radius, 20.0);
-        assert_eq!(gi.gpu_params(48).gi_spatial_radius, MIN_SPATIAL_RADIUS_PX);
+        assert_eq!(gi.gpu_params(540).gi.spatial_radius, 20.0);
+        assert_eq!(gi.gpu_params(48).gi.spatial_radius, MIN_SPATIAL_RADIUS_PX);
     }
 }

@@ -1,4 +1,6 @@
 use super::*;
+use crate::di::constants::PARAM_FLAG_PERMUTATION;
+use crate::gi::constants::*;
 
 #[test]
 fn defaults_follow_the_notes() {
@@ -86,7 +88,7 @@ fn gpu_params_reflect_checks_and_flags() {
     s.check_target_ratio = false;
     let p = s.gpu_params(1080);
     assert_eq!(p.checks & REJECT_NORMAL, 0);
-    assert_eq!(p.target_ratio_clamp, 0.0);
+    assert_eq!(p.di.target_ratio_clamp, 0.0);
     assert_eq!(p.flags & PARAM_FLAG_PERMUTATION, PARAM_FLAG_PERMUTATION);
 }
 
@@ -129,7 +131,7 @@ fn indirect_defaults_and_flags() {
             | PARAM_FLAG_GI_SPATIAL
             | PARAM_FLAG_GI_MIS_VISIBILITY
     );
-    assert_eq!(p.gi_jacobian_max, 1.0);
+    assert_eq!(p.gi.jacobian_max, 1.0);
     assert_eq!(p.flags & !gi_bits, s.gpu_params(1080).flags & !gi_bits);
 }
 
@@ -288,9 +290,9 @@ fn built_in_presets_apply_cleanly_by_name() {
 #[test]
 fn gi_light_candidates_default_to_di_s_and_the_reference_keeps_the_table() {
     let mut s = Settings::default();
-    assert_eq!(s.gpu_params(1080).gi_light_candidates, s.light_candidates);
+    assert_eq!(s.gpu_params(1080).gi.light_candidates, s.light_candidates);
     s.gi_light_candidates = 4;
-    assert_eq!(s.gpu_params(1080).gi_light_candidates, 4);
+    assert_eq!(s.gpu_params(1080).gi.light_candidates, 4);
     s.light_sampler = LightSampler::Bvh;
     s.bvh_at_vertices = false;
     let reference = s.for_reference();
@@ -298,4 +300,36 @@ fn gi_light_candidates_default_to_di_s_and_the_reference_keeps_the_table() {
     assert!(reference.bvh_at_vertices);
     s.reference_light_bvh = true;
     assert_eq!(s.for_reference().light_sampler, LightSampler::Bvh);
+}
+
+/// Every `Params.flags` bit has one meaning: DI's, GI's and the denoiser's bits are
+/// declared in their folders, the shared ones in shader_constants.rs.
+#[test]
+fn every_param_flag_is_its_own_bit() {
+    use crate::denoise::constants::*;
+    use crate::di::constants::*;
+    use crate::gi::constants::*;
+    let flags = [
+        PARAM_FLAG_PERMUTATION,
+        PARAM_FLAG_PAIRWISE,
+        PARAM_FLAG_JITTER,
+        PARAM_FLAG_INITIAL_VISIBILITY,
+        PARAM_FLAG_PREVIOUS_LIGHTS,
+        PARAM_FLAG_MIS_VISIBILITY,
+        PARAM_FLAG_PREVIOUS_GEOMETRY,
+        PARAM_FLAG_GRADIENT_ONLY,
+        PARAM_FLAG_DENOISE_GRADIENTS,
+        PARAM_FLAG_GI,
+        PARAM_FLAG_GI_TEMPORAL,
+        PARAM_FLAG_GI_SPATIAL,
+        PARAM_FLAG_GI_SPATIAL_VISIBILITY,
+        PARAM_FLAG_GI_PAIRWISE,
+        PARAM_FLAG_GI_MIS_VISIBILITY,
+    ];
+    let mut seen = 0u32;
+    for f in flags {
+        assert_eq!(f.count_ones(), 1);
+        assert_eq!(seen & f, 0, "flag {f:#x} used twice");
+        seen |= f;
+    }
 }

@@ -4,6 +4,7 @@
 //! Freeze stops new frames; Step renders exactly one.
 
 use egui::{RichText, Ui};
+use restir_render::di::constants::*;
 use restir_render::gpu_types::{GpuSurface, NO_LIGHT};
 use restir_render::renderer::{
     DenoiseInspection, GiInspection, GiStageReservoir, PixelInspection, StageReservoir,

@@ -3,8 +3,8 @@
 //! reservoir each stage kept and that path's vertices x_1 … x_n, z.
 
 use egui::{RichText, Ui};
+use restir_render::pt::constants::{PT_FAIL_NONE, PT_FAIL_REASON_COUNT};
 use restir_render::renderer::{PtInspection, PtStagePath, PtVertex};
-use restir_render::shader_constants::{PT_FAIL_NONE, PT_FAIL_REASON_COUNT};
 
 use super::inspector_rows::{reject_names, rejections, vec3};
 

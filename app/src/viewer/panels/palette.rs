@@ -5,8 +5,9 @@
 //! swatches match the image exactly.
 
 use egui::{Color32, Rgba};
+use restir_render::pt::constants::PT_FAIL_REASON_COUNT;
 use restir_render::shader_constants::{
-    PT_FAIL_REASON_COUNT, SOURCE_INITIAL, SOURCE_NAMES, SOURCE_SPATIAL, SOURCE_TEMPORAL,
+    SOURCE_INITIAL, SOURCE_NAMES, SOURCE_SPATIAL, SOURCE_TEMPORAL,
 };
 
 fn linear(c: [f32; 3]) -> Color32 {

@@ -3,9 +3,10 @@
 //! changes the estimate.
 
 use egui::Ui;
+use restir_render::pt::constants::PT_FAIL_NAMES;
 use restir_render::shader_constants::{
     BIAS_BATCH, BIAS_NEGLIGIBLE, BIAS_SIGNIFICANCE, BOILING_THRESHOLD, BOILING_VIEW_MAX,
-    GI_REJECT_REASON_NAMES, MAX_BOUNCES, PROPOSER_NAMES, PT_FAIL_NAMES, REJECT_REASON_NAMES,
+    GI_REJECT_REASON_NAMES, MAX_BOUNCES, PROPOSER_NAMES, REJECT_REASON_NAMES,
     REJECT_TEMPORAL_REASONS, TEMPORAL_WINDOW_FRAMES,
 };
 use restir_render::{DebugView, Settings, Tonemapper, ViewSettings};

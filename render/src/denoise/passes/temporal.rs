@@ -6,7 +6,7 @@ use crate::passes::pass::{Dispatch, PassDef, read, write};
 use crate::passes::resources::{RADIANCE, Resource::*, Role};
 
 /// `PassInfo` slot of a frame whose history is valid (slot 0: start afresh).
-pub use crate::shader_constants::DENOISE_HISTORY_SLOT as WITH_HISTORY_SLOT;
+pub use crate::denoise::constants::DENOISE_HISTORY_SLOT as WITH_HISTORY_SLOT;
 
 pub const PASS: PassDef = PassDef {
     name: "denoise temporal",

@@ -23,10 +23,10 @@
 
 use glam::Vec3;
 
-use crate::shader_constants::{GI_REJECT_JACOBIAN, GI_REJECT_RECONNECTION};
-pub use crate::shader_constants::{
+pub use crate::gi::constants::{
     RECONNECTION_MAX_DISTANCE_SQ, RECONNECTION_MIN_COS, RECONNECTION_MIN_DISTANCE_SQ,
 };
+use crate::shader_constants::{GI_REJECT_JACOBIAN, GI_REJECT_RECONNECTION};
 
 /// `|J_{from→to}|` of the reconnection of a sample at `sample_position` (surface normal
 /// `sample_normal`, either orientation, need not be unit length) from the receiving point

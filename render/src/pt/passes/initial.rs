@@ -5,7 +5,7 @@
 use crate::gpu_types::{GpuPtPixelDebug, GpuPtProbeStage, GpuPtReservoir};
 use crate::passes::pass::{Dispatch, PassDef, read, write};
 use crate::passes::resources::{Allocation, Chain, LightData, PixelBuffer, Resource::*, Role};
-use crate::shader_constants::PT_PROBE_STAGES;
+use crate::pt::constants::PT_PROBE_STAGES;
 
 /// ReSTIR PT path reservoirs (their own ping-pong, history kept for PT temporal reuse).
 pub const PT_RESERVOIRS: Chain = Chain {

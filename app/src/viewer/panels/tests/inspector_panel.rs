@@ -1,6 +1,8 @@
 //! The pixel inspector on a synthetic pixel.
 
+use restir_render::di::constants::{DEBUG_FLAG_SPATIAL_CAP, DEBUG_FLAG_TEMPORAL_MERGED};
 use restir_render::gpu_types::{GpuPtPixelDebug, GpuPtReservoir};
+use restir_render::pt::constants::*;
 use restir_render::renderer::{PtInspection, PtStagePath, PtVertex};
 
 use super::*;

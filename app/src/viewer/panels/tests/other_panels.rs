@@ -1,6 +1,7 @@
 //! The View, Scene and Stats panels.
 
 use super::*;
+use restir_render::pt::constants::PT_FAIL_NAMES;
 use restir_render::shader_constants::REJECT_TEMPORAL_REASONS;
 
 #[test]

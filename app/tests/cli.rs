@@ -40,6 +40,19 @@ fn assert_one_line_error(out: &Output, must_contain: &[&str]) {
     }
 }
 
+/// The JSON a command wrote (`--stats`, a bench's summary).
+fn json_file(path: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+fn assert_success(out: &Output) {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
 fn render(scene: &str, extra: &[&str], out: &Path) -> Output {
     let out = out.to_str().unwrap().to_string();
     let mut args = vec!["render", "--scene", scene, "--size", "16x12", "--out", &out];
@@ -54,11 +67,7 @@ fn difference_is_zero(dir: &Path, args: &[&str], b: &str) -> bool {
     let out = dir.join(format!("difference-{b}.png"));
     let extra = [args, &["--compare", b, "--debug-view", "difference"]].concat();
     let res = render("builtin:cornell", &extra, &out);
-    assert!(
-        res.status.success(),
-        "{}",
-        String::from_utf8_lossy(&res.stderr)
-    );
+    assert_success(&res);
     let zero = [141u8, 16, 155];
     image::open(&out)
         .unwrap()
@@ -324,15 +333,10 @@ fn render_writes_exr_png_debug_views_and_stats() {
         ],
         &exr,
     );
-    assert!(
-        res.status.success(),
-        "{}",
-        String::from_utf8_lossy(&res.stderr)
-    );
+    assert_success(&res);
     let img = restir_render::LinearImage::load_exr(&exr).unwrap();
     assert_eq!((img.width, img.height), (16, 12));
-    let json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+    let json: serde_json::Value = json_file(&stats);
     assert_eq!(json["frames"], 3);
     assert_eq!(json["nan_inf_pixels"], 0);
     for key in [
@@ -381,11 +385,7 @@ fn the_split_image_halves_match_single_configuration_renders() {
             &[&frames[..], &["--mode", mode]].concat(),
             &out,
         );
-        assert!(
-            res.status.success(),
-            "{}",
-            String::from_utf8_lossy(&res.stderr)
-        );
+        assert_success(&res);
         restir_render::LinearImage::load_exr(&out).unwrap()
     };
     let restir = single("restir", "restir.exr");
@@ -398,11 +398,7 @@ fn the_split_image_halves_match_single_configuration_renders() {
     ]
     .concat();
     let res = render("builtin:cornell", &extra, &split_path);
-    assert!(
-        res.status.success(),
-        "{}",
-        String::from_utf8_lossy(&res.stderr)
-    );
+    assert_success(&res);
     let split = restir_render::LinearImage::load_exr(&split_path).unwrap();
     assert_eq!((split.width, split.height), (16, 12));
     // The two configurations differ, so matching halves prove where each side comes from.
@@ -417,8 +413,7 @@ fn the_split_image_halves_match_single_configuration_renders() {
             assert_eq!(split.get(x, y), expected, "pixel ({x}, {y})");
         }
     }
-    let json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+    let json: serde_json::Value = json_file(&stats);
     let compare = &json["compare"];
     assert_eq!(compare["divider_column"], 8);
     assert_eq!(compare["right_config"], "ris");
@@ -434,11 +429,7 @@ fn the_split_image_halves_match_single_configuration_renders() {
         &[&frames[..], &["--compare", "nee"]].concat(),
         &png,
     );
-    assert!(
-        res.status.success(),
-        "{}",
-        String::from_utf8_lossy(&res.stderr)
-    );
+    assert_success(&res);
     // The difference view: B identical to A (same configuration and seed) is |A − B| = 0
     // everywhere (viridis' first stop), B = nee is not.
     assert!(
@@ -465,13 +456,8 @@ fn light_sampler_auto_drops_tiles_for_few_lights_and_keeps_them_for_many() {
         let out = dir.join("frame.exr");
         let args = [&["--stats", stats.to_str().unwrap()][..], extra].concat();
         let res = render(scene, &args, &out);
-        assert!(
-            res.status.success(),
-            "{}",
-            String::from_utf8_lossy(&res.stderr)
-        );
-        let json: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+        assert_success(&res);
+        let json: serde_json::Value = json_file(&stats);
         let effects = json["effects"].as_str().unwrap().to_string();
         let reason = json["effect_reasons"]
             .as_array()
@@ -539,13 +525,8 @@ fn env_flags_render_a_sky_and_bad_environments_fail_with_one_line() {
         ],
         &png,
     );
-    assert!(
-        ok.status.success(),
-        "{}",
-        String::from_utf8_lossy(&ok.stderr)
-    );
-    let json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+    assert_success(&ok);
+    let json: serde_json::Value = json_file(&stats);
     let env = &json["scene"]["environment"];
     assert_eq!(env["name"], "builtin:sky");
     assert_eq!(env["strength"], 2.0);
@@ -597,13 +578,8 @@ fn render_takes_scene_time_and_reports_the_update_cost() {
         ],
         &png,
     );
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let doc: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+    assert_success(&out);
+    let doc: serde_json::Value = json_file(&stats);
     let time = &doc["scene_time"];
     assert!((time["first_time"].as_f64().unwrap() - 0.95).abs() < 1e-6);
     // Frames at 0.95, 0.983, 1.017 s: the blink at 1 s changes the lights once.
@@ -617,8 +593,7 @@ fn render_takes_scene_time_and_reports_the_update_cost() {
         &png,
     );
     assert!(out.status.success());
-    let doc: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+    let doc: serde_json::Value = json_file(&stats);
     assert!(doc.get("scene_time").is_none());
     assert!(!doc["effects"].as_str().unwrap().contains("animation"));
     for (arg, flag) in [
@@ -654,13 +629,8 @@ fn render_stats_report_the_files_extensions_and_automatic_camera() {
         &["--frames", "1", "--stats", stats.to_str().unwrap()],
         &dir.join("out.exr"),
     );
-    assert!(
-        res.status.success(),
-        "{}",
-        String::from_utf8_lossy(&res.stderr)
-    );
-    let json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+    assert_success(&res);
+    let json: serde_json::Value = json_file(&stats);
     assert_eq!(json["scene"]["camera_automatic"], true);
     let extensions = json["scene"]["extensions"]
         .as_array()
@@ -755,8 +725,7 @@ fn ray_backends_are_named_refused_clearly_and_measured() {
         "this test needs ray queries (Mesa 25 lavapipe, docs/src/getting-started.md): {}",
         String::from_utf8_lossy(&res.stderr)
     );
-    let json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+    let json: serde_json::Value = json_file(&stats);
     assert_eq!(json["ray_backend"], "ray-query");
     assert_eq!(json["ray_query_available"], true);
     let out = dir.join("bench");
@@ -771,11 +740,7 @@ fn ray_backends_are_named_refused_clearly_and_measured() {
         "--out",
         out.to_str().unwrap(),
     ]);
-    assert!(
-        res.status.success(),
-        "{}",
-        String::from_utf8_lossy(&res.stderr)
-    );
+    assert_success(&res);
     let csv = std::fs::read_to_string(out.join("rays.csv")).unwrap();
     for row in [
         "software,shadow",
@@ -810,11 +775,7 @@ fn load_phases_are_printed_written_and_in_the_stats() {
         "--compile-csv",
         compile_csv.to_str().unwrap(),
     ]);
-    assert!(
-        res.status.success(),
-        "{}",
-        String::from_utf8_lossy(&res.stderr)
-    );
+    assert_success(&res);
     let text = std::fs::read_to_string(&csv).unwrap();
     for phase in [
         "build",
@@ -856,17 +817,12 @@ fn load_phases_are_printed_written_and_in_the_stats() {
         &["--frames", "2", "--stats", stats.to_str().unwrap()],
         &png,
     );
-    assert!(
-        res.status.success(),
-        "{}",
-        String::from_utf8_lossy(&res.stderr)
-    );
+    assert_success(&res);
     assert!(
         String::from_utf8_lossy(&res.stderr).contains("BVH build"),
         "render prints the phases as they finish"
     );
-    let json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+    let json: serde_json::Value = json_file(&stats);
     let names: Vec<&str> = json["load"]["phases"]
         .as_array()
         .unwrap()
@@ -900,11 +856,7 @@ fn bench_shifts_prints_and_writes_a_row_per_place_and_shift() {
         "--csv",
         csv.to_str().unwrap(),
     ]);
-    assert!(
-        res.status.success(),
-        "{}",
-        String::from_utf8_lossy(&res.stderr)
-    );
+    assert_success(&res);
     let stdout = String::from_utf8_lossy(&res.stdout);
     assert!(stdout.contains("| place | shift |"), "{stdout}");
     let text = std::fs::read_to_string(&csv).unwrap();

@@ -84,6 +84,20 @@ fn check_settings(settings: &serde_json::Value, table: &toml::Table, step: &str)
     checked
 }
 
+/// The JSON a command wrote (`--stats`).
+fn json_file(path: &std::path::Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+/// The camera position a `--stats` file reports.
+fn camera_position(stats: &serde_json::Value) -> Vec<f64> {
+    stats["camera"]["position"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect()
+}
 #[test]
 fn every_step_of_the_shipped_tour_renders_with_its_settings_and_scene() {
     let dir = temp("tour");
@@ -118,8 +132,7 @@ fn every_step_of_the_shipped_tour_renders_with_its_settings_and_scene() {
             s(&dir.join("cache")),
         ]);
         assert!(png.is_file(), "step {number} wrote no image");
-        let doc: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+        let doc: serde_json::Value = json_file(&stats);
         let mode = step
             .get("mode")
             .and_then(|m| m.as_str())
@@ -143,12 +156,7 @@ fn every_step_of_the_shipped_tour_renders_with_its_settings_and_scene() {
                 .iter()
                 .map(|v| v.as_float().or(v.as_integer().map(|i| i as f64)).unwrap())
                 .collect();
-            let shown: Vec<f64> = doc["camera"]["position"]
-                .as_array()
-                .unwrap()
-                .iter()
-                .map(|v| v.as_f64().unwrap())
-                .collect();
+            let shown: Vec<f64> = camera_position(&doc);
             let apart = wanted.iter().zip(&shown).map(|(a, b)| (a - b).abs());
             assert!(
                 apart.fold(0.0, f64::max) < 1e-4,
@@ -196,14 +204,8 @@ fn a_step_sets_the_camera_and_a_broken_tour_gets_one_line() {
         "--set",
         "spatial=false",
     ]);
-    let doc: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
-    let position: Vec<f64> = doc["camera"]["position"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|v| v.as_f64().unwrap())
-        .collect();
+    let doc: serde_json::Value = json_file(&stats);
+    let position: Vec<f64> = camera_position(&doc);
     assert!((position[0] - 0.1).abs() < 1e-5 && (position[2] - 2.5).abs() < 1e-5);
     assert!((doc["camera"]["yfov_degrees"].as_f64().unwrap() - 30.0).abs() < 1e-3);
     // The step's parameter, and --set on top of it.
@@ -369,27 +371,15 @@ fn a_gif_and_a_png_sequence_hold_every_frame_of_the_split_image() {
     let last = image::open(seq.join("frame-00005.png")).unwrap();
     assert_eq!((last.width(), last.height()), (24, 16));
     // Bad destinations and probes are one-line errors before anything renders.
-    let e = error_line(&viewer(&[
-        "render",
-        "--scene",
-        "builtin:cornell",
-        "--size",
-        "24x16",
-        "--gif",
-        s(&dir.join("a.png")),
-    ]));
+    // A small cornell render with `extra` appended: its one-line error.
+    let refused = |extra: &[&str]| {
+        let mut args = vec!["render", "--scene", "builtin:cornell", "--size", "24x16"];
+        args.extend(extra);
+        error_line(&viewer(&args))
+    };
+    let e = refused(&["--gif", s(&dir.join("a.png"))]);
     assert!(e.contains("--gif") && e.contains(".gif"), "{e}");
-    let e = error_line(&viewer(&[
-        "render",
-        "--scene",
-        "builtin:cornell",
-        "--size",
-        "24x16",
-        "--probe",
-        "30,2",
-        "--probe-out",
-        s(&dir.join("p.csv")),
-    ]));
+    let e = refused(&["--probe", "30,2", "--probe-out", s(&dir.join("p.csv"))]);
     assert!(e.contains("--probe 30,2: outside the 24x16 image"), "{e}");
     let e = error_line(&viewer(&["render", "--scene", "builtin:cornell"]));
     assert!(e.contains("nothing to write"), "{e}");

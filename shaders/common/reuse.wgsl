@@ -67,6 +67,25 @@ fn temporal_first_read(s: Surface) -> TemporalRead {
     return TemporalRead(reprojected, select(reprojected, permute_pixel(reprojected), permuted), permuted);
 }
 
+// After a try whose rejecting checks are `mask`: true when the permuted read failed, and
+// the next try reads the plain reprojection. The passes loop over one call site of their
+// validation (the driver compiles a copy per call: docs/src/compile-time.md):
+//     var read = temporal_first_read(s);
+//     loop { c = validate(read.pixel, …); if !temporal_retry(&read, mask(c)) { break; } … }
+fn temporal_retry(read: ptr<function, TemporalRead>, mask: u32) -> bool {
+    if !(*read).permuted || mask == 0u {
+        return false;
+    }
+    (*read).permuted = false;
+    (*read).pixel = (*read).reprojected;
+    return true;
+}
+
+// Whether the history passed on the plain reprojection after the permuted read failed.
+fn temporal_fell_back(read: TemporalRead, mask: u32) -> bool {
+    return !read.permuted && (params.flags & PARAM_FLAG_PERMUTATION) != 0u && mask == 0u;
+}
+
 fn permute_pixel(p: vec2<i32>) -> vec2<i32> {
     let r = pcg_hash(frame.frame_index ^ frame.seed);
     let offset = vec2<i32>(i32(r & 3u), i32((r >> 2u) & 3u));

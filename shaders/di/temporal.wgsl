@@ -206,11 +206,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let sp = shading_point_from_surface(s, frame.camera_position);
     var rng = rng_seed(id.xy, STREAM_TEMPORAL);
 
-    // One call site of the validation for both tries: the driver compiles a copy per
-    // call (docs/src/compile-time.md).
-    let first = temporal_first_read(s);
-    var permuted = first.permuted;
-    var pixel = first.pixel;
+    var read = temporal_first_read(s);
     // Gradient only: temporal reuse is off, but the denoiser's temporal gradients want
     // the history's sample shaded here (docs/src/denoiser.md, "Temporal gradients"). The
     // candidate is validated and merged as usual, so its visibility is traced alike, and
@@ -218,19 +214,17 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let merging = (params.flags & PARAM_FLAG_GRADIENT_ONLY) == 0u;
     var cand: TemporalCandidate;
     loop {
-        cand = validate_previous(pixel, s, sp);
-        if !permuted || rejecting_checks(cand.mask) == 0u {
+        cand = validate_previous(read.pixel, s, sp);
+        if !temporal_retry(&read, rejecting_checks(cand.mask)) {
             break;
         }
         if merging {
             count_stat(STAT_FALLBACK_TRIED);
         }
         d.flags |= DEBUG_FLAG_FALLBACK_TRIED;
-        permuted = false;
-        pixel = first.reprojected;
     }
     if merging {
-        if (d.flags & DEBUG_FLAG_FALLBACK_TRIED) != 0u && rejecting_checks(cand.mask) == 0u {
+        if temporal_fell_back(read, rejecting_checks(cand.mask)) {
             count_stat(STAT_FALLBACK_USED);
             d.flags |= DEBUG_FLAG_FALLBACK_USED;
         }

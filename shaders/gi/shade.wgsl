@@ -12,24 +12,28 @@
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     count_indirect_frame(id, INDIRECT_GI);
-    if !pixel_in_frame(id) {
-        return;
+    if pixel_in_frame(id) {
+        let index = pixel_index(id.xy);
+        add_indirect(index, gi_shade(surfaces[index], gi_reservoirs[index]));
     }
-    let index = pixel_index(id.xy);
-    let s = surfaces[index];
-    var color = vec3<f32>(0.0);
-    if surface_is_valid(s) {
-        let r = gi_checked(gi_reservoirs[index], INDIRECT_PASS_SHADE);
-        if !gi_reservoir_is_null(r) {
-            let sp = shading_point_from_surface(s, frame.camera_position);
-            let d = r.position - sp.position;
-            let len2 = dot(d, d);
-            if len2 > 0.0 && dot(sp.geo_normal, d) > 0.0 {
-                let wi = d * inverseSqrt(len2);
-                let cos_theta = gi_receiver_cosine(sp.position, sp.normal, r.position);
-                color = s.throughput * eval_brdf(sp.brdf, sp.normal, sp.wo, wi) * r.radiance * (cos_theta * r.weight);
-            }
-        }
+}
+
+// The pixel's indirect radiance: 0 where it sees no surface or holds no usable sample.
+fn gi_shade(s: Surface, stored: GiReservoir) -> vec3<f32> {
+    if !surface_is_valid(s) {
+        return vec3<f32>(0.0);
     }
-    add_indirect(index, color);
+    let r = gi_checked(stored, INDIRECT_PASS_SHADE);
+    if gi_reservoir_is_null(r) {
+        return vec3<f32>(0.0);
+    }
+    let sp = shading_point_from_surface(s, frame.camera_position);
+    let d = r.position - sp.position;
+    let len2 = dot(d, d);
+    if !(len2 > 0.0 && dot(sp.geo_normal, d) > 0.0) {
+        return vec3<f32>(0.0);
+    }
+    let wi = d * inverseSqrt(len2);
+    let cos_theta = gi_receiver_cosine(sp.position, sp.normal, r.position);
+    return s.throughput * eval_brdf(sp.brdf, sp.normal, sp.wo, wi) * r.radiance * (cos_theta * r.weight);
 }

@@ -87,22 +87,16 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let sp = shading_point_from_surface(s, frame.camera_position);
     var rng = rng_seed(id.xy, STREAM_INDIRECT_TEMPORAL);
-    // One call site of the validation for both tries: the driver compiles a copy per
-    // call (docs/src/compile-time.md).
-    let first = temporal_first_read(s);
-    var permuted = first.permuted;
-    var pixel = first.pixel;
+    var read = temporal_first_read(s);
     var cand: GiTemporalCandidate;
     loop {
-        cand = gi_validate_previous(pixel, s, sp);
-        if !permuted || cand.mask == 0u {
+        cand = gi_validate_previous(read.pixel, s, sp);
+        if !temporal_retry(&read, cand.mask) {
             break;
         }
         count_stat(STAT_INDIRECT_FALLBACK_TRIED);
-        permuted = false;
-        pixel = first.reprojected;
     }
-    if !permuted && (params.flags & PARAM_FLAG_PERMUTATION) != 0u && cand.mask == 0u {
+    if temporal_fell_back(read, cand.mask) {
         count_stat(STAT_INDIRECT_FALLBACK_USED);
     }
     count_rejections(cand.mask | cand.unusable, STAT_INDIRECT_TEMPORAL_REJECT);

@@ -10,17 +10,20 @@
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     count_indirect_frame(id, INDIRECT_PT);
-    if !pixel_in_frame(id) {
-        return;
+    if pixel_in_frame(id) {
+        let index = pixel_index(id.xy);
+        add_indirect(index, pt_shade(surfaces[index], pt_reservoirs[index]));
     }
-    let index = pixel_index(id.xy);
-    let s = surfaces[index];
-    var color = vec3<f32>(0.0);
-    if surface_is_valid(s) {
-        let r = pt_checked(pt_reservoirs[index], INDIRECT_PASS_SHADE);
-        if !pt_reservoir_is_null(r) {
-            color = s.throughput * r.value * r.weight;
-        }
+}
+
+// The pixel's indirect radiance: 0 where it sees no surface or holds no path.
+fn pt_shade(s: Surface, stored: PtReservoir) -> vec3<f32> {
+    if !surface_is_valid(s) {
+        return vec3<f32>(0.0);
     }
-    add_indirect(index, color);
+    let r = pt_checked(stored, INDIRECT_PASS_SHADE);
+    if pt_reservoir_is_null(r) {
+        return vec3<f32>(0.0);
+    }
+    return s.throughput * r.value * r.weight;
 }

@@ -61,22 +61,16 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let sp = shading_point_from_surface(s, frame.camera_position);
     var rng = rng_seed(id.xy, STREAM_INDIRECT_TEMPORAL);
-    // One call site of the validation for both tries: the driver compiles a copy per
-    // call (docs/src/compile-time.md).
-    let first = temporal_first_read(s);
-    var permuted = first.permuted;
-    var pixel = first.pixel;
+    var read = temporal_first_read(s);
     var prev_pixel: PtPrevious;
     loop {
-        prev_pixel = pt_validate_previous(pixel, s);
-        if !permuted || prev_pixel.mask == 0u {
+        prev_pixel = pt_validate_previous(read.pixel, s);
+        if !temporal_retry(&read, prev_pixel.mask) {
             break;
         }
         count_stat(STAT_INDIRECT_FALLBACK_TRIED);
-        permuted = false;
-        pixel = first.reprojected;
     }
-    if !permuted && (params.flags & PARAM_FLAG_PERMUTATION) != 0u && prev_pixel.mask == 0u {
+    if temporal_fell_back(read, prev_pixel.mask) {
         count_stat(STAT_INDIRECT_FALLBACK_USED);
     }
     count_rejections(prev_pixel.mask, STAT_INDIRECT_TEMPORAL_REJECT);

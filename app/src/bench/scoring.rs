@@ -152,13 +152,19 @@ pub enum Scoring<'a> {
         near_moving: MaskedError,
         detail: DetailTrack,
         previous_error: Option<LinearImage>,
-        luma: Vec<f64>,
-        stability: Vec<f64>,
-        ratios: Vec<f64>,
-        black: Vec<f64>,
-        low_frequency: Vec<f64>,
-        non_finite: usize,
+        series: MovingSeries,
     },
+}
+
+/// A moving shot's figures, one entry per measured frame (the non-finite pixels summed).
+#[derive(Default)]
+pub struct MovingSeries {
+    luma: Vec<f64>,
+    stability: Vec<f64>,
+    ratios: Vec<f64>,
+    black: Vec<f64>,
+    low_frequency: Vec<f64>,
+    non_finite: usize,
 }
 
 impl<'a> Scoring<'a> {
@@ -198,12 +204,7 @@ impl<'a> Scoring<'a> {
             near_moving: MaskedError::default(),
             detail: DetailTrack::default(),
             previous_error: None,
-            luma: Vec::new(),
-            stability: Vec::new(),
-            ratios: Vec::new(),
-            black: Vec::new(),
-            low_frequency: Vec::new(),
-            non_finite: 0,
+            series: MovingSeries::default(),
         }
     }
 
@@ -262,12 +263,7 @@ impl<'a> Scoring<'a> {
                 near_moving,
                 detail,
                 previous_error,
-                luma,
-                stability,
-                ratios,
-                black,
-                low_frequency,
-                non_finite,
+                series,
             } => {
                 let reference = references
                     .get(index)
@@ -278,19 +274,21 @@ impl<'a> Scoring<'a> {
                 }
                 detail.push(&Edges::of(reference, *noise), frame, reference);
                 let error = difference(frame, reference);
-                *non_finite += frame.non_finite_count();
-                luma.push(luma_rmse(frame, reference)?);
-                ratios.push(luma_ratio(frame, reference)?);
-                black.push(black_pixel_fraction(frame, reference)?);
-                low_frequency.push(low_frequency_rmse(frame, reference)?);
+                series.non_finite += frame.non_finite_count();
+                series.luma.push(luma_rmse(frame, reference)?);
+                series.ratios.push(luma_ratio(frame, reference)?);
+                series.black.push(black_pixel_fraction(frame, reference)?);
+                series
+                    .low_frequency
+                    .push(low_frequency_rmse(frame, reference)?);
                 let step = match previous_error {
                     Some(previous) => Some(luma_rmse(&error, previous)?),
                     None => None,
                 };
-                stability.extend(step);
+                series.stability.extend(step);
                 *previous_error = Some(error);
                 Ok(FrameScores {
-                    luma_rmse: luma.last().copied(),
+                    luma_rmse: series.luma.last().copied(),
                     stability: step,
                     accumulated_rgb_rmse: None,
                 })
@@ -335,27 +333,22 @@ impl<'a> Scoring<'a> {
                 disoccluded,
                 near_moving,
                 detail,
-                luma,
-                stability,
-                ratios,
-                black,
-                low_frequency,
-                non_finite,
+                series,
                 ..
             } => Some(ScoreSummary {
                 disoccluded: (!masks.is_empty()).then(|| MaskedFigures::of(disoccluded)),
                 near_moving: (!masks.is_empty()).then(|| MaskedFigures::of(near_moving)),
                 detail: detail.summary(),
-                mean_luma_rmse: mean(luma),
+                mean_luma_rmse: mean(&series.luma),
                 antialiased_luma_rmse: None,
-                mean_stability: mean(stability),
+                mean_stability: mean(&series.stability),
                 accumulated_rgb_rmse: None,
                 accumulated_rel_mse: None,
-                luma_ratio: mean(ratios),
-                signed_bias: mean(ratios) - 1.0,
-                black_pixel_fraction: mean(black),
-                mean_low_frequency_rmse: mean(low_frequency),
-                non_finite_pixels: *non_finite,
+                luma_ratio: mean(&series.ratios),
+                signed_bias: mean(&series.ratios) - 1.0,
+                black_pixel_fraction: mean(&series.black),
+                mean_low_frequency_rmse: mean(&series.low_frequency),
+                non_finite_pixels: series.non_finite,
             }),
         })
     }

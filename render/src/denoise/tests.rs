@@ -10,6 +10,17 @@ const W: u32 = 48;
 const H: u32 = 32;
 const PIXEL_ANGLE: f32 = 0.01;
 
+/// A W × H frame whose surfaces did not move since the last one.
+fn still_frame<'a>(pixels: &'a [Pixel], radiance: &'a [Vec3]) -> Frame<'a> {
+    Frame {
+        width: W,
+        height: H,
+        pixels,
+        previous: pixels,
+        radiance,
+    }
+}
+
 fn params() -> Params {
     super::settings::model_params(&crate::Settings::default(), PIXEL_ANGLE)
 }
@@ -63,13 +74,7 @@ fn edges_stop_the_filter_and_a_plain_blur_is_caught() {
             Vec3::splat(base * (1.0 + noise * (hash(i, 0) - 0.5)))
         })
         .collect();
-    let f = Frame {
-        width: W,
-        height: H,
-        pixels: &pixels,
-        previous: &pixels,
-        radiance: &radiance,
-    };
+    let f = still_frame(&pixels, &radiance);
     let p = params();
     // Mean illumination of the columns next to the step (demodulated: radiance / 0.5).
     let column_means = |filtered: &[Vec4]| {
@@ -120,13 +125,7 @@ fn filtering_keeps_the_energy_and_a_centre_only_gate_is_caught() {
             let radiance: Vec<Vec3> = (0..W * H)
                 .map(|i| Vec3::splat(0.5 * if hash(i, frame) < 0.02 { 25.0 * a } else { a }))
                 .collect();
-            let f = Frame {
-                width: W,
-                height: H,
-                pixels: &pixels,
-                previous: &pixels,
-                radiance: &radiance,
-            };
+            let f = still_frame(&pixels, &radiance);
             let (h, out) = model::denoise(&f, history.as_deref(), None, &p, planted);
             history = Some(h);
             // After the history has filled (the temporal blend alone is unbiased).
@@ -167,13 +166,7 @@ fn temporal_accumulation_converges_to_the_mean() {
     for frame in 0..64 {
         // Uniform in [0, 2] (mean 1, variance 1/3), demodulated by 0.5.
         let radiance: Vec<Vec3> = (0..W * H).map(|i| Vec3::splat(hash(i, frame))).collect();
-        let f = Frame {
-            width: W,
-            height: H,
-            pixels: &pixels,
-            previous: &pixels,
-            radiance: &radiance,
-        };
+        let f = still_frame(&pixels, &radiance);
         history = Some(model::temporal(&f, history.as_deref(), None, &p));
     }
     let h = history.unwrap();
@@ -225,13 +218,7 @@ fn reprojection_follows_the_motion() {
                 })
             })
             .collect();
-        let f = Frame {
-            width: W,
-            height: H,
-            pixels: &pixels,
-            previous: &pixels,
-            radiance: &radiance,
-        };
+        let f = still_frame(&pixels, &radiance);
         history = Some(model::temporal(&f, history.as_deref(), None, &p));
     }
     let h = history.unwrap();
@@ -261,13 +248,7 @@ fn the_sky_passes_through_and_extremes_stay_finite() {
             })
         })
         .collect();
-    let f = Frame {
-        width: W,
-        height: H,
-        pixels: &pixels,
-        previous: &pixels,
-        radiance: &radiance,
-    };
+    let f = still_frame(&pixels, &radiance);
     let (h, out) = model::denoise(&f, None, None, &params(), Planted::default());
     let (_, out2) = model::denoise(&f, Some(&h), None, &params(), Planted::default());
     for (i, (a, b)) in out.iter().zip(&out2).enumerate() {

@@ -36,7 +36,9 @@ use crate::reservoir::{
     Reservoir, clamp_unit, pairwise_mis_canonical_term, pairwise_mis_noncanonical, sanitize, share,
 };
 use crate::shader_constants::{GI_REJECT_JACOBIAN, GI_REJECT_OCCLUDED, GI_REJECT_RECONNECTION};
-use jacobian::{jacobian_in_window, normalized, reconnection_jacobian};
+/// The Jacobian `gi_resample` takes where no test plants another.
+pub use jacobian::reconnection_jacobian;
+use jacobian::{jacobian_in_window, normalized};
 
 /// One GI sample: the secondary hit and the radiance it sends toward the pixel that found it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -218,36 +220,17 @@ pub struct GiResampled {
     pub rejections: Vec<u32>,
 }
 
-/// The reconnection Jacobian as reuse computes it; the tests swap in planted errors.
-pub(crate) type JacobianFn = fn(Vec3, Vec3, Vec3, Vec3) -> Option<f32>;
+/// The reconnection Jacobian as reuse computes it (`jacobian::reconnection_jacobian`); the
+/// tests swap in planted errors.
+pub type JacobianFn = fn(Vec3, Vec3, Vec3, Vec3) -> Option<f32>;
 
 /// One temporal or spatial reuse step at `here` (the reference the WGSL passes follow):
 /// the canonical reservoir (this pixel's own, confidence `c_canonical`) resampled with the
 /// neighbours' shifted samples, in the mode `reuse` says, finalised. `visible(x, x_s)` traces
-/// a reconnection; `u()` gives uniform numbers in [0, 1). The caller caps M afterwards.
+/// a reconnection; `u()` gives uniform numbers in [0, 1); `jacobian` is
+/// `reconnection_jacobian` but where a test plants an error. The caller caps M afterwards.
+#[allow(clippy::too_many_arguments)]
 pub fn gi_resample(
-    here: &GiReceiver,
-    canonical: &GiReservoir,
-    c_canonical: f32,
-    neighbours: &[GiNeighbour],
-    reuse: GiReuse,
-    visible: &mut dyn FnMut(Vec3, Vec3) -> bool,
-    u: &mut dyn FnMut() -> f32,
-) -> GiResampled {
-    resample_with(
-        here,
-        canonical,
-        c_canonical,
-        neighbours,
-        reuse,
-        visible,
-        u,
-        reconnection_jacobian,
-    )
-}
-
-#[allow(clippy::too_many_arguments)] // gi_resample's arguments plus the Jacobian under test
-pub(crate) fn resample_with(
     here: &GiReceiver,
     canonical: &GiReservoir,
     c_canonical: f32,

@@ -32,6 +32,25 @@ pub const fn write(resource: Resource) -> Binding {
     }
 }
 
+/// `head` then `tail`: the group of a pass whose family binds the same last bindings
+/// (PT's outputs). `N` must be `H + T`; a wrong `N` fails when the constant is compiled.
+pub const fn concat<const H: usize, const T: usize, const N: usize>(
+    head: [Binding; H],
+    tail: [Binding; T],
+) -> [Binding; N] {
+    assert!(
+        H + T == N,
+        "a concatenated group's length is the sum of its parts"
+    );
+    let mut out = [read(Resource::Surfaces); N];
+    let mut i = 0;
+    while i < N {
+        out[i] = if i < H { head[i] } else { tail[i - H] };
+        i += 1;
+    }
+    out
+}
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Dispatch {
     /// One invocation per pixel, in 8 × 8 workgroups.

@@ -3,15 +3,11 @@
 //! `restir-viewer bench-rays`). Not part of any frame.
 
 use super::pass::{Dispatch, PassDef, read, write};
-use super::resources::{Allocation, PixelBuffer, Resource::*};
+use super::resources::{PixelBuffer, Resource::*};
 
 /// Per pixel: rays traced (low 16 bits) and rays that hit something (high 16 bits).
 /// Allocated the first time the bench runs (frames never name it).
-pub const RAY_COUNTS: PixelBuffer = PixelBuffer {
-    name: "ray bench counts",
-    stride: 4,
-    allocation: Allocation::Full,
-};
+pub const RAY_COUNTS: PixelBuffer = PixelBuffer::full("ray bench counts", 4);
 
 pub const PASS: PassDef = PassDef {
     name: "ray bench",

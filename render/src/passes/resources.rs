@@ -25,6 +25,26 @@ pub struct PixelBuffer {
     pub allocation: Allocation,
 }
 
+impl PixelBuffer {
+    /// A buffer of `stride` bytes per pixel, allocated at the output's size.
+    pub const fn full(name: &'static str, stride: usize) -> PixelBuffer {
+        PixelBuffer {
+            name,
+            stride,
+            allocation: Allocation::Full,
+        }
+    }
+
+    /// A one-element placeholder until something fills it (`Allocation::Placeholder`).
+    pub const fn placeholder(name: &'static str, stride: usize) -> PixelBuffer {
+        PixelBuffer {
+            name,
+            stride,
+            allocation: Allocation::Placeholder,
+        }
+    }
+}
+
 /// Per-pixel buffers handed from stage to stage (docs/src/frame.md, "History between frames":
 /// ping-pong). A stage reads
 /// the chain's current buffer (`Role::In`), last frame's final one (`Role::History`),
@@ -85,47 +105,20 @@ impl LightData {
     }
 }
 
-pub const DEBUG: PixelBuffer = PixelBuffer {
-    name: "pixel debug",
-    stride: std::mem::size_of::<GpuPixelDebug>(),
-    allocation: Allocation::Full,
-};
-pub const RADIANCE: PixelBuffer = PixelBuffer {
-    name: "radiance",
-    stride: 16,
-    allocation: Allocation::Full,
-};
-pub const ACCUMULATION: PixelBuffer = PixelBuffer {
-    name: "accumulation",
-    stride: 16,
-    allocation: Allocation::Full,
-};
+pub const DEBUG: PixelBuffer =
+    PixelBuffer::full("pixel debug", std::mem::size_of::<GpuPixelDebug>());
+pub const RADIANCE: PixelBuffer = PixelBuffer::full("radiance", 16);
+pub const ACCUMULATION: PixelBuffer = PixelBuffer::full("accumulation", 16);
 /// This frame's indirect radiance alone, whichever technique made it (ReSTIR GI or PT;
 /// the `indirect` view).
-pub const INDIRECT: PixelBuffer = PixelBuffer {
-    name: "indirect",
-    stride: 16,
-    allocation: Allocation::Full,
-};
+pub const INDIRECT: PixelBuffer = PixelBuffer::full("indirect", 16);
 /// A reference image for the error view (zeros until one is uploaded).
-pub const REFERENCE: PixelBuffer = PixelBuffer {
-    name: "reference",
-    stride: 16,
-    allocation: Allocation::Full,
-};
+pub const REFERENCE: PixelBuffer = PixelBuffer::full("reference", 16);
 /// The other side of a split-screen comparison, for the difference view.
-pub const COMPARISON: PixelBuffer = PixelBuffer {
-    name: "comparison",
-    stride: 16,
-    allocation: Allocation::Placeholder,
-};
+pub const COMPARISON: PixelBuffer = PixelBuffer::placeholder("comparison", 16);
 /// The running average's luminance statistics for the bias view (moments.wgsl), cleared
 /// with the accumulation.
-pub const MOMENTS: PixelBuffer = PixelBuffer {
-    name: "moments",
-    stride: 16,
-    allocation: Allocation::Full,
-};
+pub const MOMENTS: PixelBuffer = PixelBuffer::full("moments", 16);
 /// The buffers every frame has from the start (readbacks and uploads may come first).
 pub const STANDARD: [&PixelBuffer; 6] = [
     &DEBUG,

@@ -4,16 +4,13 @@
 //! while one of those views is shown, after the frame's radiance is final.
 
 use super::pass::{Dispatch, PassDef, read, write};
-use super::resources::{Allocation, PixelBuffer, RADIANCE, RESERVOIRS, Resource::*, Role};
+use super::resources::{PixelBuffer, RADIANCE, RESERVOIRS, Resource::*, Role};
 use crate::gpu_types::GpuWindowPixel;
 
 /// One `GpuWindowPixel` per pixel, allocated the first time a window view is shown and
 /// cleared whenever the window restarts (renderer/window.rs).
-pub const WINDOW: PixelBuffer = PixelBuffer {
-    name: "temporal window",
-    stride: std::mem::size_of::<GpuWindowPixel>(),
-    allocation: Allocation::Full,
-};
+pub const WINDOW: PixelBuffer =
+    PixelBuffer::full("temporal window", std::mem::size_of::<GpuWindowPixel>());
 
 /// `PassInfo` slot of a real-time frame (its reservoirs hold this frame's survivors); a
 /// reference frame uses slot 0 and records no survivor change.

@@ -5,7 +5,6 @@
 //! on a GPU it adds the submission's fixed cost, small against a full-size dispatch).
 
 use super::Renderer;
-use super::bind_groups::Uniforms;
 use super::frame_plan::Step;
 use super::resolve::resolve;
 use crate::gpu::GpuError;
@@ -95,11 +94,7 @@ impl Renderer {
         variant.compile(&self.gpu, &self.layouts, &active.defines, &PASS)?;
         let resolved = resolve(&plan, &self.history.carried, false, false);
         self.targets.ensure(&self.gpu, &resolved.needs);
-        let uniforms = Uniforms {
-            pass_info: &self.buffers.pass_info,
-            display: &self.buffers.display_uniform,
-            light_sampler: &self.buffers.light_sampler,
-        };
+        let uniforms = self.buffers.uniforms();
         let group = self.bind_groups.get(
             &self.gpu,
             &self.layouts,

@@ -42,6 +42,22 @@ struct StepContext<'a> {
     triangle_count: u32,
 }
 
+/// A `StepContext` over a renderer's fields. A macro rather than a method, so that it
+/// borrows the fields one by one and the recorder can borrow `bind_groups` mutably beside it.
+macro_rules! step_context {
+    ($renderer:expr, $uniforms:expr, $variant:expr, $groups:expr) => {
+        StepContext {
+            gpu: &$renderer.gpu,
+            layouts: &$renderer.layouts,
+            targets: &$renderer.targets,
+            uniforms: $uniforms,
+            variant: $variant,
+            groups: $groups,
+            triangle_count: $renderer.scene.triangle_count,
+        }
+    };
+}
+
 impl StepContext<'_> {
     /// Records `step` with its resolved bindings: the raster draw, or the compute pass
     /// with its group 2 and one dispatch per `PassInfo` slot.
@@ -327,20 +343,8 @@ impl Renderer {
             rec.encoder()
                 .clear_buffer(self.targets.pixels(&PT_PROBE), 0, None);
         }
-        let uniforms = Uniforms {
-            pass_info: &self.buffers.pass_info,
-            display: &self.buffers.display_uniform,
-            light_sampler: &self.buffers.light_sampler,
-        };
-        let steps = StepContext {
-            gpu: &self.gpu,
-            layouts: &self.layouts,
-            targets: &self.targets,
-            uniforms: &uniforms,
-            variant,
-            groups: [&frame_group, &scene_group],
-            triangle_count: self.scene.triangle_count,
-        };
+        let uniforms = self.buffers.uniforms();
+        let steps = step_context!(self, &uniforms, variant, [&frame_group, &scene_group]);
         for (step, r) in plan.iter().zip(&resolved.steps) {
             steps.record(&mut self.bind_groups, &mut rec, step, &r.bound);
             // Repeated passes (spatial × P) are listed once.
@@ -529,28 +533,17 @@ impl Renderer {
         // Normally there already (a GI view right after GI was switched on shows zeros).
         self.targets.ensure(&self.gpu, &resolved.needs);
         let variant = &self.pipelines.variants[&active.key];
-        let uniforms = Uniforms {
-            pass_info: &self.buffers.pass_info,
-            display: &self.buffers.display_uniform,
-            light_sampler: &self.buffers.light_sampler,
-        };
+        let uniforms = self.buffers.uniforms();
         let mut rec = FrameRecorder::new(
             &self.gpu,
             &mut self.readbacks.timer,
             crate::gpu::timing::TimingMode::Off,
         );
-        let steps = StepContext {
-            gpu: &self.gpu,
-            layouts: &self.layouts,
-            targets: &self.targets,
-            uniforms: &uniforms,
-            variant,
-            groups: [
-                &self.buffers.frame_bind_group,
-                self.scene.bind_group(active.backend),
-            ],
-            triangle_count: self.scene.triangle_count,
-        };
+        let groups = [
+            &self.buffers.frame_bind_group,
+            self.scene.bind_group(active.backend),
+        ];
+        let steps = step_context!(self, &uniforms, variant, groups);
         for (step, r) in plan.iter().zip(&resolved.steps) {
             steps.record(&mut self.bind_groups, &mut rec, step, &r.bound);
         }

@@ -27,6 +27,17 @@ pub(super) struct FrameBuffers {
     pub frame_bind_group: wgpu::BindGroup,
 }
 
+impl FrameBuffers {
+    /// The buffers some groups bind besides the size-dependent targets.
+    pub fn uniforms(&self) -> super::bind_groups::Uniforms<'_> {
+        super::bind_groups::Uniforms {
+            pass_info: &self.pass_info,
+            display: &self.display_uniform,
+            light_sampler: &self.light_sampler,
+        }
+    }
+}
+
 /// Compiled pipeline variants (one per effect set), what their compiles took and who hears them.
 pub(super) struct Pipelines {
     pub variants: HashMap<String, PipelineVariant>,

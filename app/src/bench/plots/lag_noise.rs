@@ -9,7 +9,7 @@ use std::path::Path;
 use plotters::prelude::*;
 
 use super::canvas::{
-    Area, DrawResult, TEXT_SIZE, TITLE_SIZE, color, render_png, text, tick, with_footnote,
+    Area, DrawResult, TEXT_SIZE, TITLE_SIZE, color, draw_axes, render_png, text, with_footnote,
 };
 use crate::bench::events::{EventLag, recovery_cell};
 
@@ -82,16 +82,11 @@ fn draw(area: &Area, note: &str, points: &[LagNoisePoint]) -> DrawResult {
         .x_label_area_size(56)
         .y_label_area_size(90)
         .build_cartesian_2d(0.0..max_x, 0.0..max_y)?;
-    chart
-        .configure_mesh()
-        .x_desc("steady per-frame luma RMSE after the event (noise)")
-        .y_desc("lag area (excess luma RMSE summed over frames)")
-        .axis_desc_style(text(TEXT_SIZE))
-        .label_style(text(TEXT_SIZE - 2))
-        .light_line_style(RGBColor(235, 235, 235))
-        .x_label_formatter(&|v| tick(*v))
-        .y_label_formatter(&|v| tick(*v))
-        .draw()?;
+    draw_axes(
+        &mut chart,
+        "steady per-frame luma RMSE after the event (noise)",
+        "lag area (excess luma RMSE summed over frames)",
+    )?;
     for (i, p) in points.iter().enumerate() {
         if !(p.noise.is_finite() && p.lag_area.is_finite()) {
             continue;

@@ -25,8 +25,8 @@ use super::references::CameraPath;
 use super::run_loop::ConfigResult;
 use super::scoring::FrameRecord;
 use canvas::{
-    Area, DrawResult, LineChart, Series, TEXT_SIZE, TITLE_SIZE, color, legend, line_chart,
-    log_ticks, render_png, text, tick, with_footnote,
+    Area, DrawResult, LineChart, Series, TEXT_SIZE, TITLE_SIZE, color, draw_axes, legend,
+    line_chart, log_ticks, render_png, text, with_footnote,
 };
 
 /// Writes every plot the results support; returns the file names.
@@ -122,16 +122,11 @@ fn pareto(area: &Area, note: &str, results: &[ConfigResult]) -> DrawResult {
                 .log_scale()
                 .with_key_points(log_ticks(min_y, max_y)),
         )?;
-    chart
-        .configure_mesh()
-        .x_desc("median time per frame (ms, sum of passes; see note below)")
-        .y_desc("per-frame luma RMSE vs reference (mean over frames, log)")
-        .axis_desc_style(text(TEXT_SIZE))
-        .label_style(text(TEXT_SIZE - 2))
-        .light_line_style(RGBColor(235, 235, 235))
-        .x_label_formatter(&|v| tick(*v))
-        .y_label_formatter(&|v| tick(*v))
-        .draw()?;
+    draw_axes(
+        &mut chart,
+        "median time per frame (ms, sum of passes; see note below)",
+        "per-frame luma RMSE vs reference (mean over frames, log)",
+    )?;
     // The front: sorted by time, each point better than every faster one.
     let mut sorted = points.clone();
     sorted.sort_by(|a, b| a.0.total_cmp(&b.0));

@@ -5,7 +5,7 @@
 //! computation in plain Rust.
 
 use crate::gpu_types::GpuDenoiseHistory;
-use crate::passes::resources::{Allocation, Chain, PixelBuffer};
+use crate::passes::resources::{Chain, PixelBuffer};
 
 pub mod atrous;
 pub mod gradient;
@@ -30,16 +30,8 @@ pub const FILTERED: Chain = Chain {
 
 /// The temporal gradient: (λ, Σ shading last frame, Σ shading now, 0) per pixel, λ the
 /// share of the neighbourhood's shading that changed.
-pub const GRADIENT: PixelBuffer = PixelBuffer {
-    name: "denoise gradient",
-    stride: 16,
-    allocation: Allocation::Full,
-};
+pub const GRADIENT: PixelBuffer = PixelBuffer::full("denoise gradient", 16);
 
 /// The frame's radiance before denoising (the `denoise-input` view; the remodulation
 /// copies it here before it writes the denoised radiance in its place).
-pub const INPUT: PixelBuffer = PixelBuffer {
-    name: "denoise input",
-    stride: 16,
-    allocation: Allocation::Full,
-};
+pub const INPUT: PixelBuffer = PixelBuffer::full("denoise input", 16);

@@ -117,7 +117,7 @@ fn temporal_estimate(rng: &mut Rng, reuse: GiReuse, jacobian: JacobianFn, frames
             confidence: aged.m.min(m_cap),
         }];
         let mut u = || rng.f32();
-        let mut out = resample_with(
+        let mut out = gi_resample(
             &here,
             &canonical,
             canonical.m,

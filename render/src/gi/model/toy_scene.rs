@@ -197,7 +197,7 @@ pub(super) fn spatial_estimate_with(
         .collect();
     let mut u = || rng.f32();
     let mut visible = |a: Vec3, b: Vec3| !(blocker && blocked(a, b));
-    let out = resample_with(
+    let out = gi_resample(
         &here,
         &canonical,
         canonical.m,

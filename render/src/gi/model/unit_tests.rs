@@ -68,6 +68,7 @@ fn rejected_samples_count_their_confidence_but_never_contribute() {
             reuse,
             &mut occluded,
             &mut u,
+            reconnection_jacobian,
         );
         assert_eq!(
             out.rejections,
@@ -116,7 +117,7 @@ proptest! {
             .collect();
         let reuse = GiReuse { pairwise, jacobian_max: j_max, visibility: false, mis_visibility: pairwise };
         let mut u = || 0.3;
-        let out = gi_resample(&here, &reservoirs[0].1, reservoirs[0].1.m, &neighbours, reuse, &mut unoccluded, &mut u);
+        let out = gi_resample(&here, &reservoirs[0].1, reservoirs[0].1.m, &neighbours, reuse, &mut unoccluded, &mut u, reconnection_jacobian);
         let r = out.reservoir;
         for v in [r.w_sum, r.weight, r.m, r.p_hat] {
             prop_assert!(v.is_finite() && v >= 0.0, "{:?}", r);

@@ -4,7 +4,7 @@
 
 use crate::gpu_types::{GpuGiPixelDebug, GpuGiReservoir};
 use crate::passes::pass::{Dispatch, PassDef, read, write};
-use crate::passes::resources::{Allocation, Chain, LightData, PixelBuffer, Resource::*, Role};
+use crate::passes::resources::{Chain, LightData, PixelBuffer, Resource::*, Role};
 
 /// ReSTIR GI reservoirs (their own ping-pong, history kept for GI temporal reuse).
 pub const GI_RESERVOIRS: Chain = Chain {
@@ -12,11 +12,8 @@ pub const GI_RESERVOIRS: Chain = Chain {
     stride: std::mem::size_of::<GpuGiReservoir>(),
 };
 /// Per-pixel GI debug records (masks, Jacobian, M per stage).
-pub const GI_DEBUG: PixelBuffer = PixelBuffer {
-    name: "gi debug",
-    stride: std::mem::size_of::<GpuGiPixelDebug>(),
-    allocation: Allocation::Full,
-};
+pub const GI_DEBUG: PixelBuffer =
+    PixelBuffer::full("gi debug", std::mem::size_of::<GpuGiPixelDebug>());
 
 pub const PASS: PassDef = PassDef {
     name: "gi initial",

@@ -10,7 +10,7 @@ use glam::{Quat, Vec3, Vec4};
 
 use super::many_lights::luminance;
 use super::rng::SplitMix64;
-use super::shapes::{Facing, SceneBuilder};
+use super::shapes::SceneBuilder;
 use crate::scene::{Camera, Material, Scene};
 
 /// Half-size of the hall: 14 m wide, 5 m high, 32 m long.
@@ -59,20 +59,7 @@ pub(super) fn concourse(name: &str) -> Scene {
     let kiosk = b.material(Material::diffuse("kiosk", Vec3::new(0.45, 0.3, 0.2)));
     let shopfront = b.material(Material::diffuse("shop front", Vec3::new(0.2, 0.22, 0.25)));
     // Face order: +x, -x, ceiling, floor, +z, -z.
-    b.cuboid(
-        Vec3::Y * HALF.y,
-        HALF,
-        Quat::IDENTITY,
-        Facing::Inward,
-        [
-            Some(wall),
-            Some(wall),
-            Some(ceiling),
-            Some(floor),
-            Some(wall),
-            Some(wall),
-        ],
-    );
+    b.room(Vec3::Y * HALF.y, HALF, wall, ceiling, floor);
     occluders(&mut b, pillar, kiosk, shopfront);
     downlights(&mut b);
     sconces(&mut b);

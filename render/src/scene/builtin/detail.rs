@@ -9,7 +9,7 @@
 use glam::{Quat, Vec3};
 
 use super::rng::SplitMix64;
-use super::shapes::{Facing, SceneBuilder};
+use super::shapes::SceneBuilder;
 use crate::scene::{Camera, Material, Scene};
 
 const ROOM_HALF: Vec3 = Vec3::new(3.0, 1.5, 3.0);
@@ -37,21 +37,7 @@ pub(super) fn detail(name: &str) -> Scene {
     let floor = b.material(Material::diffuse("floor", Vec3::splat(0.7)));
     let wall = b.material(Material::diffuse("wall", Vec3::splat(0.6)));
     let metal = b.material(Material::diffuse("lattice", Vec3::new(0.3, 0.28, 0.25)));
-    // Face order: +x, -x, ceiling, floor, +z, -z.
-    b.cuboid(
-        Vec3::Y * ROOM_HALF.y,
-        ROOM_HALF,
-        Quat::IDENTITY,
-        Facing::Inward,
-        [
-            Some(wall),
-            Some(wall),
-            Some(wall),
-            Some(floor),
-            Some(wall),
-            Some(wall),
-        ],
-    );
+    b.room(Vec3::Y * ROOM_HALF.y, ROOM_HALF, wall, wall, floor);
     // Slats along z (away from the camera), on two crossbars at the ends.
     let bars = (2.0 * LATTICE_HALF / BAR_PITCH) as i32;
     for i in 0..=bars {

@@ -7,7 +7,7 @@
 
 use glam::{Quat, Vec3, Vec4};
 
-use super::shapes::{Facing, SceneBuilder, scaled_look_at};
+use super::shapes::{Facing, SceneBuilder, room_faces, scaled_look_at};
 use crate::scene::{Material, Scene};
 
 const LIGHT_RADIANCE: Vec3 = Vec3::new(30.0, 26.0, 20.0);
@@ -43,20 +43,14 @@ pub(super) fn glossy_room(name: &str) -> Scene {
     let light = b.material(Material::emitter("cove light", LIGHT_RADIANCE, false));
 
     // Room x∈[-2,2], y∈[0,2.5], z∈[-2,2], faces inward, open towards the camera (+z).
-    // Face order: +x, -x, ceiling, floor, +z (open), back wall.
+    let mut faces = room_faces(wall, wall, floor);
+    faces[4] = None; // +z
     b.cuboid(
         Vec3::new(0.0, 1.25, 0.0),
         Vec3::new(2.0, 1.25, 2.0),
         Quat::IDENTITY,
         Facing::Inward,
-        [
-            Some(wall),
-            Some(wall),
-            Some(wall),
-            Some(floor),
-            None,
-            Some(wall),
-        ],
+        faces,
     );
     // The shelf along the back wall and the cove light on it, facing the ceiling (z × x = +y).
     b.solid_box(

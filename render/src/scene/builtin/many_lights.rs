@@ -5,7 +5,7 @@
 use glam::{Quat, Vec3, Vec4};
 
 use super::rng::SplitMix64;
-use super::shapes::{Facing, SceneBuilder};
+use super::shapes::SceneBuilder;
 use crate::scene::{Camera, Material, Scene};
 
 /// Σ area × luminance(radiance) over all lights, whatever N is.
@@ -73,22 +73,7 @@ pub(super) fn many_lights_room(name: &str, n: usize, floor: Material) -> Scene {
     let floor = b.material(floor);
     let wall = b.material(Material::diffuse("wall", Vec3::splat(0.6)));
     let occluder = b.material(Material::diffuse("occluder", Vec3::new(0.55, 0.5, 0.45)));
-    // Face order: +x, -x, ceiling, floor, +z, -z.
-    let faces = [
-        Some(wall),
-        Some(wall),
-        Some(wall),
-        Some(floor),
-        Some(wall),
-        Some(wall),
-    ];
-    b.cuboid(
-        Vec3::Y * ROOM_HALF.y,
-        ROOM_HALF,
-        Quat::IDENTITY,
-        Facing::Inward,
-        faces,
-    );
+    b.room(Vec3::Y * ROOM_HALF.y, ROOM_HALF, wall, wall, floor);
 
     for (center, half, rotation, _) in occluders() {
         b.solid_box(center, half, rotation, occluder);

@@ -117,6 +117,18 @@ impl SceneBuilder {
         }
     }
 
+    /// A room: the box `center ± half` seen from inside, its sides in `wall`, its top and
+    /// bottom faces in `ceiling` and `floor`.
+    pub(super) fn room(&mut self, center: Vec3, half: Vec3, wall: u32, ceiling: u32, floor: u32) {
+        self.cuboid(
+            center,
+            half,
+            Quat::IDENTITY,
+            Facing::Inward,
+            room_faces(wall, ceiling, floor),
+        );
+    }
+
     /// A closed solid box with one material.
     pub(super) fn solid_box(&mut self, center: Vec3, half: Vec3, rotation: Quat, material: u32) {
         self.cuboid(center, half, rotation, Facing::Outward, [Some(material); 6]);
@@ -185,4 +197,16 @@ mod tests {
             }
         }
     }
+}
+
+/// A room's materials in `Face::ALL` order (+x, −x, ceiling, floor, +z, −z).
+pub(super) fn room_faces(wall: u32, ceiling: u32, floor: u32) -> [Option<u32>; 6] {
+    [
+        Some(wall),
+        Some(wall),
+        Some(ceiling),
+        Some(floor),
+        Some(wall),
+        Some(wall),
+    ]
 }

@@ -155,6 +155,18 @@ pub(super) fn scaled_look_at(eye: Vec3, target: Vec3, yfov_degrees: f32, scale: 
     Camera::look_at(eye * scale, target * scale, yfov_degrees.to_radians())
 }
 
+/// A room's materials in `Face::ALL` order (+x, −x, ceiling, floor, +z, −z).
+pub(super) fn room_faces(wall: u32, ceiling: u32, floor: u32) -> [Option<u32>; 6] {
+    [
+        Some(wall),
+        Some(wall),
+        Some(ceiling),
+        Some(floor),
+        Some(wall),
+        Some(wall),
+    ]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -197,16 +209,4 @@ mod tests {
             }
         }
     }
-}
-
-/// A room's materials in `Face::ALL` order (+x, −x, ceiling, floor, +z, −z).
-pub(super) fn room_faces(wall: u32, ceiling: u32, floor: u32) -> [Option<u32>; 6] {
-    [
-        Some(wall),
-        Some(wall),
-        Some(ceiling),
-        Some(floor),
-        Some(wall),
-        Some(wall),
-    ]
 }

@@ -1,6 +1,9 @@
 //! Every pipeline parameter in one table: name, stage, label, documentation, range and
 //! default. The viewer's panels, `--set`, presets and `restir-viewer params` all read this
-//! table, and the same name is used in WGSL (`Params` in types.wgsl) and in the UI.
+//! table, and the same name is used in WGSL (`m_cap` is `params.di.m_cap`,
+//! `gi_m_cap` is `params.gi.m_cap`) and in the UI. The rows live with their technique
+//! (`di/rows.rs`, `gi/rows.rs`, …; `settings/shared_rows.rs` for the rest) and this file
+//! gathers them (`gather_rows!`).
 //! Defaults are what the measurements favour; the book gives each one's figures in the
 //! chapter of its stage, and its parameters page (docs/src/parameters.md) is generated
 //! from this table.

@@ -442,19 +442,35 @@ impl LightBvh {
 
     /// The leaves of the `changed` lights and every node above them, ascending.
     pub fn nodes_above(&self, changed: &[usize]) -> Vec<usize> {
-        let mut dirty = vec![false; self.nodes.len()];
-        let mut nodes = Vec::new();
+        let (mut marks, mut nodes) = (Vec::new(), Vec::new());
+        self.nodes_above_into(changed, &mut marks, &mut nodes);
+        nodes
+    }
+
+    /// `nodes_above` into `nodes`, with `marks` (one flag per node, all false between
+    /// calls) kept by the caller: a refit every frame then allocates nothing, and clears
+    /// only the flags it set, not one per node of a million-light tree.
+    pub fn nodes_above_into(
+        &self,
+        changed: &[usize],
+        marks: &mut Vec<bool>,
+        nodes: &mut Vec<usize>,
+    ) {
+        marks.resize(self.nodes.len(), false);
+        nodes.clear();
         for &light in changed {
             let mut node = self.leaves.get(light).copied().unwrap_or(NO_NODE);
             // Up to the root, or to a node another changed light already marked.
-            while node != NO_NODE && !dirty[node as usize] {
-                dirty[node as usize] = true;
+            while node != NO_NODE && !marks[node as usize] {
+                marks[node as usize] = true;
                 nodes.push(node as usize);
                 node = self.parents[node as usize];
             }
         }
+        for &node in nodes.iter() {
+            marks[node] = false;
+        }
         nodes.sort_unstable();
-        nodes
     }
 
     /// Node `index`'s bounds from its light or its children.

@@ -177,6 +177,30 @@ fn the_refit_keeps_every_moving_light_inside_its_nodes() {
     }
 }
 
+/// The refit's node list with marks kept between calls (as the GPU refit keeps them
+/// frame to frame) equals a fresh one every call, and leaves every mark cleared. Planted: a
+/// mark left set from an earlier call stops the climb there, and the list is short.
+#[test]
+fn node_lists_with_kept_marks_equal_fresh_ones() {
+    let bvh = LightBvh::build(&city(300));
+    let (mut marks, mut nodes) = (Vec::new(), Vec::new());
+    for step in [7, 3, 11, 1] {
+        let changed: Vec<usize> = (step..300).step_by(step * 2).collect();
+        bvh.nodes_above_into(&changed, &mut marks, &mut nodes);
+        assert_eq!(nodes, bvh.nodes_above(&changed), "every {step}th light");
+        assert!(marks.iter().all(|m| !m), "a mark survived the call");
+    }
+    let changed = [5, 6];
+    let fresh = bvh.nodes_above(&changed);
+    marks[0] = true; // planted: the root left marked
+    bvh.nodes_above_into(&changed, &mut marks, &mut nodes);
+    assert!(
+        nodes.len() < fresh.len(),
+        "a stale mark went unseen ({} nodes)",
+        nodes.len()
+    );
+}
+
 /// No lights, one light, lights with no power, coplanar lights, all lights in one point
 /// (zero-area triangles): sampling stays finite and the PDF sums to 1 (0 without lights).
 #[test]

@@ -37,6 +37,23 @@ pub struct GpuRefit {
     level_stride: u32,
     /// Per node, its depth (the root 0).
     depth: Vec<u8>,
+    /// The lists a refit builds, kept between refits so a frame of moving lights
+    /// allocates nothing once they have grown to its size.
+    scratch: Scratch,
+    /// The bind group of the last refit and the records buffer it binds: rebuilt only when
+    /// that buffer (the sampler's, replaced at every build) or one of ours is replaced.
+    group: Option<(wgpu::Buffer, wgpu::BindGroup)>,
+}
+
+#[derive(Default)]
+struct Scratch {
+    marks: Vec<bool>,
+    above: Vec<usize>,
+    by_depth: Vec<Vec<u32>>,
+    work: Vec<u32>,
+    leaf_bounds: Vec<GpuLightBounds>,
+    levels: Vec<GpuRefitLevel>,
+    slots: Vec<u8>,
 }
 
 impl GpuRefit {
@@ -111,6 +128,8 @@ impl GpuRefit {
             levels,
             level_stride,
             depth,
+            scratch: Scratch::default(),
+            group: None,
         })
     }
 
@@ -125,52 +144,57 @@ impl GpuRefit {
         changed: &[usize],
         nodes: &wgpu::Buffer,
     ) -> usize {
-        let above = tree.nodes_above(changed);
-        if above.is_empty() {
+        let s = &mut self.scratch;
+        tree.nodes_above_into(changed, &mut s.marks, &mut s.above);
+        if s.above.is_empty() {
             return 0;
         }
         // The changed leaves first, then interior nodes by depth, deepest first.
-        let mut leaves = Vec::new();
-        let mut leaf_bounds = Vec::new();
-        let max_depth = above.iter().map(|&n| self.depth[n]).max().unwrap_or(0) as usize;
-        let mut by_depth: Vec<Vec<u32>> = vec![Vec::new(); max_depth + 1];
-        for &n in &above {
+        s.work.clear();
+        s.leaf_bounds.clear();
+        let max_depth = s.above.iter().map(|&n| self.depth[n]).max().unwrap_or(0) as usize;
+        s.by_depth.iter_mut().for_each(Vec::clear);
+        if s.by_depth.len() <= max_depth {
+            s.by_depth.resize_with(max_depth + 1, Vec::new);
+        }
+        for &n in &s.above {
             match &tree.nodes[n] {
                 crate::light_bvh::Node::Leaf { light, .. } => {
-                    leaves.push(n as u32);
-                    leaf_bounds.push(gpu_bounds(&lights[*light].bounds()));
+                    s.work.push(n as u32);
+                    s.leaf_bounds.push(gpu_bounds(&lights[*light].bounds()));
                 }
                 crate::light_bvh::Node::Interior { .. } => {
-                    by_depth[self.depth[n] as usize].push(n as u32)
+                    s.by_depth[self.depth[n] as usize].push(n as u32)
                 }
             }
         }
-        let mut work = leaves;
-        let mut levels = vec![GpuRefitLevel {
+        s.levels.clear();
+        s.levels.push(GpuRefitLevel {
             first: 0,
-            count: work.len() as u32,
+            count: s.work.len() as u32,
             leaves: 1,
             _pad: 0,
-        }];
-        for level in by_depth.iter().rev().filter(|l| !l.is_empty()) {
-            levels.push(GpuRefitLevel {
-                first: work.len() as u32,
+        });
+        for level in s.by_depth.iter().rev().filter(|l| !l.is_empty()) {
+            s.levels.push(GpuRefitLevel {
+                first: s.work.len() as u32,
                 count: level.len() as u32,
                 leaves: 0,
                 _pad: 0,
             });
-            work.extend_from_slice(level);
+            s.work.extend_from_slice(level);
         }
         // A tree deeper than the levels uniform holds (never: depth ≤ 64) is refitted in
         // part; say so rather than index past the buffer.
-        if levels.len() > MAX_LIGHT_BVH_LEVELS as usize {
+        if s.levels.len() > MAX_LIGHT_BVH_LEVELS as usize {
             log::error!(
                 "light BVH refit: {} levels, more than {MAX_LIGHT_BVH_LEVELS}; the top is left",
-                levels.len()
+                s.levels.len()
             );
-            levels.truncate(MAX_LIGHT_BVH_LEVELS as usize);
+            s.levels.truncate(MAX_LIGHT_BVH_LEVELS as usize);
         }
-        let group = self.upload(gpu, &work, &leaf_bounds, &levels, nodes);
+        self.upload(gpu, nodes);
+        let group = &self.group.as_ref().expect("upload binds the group").1;
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -178,27 +202,23 @@ impl GpuRefit {
                 timestamp_writes: None,
             });
             pass.set_pipeline(&self.pipeline);
-            for (i, level) in levels.iter().enumerate() {
-                pass.set_bind_group(0, &group, &[i as u32 * self.level_stride]);
+            for (i, level) in self.scratch.levels.iter().enumerate() {
+                pass.set_bind_group(0, group, &[i as u32 * self.level_stride]);
                 pass.dispatch_workgroups(level.count.div_ceil(LIGHT_BVH_REFIT_WORKGROUP), 1, 1);
             }
         }
         gpu.queue.submit([encoder.finish()]);
-        above.len()
+        self.scratch.above.len()
     }
 
-    fn upload(
-        &mut self,
-        gpu: &Gpu,
-        work: &[u32],
-        leaf_bounds: &[GpuLightBounds],
-        levels: &[GpuRefitLevel],
-        nodes: &wgpu::Buffer,
-    ) -> wgpu::BindGroup {
-        let work_bytes = std::mem::size_of_val(work) as u64;
-        let leaf_bytes = std::mem::size_of_val(leaf_bounds) as u64;
+    /// Uploads the scratch lists and makes sure `group` binds `nodes` and our buffers.
+    fn upload(&mut self, gpu: &Gpu, nodes: &wgpu::Buffer) {
+        let s = &mut self.scratch;
+        let work_bytes = std::mem::size_of_val(s.work.as_slice()) as u64;
+        let leaf_bytes = std::mem::size_of_val(s.leaf_bounds.as_slice()) as u64;
         if self.work.size() < work_bytes {
             self.work = storage(gpu, "light bvh refit work", work_bytes.next_power_of_two());
+            self.group = None;
         }
         if self.leaf_bounds.size() < leaf_bytes {
             self.leaf_bounds = storage(
@@ -206,21 +226,25 @@ impl GpuRefit {
                 "light bvh refit leaves",
                 leaf_bytes.next_power_of_two(),
             );
+            self.group = None;
         }
         gpu.queue
-            .write_buffer(&self.work, 0, bytemuck::cast_slice(work));
+            .write_buffer(&self.work, 0, bytemuck::cast_slice(&s.work));
         gpu.queue
-            .write_buffer(&self.leaf_bounds, 0, bytemuck::cast_slice(leaf_bounds));
-        let mut slots = vec![0u8; levels.len() * self.level_stride as usize];
-        for (i, level) in levels.iter().enumerate() {
+            .write_buffer(&self.leaf_bounds, 0, bytemuck::cast_slice(&s.leaf_bounds));
+        s.slots.clear();
+        s.slots
+            .resize(s.levels.len() * self.level_stride as usize, 0);
+        for (i, level) in s.levels.iter().enumerate() {
             let at = i * self.level_stride as usize;
-            slots[at..at + std::mem::size_of::<GpuRefitLevel>()]
+            s.slots[at..at + std::mem::size_of::<GpuRefitLevel>()]
                 .copy_from_slice(bytemuck::bytes_of(level));
         }
-        gpu.queue.write_buffer(&self.levels, 0, &slots);
-        // The records buffer is the light sampler's, replaced at every build: bound anew
-        // each refit (a bind group is cheap beside the refit).
-        gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        gpu.queue.write_buffer(&self.levels, 0, &s.slots);
+        if self.group.as_ref().is_some_and(|(bound, _)| bound == nodes) {
+            return;
+        }
+        let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("light bvh refit"),
             layout: &self.layout,
             entries: &[
@@ -249,6 +273,7 @@ impl GpuRefit {
                     }),
                 },
             ],
-        })
+        });
+        self.group = Some((nodes.clone(), group));
     }
 }

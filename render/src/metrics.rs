@@ -8,6 +8,7 @@
 //! never silent. Alpha is ignored throughout.
 
 pub mod detail;
+pub mod flip;
 pub mod motion_masks;
 pub mod pixel_moments;
 pub mod seeds;

@@ -70,7 +70,8 @@ pub struct ScoreSummary {
     pub near_moving: Option<MaskedFigures>,
     /// Within the reference's strong edges (`metrics::detail`; docs/bench.md, "Shadow
     /// detail"), means over frames: their share of the pixels, the luma RMSE there and the
-    /// detail each frame keeps (1 = as sharp as the reference). None without edges.
+    /// detail each frame keeps (1 = as sharp as the reference) and FLIP there. None
+    /// without edges.
     pub detail: Option<DetailSummary>,
 }
 
@@ -79,6 +80,8 @@ pub struct DetailSummary {
     pub share: f64,
     pub luma_rmse: f64,
     pub kept: f64,
+    /// Mean FLIP within the edges (`metrics::flip`).
+    pub flip: f64,
 }
 
 /// Per-frame detail figures, averaged at the end.
@@ -101,6 +104,7 @@ impl DetailTrack {
             share: mean(&self.share),
             luma_rmse: mean(&self.frames.iter().map(|f| f.luma_rmse).collect::<Vec<_>>()),
             kept: mean(&self.frames.iter().map(|f| f.kept).collect::<Vec<_>>()),
+            flip: mean(&self.frames.iter().map(|f| f.flip).collect::<Vec<_>>()),
         })
     }
 }

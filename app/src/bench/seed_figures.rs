@@ -49,6 +49,9 @@ pub struct SeedFigures {
     /// `DetailSummary`).
     #[serde(default)]
     pub detail_kept: Option<Interval>,
+    /// Mean FLIP within the reference's edges, over the seeds (`metrics::flip`).
+    #[serde(default)]
+    pub detail_flip: Option<Interval>,
 }
 
 /// Below this mean luminance a reference counts as black: no light reaches the camera
@@ -137,12 +140,13 @@ pub fn of_seeds(
         disoccluded_luma_rmse: masked(&|s| s.disoccluded.and_then(|m| m.luma_rmse)),
         near_moving_luma_rmse: masked(&|s| s.near_moving.and_then(|m| m.luma_rmse)),
         detail_kept: masked(&|s| s.detail.map(|d| d.kept)),
+        detail_flip: masked(&|s| s.detail.map(|d| d.flip)),
     })
 }
 
 /// The `results.csv` columns of the figures over seeds (the `_ci95` columns are the 95 %
 /// interval's half-width; empty with one seed).
-pub const CSV_COLUMNS: [&str; 23] = [
+pub const CSV_COLUMNS: [&str; 25] = [
     "image_seeds",
     "frame_luma_rmse_mean",
     "frame_luma_rmse_ci95",
@@ -166,6 +170,8 @@ pub const CSV_COLUMNS: [&str; 23] = [
     "near_moving_luma_rmse_ci95",
     "detail_kept_mean",
     "detail_kept_ci95",
+    "detail_flip_mean",
+    "detail_flip_ci95",
 ];
 
 /// The `CSV_COLUMNS` cells of one configuration (all empty when it was not scored).
@@ -198,6 +204,7 @@ pub fn csv_cells(f: Option<&SeedFigures>) -> Vec<String> {
     cells.extend(pair(f.disoccluded_luma_rmse.as_ref()));
     cells.extend(pair(f.near_moving_luma_rmse.as_ref()));
     cells.extend(pair(f.detail_kept.as_ref()));
+    cells.extend(pair(f.detail_flip.as_ref()));
     cells
 }
 

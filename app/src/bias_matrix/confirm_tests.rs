@@ -56,6 +56,7 @@ fn row(cell: &Cell, frames: usize, ratios: &[f64]) -> FigureRow {
             disoccluded_luma_rmse: None,
             near_moving_luma_rmse: None,
             detail_kept: None,
+            detail_flip: None,
         },
     }
 }

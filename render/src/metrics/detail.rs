@@ -7,8 +7,10 @@
 //!   the reference's step, over the reference's steps: Σ s·(f_p − f_q) / Σ |r_p − r_q| with
 //!   s = sign(r_p − r_q). 1 where the edges are as sharp as the reference's, below 1 where
 //!   they are blurred (a denoiser's), and unmoved by zero-mean noise, which adds as much
-//!   across an edge in one direction as in the other.
+//!   across an edge in one direction as in the other;
+//! - FLIP within the edge pixels (`metrics::flip`): how visible the difference there is.
 
+use super::flip::{self, FlipDisplay};
 use crate::image::{LinearImage, luminance};
 
 /// A neighbour pair is an edge when the reference's luminance changes across it by more
@@ -34,6 +36,8 @@ pub struct Edges {
     pairs: Vec<(usize, usize, f32)>,
     /// The pixels that belong to any edge pair.
     pub pixels: Vec<bool>,
+    /// The display FLIP judges frames on, the reference's.
+    display: FlipDisplay,
 }
 
 impl Edges {
@@ -76,6 +80,7 @@ impl Edges {
             height: reference.height,
             pairs,
             pixels,
+            display: FlipDisplay::for_reference(reference),
         }
     }
 
@@ -85,8 +90,9 @@ impl Edges {
         self.pixels.iter().filter(|&&e| e).count() as f64 / n as f64
     }
 
-    /// The frame's luma RMSE within the edge pixels and the detail it keeps (above); None
-    /// without edges or for images of another size. Non-finite pixels are left out.
+    /// The frame's luma RMSE within the edge pixels, the detail it keeps and FLIP there
+    /// (above); None without edges or for images of another size. Non-finite pixels are
+    /// left out of the RMSE and the steps (FLIP shows them black).
     pub fn figures(&self, frame: &LinearImage, reference: &LinearImage) -> Option<DetailFigures> {
         let size = (self.width, self.height);
         if self.pairs.is_empty()
@@ -115,9 +121,16 @@ impl Edges {
                 steps += (step as f64).abs();
             }
         }
-        (count > 0 && steps > 0.0).then(|| DetailFigures {
+        if count == 0 || steps <= 0.0 {
+            return None;
+        }
+        let map = flip::error_map(frame, reference, self.display)?;
+        let on_edges = self.pixels.iter().zip(&map).filter(|(on, _)| **on);
+        let flip = on_edges.clone().map(|(_, &e)| e as f64).sum::<f64>() / on_edges.count() as f64;
+        Some(DetailFigures {
             luma_rmse: (squared / count as f64).sqrt(),
             kept: kept / steps,
+            flip,
         })
     }
 }
@@ -126,6 +139,8 @@ impl Edges {
 pub struct DetailFigures {
     pub luma_rmse: f64,
     pub kept: f64,
+    /// Mean FLIP over the edge pixels (0 identical, 1 as different as can be).
+    pub flip: f64,
 }
 
 #[cfg(test)]
@@ -161,9 +176,11 @@ mod tests {
         let same = edges.figures(&r, &r).unwrap();
         assert!((same.kept - 1.0).abs() < 1e-6, "{}", same.kept);
         assert_eq!(same.luma_rmse, 0.0);
+        assert_eq!(same.flip, 0.0);
         let blur = edges.figures(&blurred(&r), &r).unwrap();
         assert!(blur.kept < 0.5 && blur.kept > 0.0, "{}", blur.kept);
         assert!(blur.luma_rmse > 0.1);
+        assert!(blur.flip > 0.1, "FLIP on the blurred edges: {}", blur.flip);
     }
 
     #[test]

@@ -350,7 +350,7 @@ pub struct GpuFrame {
 /// Pipeline parameters as the shaders see them (built from `Settings::gpu_params`): the
 /// fields no one technique owns, then each technique's struct, declared in its folder
 /// (`di::params`, …). A struct member of a uniform starts on 16 bytes: the shared part is
-/// padded to 48.
+/// 48 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
 pub struct GpuParams {
@@ -370,7 +370,9 @@ pub struct GpuParams {
     pub regir_cell_size: f32,
     pub regir_build_samples: u32,
     pub regir_jitter: f32,
-    pub _pad: u32,
+    /// Light samples per vertex of the reference (≥ 1), each weighed by the multi-sample
+    /// balance heuristic against the vertex's one BSDF sample.
+    pub reference_light_samples: u32,
     pub di: GpuDiParams,
     pub gi: GpuGiParams,
     pub pt: GpuPtParams,

@@ -93,6 +93,11 @@ pub const PLANTED: &[PlantedSwitch] = &[
         "BSDF-sampled light without its MIS weight against light sampling",
     ),
     switch(
+        "PLANTED_LIGHT_SAMPLES_UNWEIGHTED",
+        &["render/tests/multi_bounce.rs"],
+        "n light samples per reference vertex, each weighed as if it were the only one",
+    ),
+    switch(
         "PLANTED_NO_THROUGHPUT_PDF",
         &["render/tests/multi_bounce.rs"],
         "the path throughput without the BSDF sample's 1/pdf",

@@ -546,6 +546,17 @@ impl Settings {
         };
         wanted.clamp(1, MAX_BOUNCES)
     }
+
+    /// The light samples each reference vertex draws: `reference_light_samples`, within
+    /// MAX_REFERENCE_LIGHT_SAMPLES and, over a path, within REFERENCE_PATH_LIGHT_SAMPLES
+    /// (lavapipe's loop bound on one invocation's rays), at least 1.
+    pub fn reference_light_samples_in_use(&self) -> u32 {
+        let per_path = REFERENCE_PATH_LIGHT_SAMPLES / self.reference_bounces();
+        self.reference_light_samples
+            .min(MAX_REFERENCE_LIGHT_SAMPLES)
+            .min(per_path)
+            .max(1)
+    }
 }
 
 /// The OR of the bits whose switch is on (a `Params.flags` or checks word).

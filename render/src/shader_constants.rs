@@ -217,6 +217,13 @@ wgsl_constants! {
     /// built-in scenes.
     pub const MAX_BOUNCES: u32 = 8;
 
+    /// Light samples per reference vertex at most (`reference_light_samples`), and per path
+    /// at most (samples × bounces): with REFERENCE_SAMPLES_PER_DISPATCH samples an
+    /// invocation then traces at most 8 × (16 + 8) = 192 rays, near the 136 of 8 bounces
+    /// with one light sample that lavapipe's loop bound is known to allow.
+    pub const MAX_REFERENCE_LIGHT_SAMPLES: u32 = 16;
+    pub const REFERENCE_PATH_LIGHT_SAMPLES: u32 = 16;
+
     /// Light tiles (docs/src/ris.md, "Light tiles"; RTXDI): every frame LIGHT_TILE_COUNT tiles of
     /// LIGHT_TILE_SIZE power-sampled lights are drawn once; each LIGHT_TILE_PIXELS² block of pixels
     /// draws its initial candidates from one tile, so candidate reads hit a small, shared working

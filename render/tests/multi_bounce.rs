@@ -48,12 +48,15 @@ struct Variant {
     jitter: bool,
     /// Shadow rays compiled in although the box is convex (the scene alone turns them off).
     shadows: bool,
+    /// `reference_light_samples`: light samples per vertex.
+    light_samples: u32,
     planted: Option<&'static str>,
 }
 
 const PLAIN: Variant = Variant {
     jitter: true,
     shadows: false,
+    light_samples: 1,
     planted: None,
 };
 
@@ -71,6 +74,7 @@ fn furnace(bounces: u32, v: Variant, spp: u32) -> Measured {
         &format!("jitter={}", v.jitter),
         &format!("reference_spp={spp}"),
         &format!("max_bounces={bounces}"),
+        &format!("reference_light_samples={}", v.light_samples),
     ]);
     let mut effects = EffectSet::detect(&SceneFeatures::of(&scene), &settings, false);
     assert!(
@@ -121,10 +125,11 @@ fn furnace_holds(bounces: u32, v: Variant) -> bool {
     let expected = furnace_expected(bounces, v.jitter);
     let z = (m.mean - expected) / m.standard_error;
     eprintln!(
-        "furnace N={bounces} jitter={} shadows={} planted={:?}: mean {:.5}, expected {:.5} \
-         (ratio {:.4}), SE {:.5}, z {z:.2}",
+        "furnace N={bounces} jitter={} shadows={} light samples={} planted={:?}: mean {:.5}, \
+         expected {:.5} (ratio {:.4}), SE {:.5}, z {z:.2}",
         v.jitter,
         v.shadows,
+        v.light_samples,
         v.planted,
         m.mean,
         expected,
@@ -158,6 +163,30 @@ fn furnace_one_two_and_three_bounces_are_exact() {
     };
     assert!(furnace_holds(2, shadows), "shadows on");
     assert!(furnace_holds(3, shadows), "shadows on, N=3");
+}
+
+/// Several light samples per vertex, each weighed by the multi-sample balance heuristic
+/// (n·p_light + p_bsdf): still exact, with shadow rays compiled in (the BSDF strategy in
+/// the weight) and without (light samples alone at the first vertex). Planted: each of the
+/// n samples weighed as if alone counts the light sampling's share n times.
+#[test]
+fn furnace_is_exact_with_several_light_samples_per_vertex() {
+    let four = Variant {
+        light_samples: 4,
+        ..PLAIN
+    };
+    assert!(furnace_holds(1, four), "N=1, 4 light samples");
+    assert!(furnace_holds(2, four), "N=2, 4 light samples");
+    let shadows = Variant {
+        shadows: true,
+        ..four
+    };
+    assert!(furnace_holds(2, shadows), "shadows on, 4 light samples");
+    let planted = Variant {
+        planted: Some("PLANTED_LIGHT_SAMPLES_UNWEIGHTED"),
+        ..shadows
+    };
+    assert!(!furnace_holds(2, planted), "n samples each weighed alone");
 }
 
 #[test]

@@ -429,6 +429,7 @@ fn host_structs_match_wgsl_layouts() {
             regir_cell_size,
             regir_build_samples,
             regir_jitter,
+            reference_light_samples,
             di,
             gi,
             pt,

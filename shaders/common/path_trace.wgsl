@@ -1,7 +1,7 @@
 // The reference's multi-bounce estimator (`max_bounces` ≥ 2; docs/src/frame.md, "The reference").
 // A path from the first vertex (camera hit or rasterised surface) is shaded at each of its
-// first max_bounces vertices with next-event estimation (one power-sampled light point and
-// a shadow ray) and continued along one BSDF-sampled direction; the emitter (or the
+// first max_bounces vertices with next-event estimation (`reference_light_samples` light
+// points, each with a shadow ray) and continued along one BSDF-sampled direction; the emitter (or the
 // environment) that direction finds is the BSDF strategy's sample of that vertex's direct
 // light, weighted against the light sample by the balance heuristic
 // (common/direct_light_mis.wgsl), so every emitter is counted exactly once per vertex.
@@ -22,11 +22,12 @@ fn path_estimate(first: ShadingPoint, bounces: u32, rng: ptr<function, u32>) -> 
     var sp = first;
     var throughput = vec3<f32>(1.0);
     var sum = vec3<f32>(0.0);
+    let n = reference_light_samples();
     for (var bounce = 1u; bounce <= bounces; bounce++) {
         if frame.light_count > 0u {
             // Along a path the BSDF ray is always traced (it continues the path), so its
-            // pdf is in the light sample's weight whether or not shadows are compiled in.
-            sum += throughput * light_sample_mis(sp, rng, true).value;
+            // pdf is in the light samples' weight whether or not shadows are compiled in.
+            sum += throughput * light_samples_mis(sp, rng, true, n).value;
         }
         let u = vec3<f32>(rand_f32(rng), rand_f32(rng), rand_f32(rng));
         let bs = sample_brdf(sp.brdf, sp.normal, sp.wo, u);
@@ -50,7 +51,7 @@ fn path_estimate(first: ShadingPoint, bounces: u32, rng: ptr<function, u32>) -> 
         let followed = follow_ray(offset_ray_origin(sp.position, sp.geo_normal), sp.position, bs.wi, true, rng);
         let found = followed.found;
         if frame.light_count > 0u {
-            sum += throughput * found.transmittance * bsdf_found_emission(sp, bs, found.id);
+            sum += throughput * found.transmittance * bsdf_found_emission(sp, bs, found.id, f32(n));
         }
         let walk = followed.walk;
         let hit = walk.hit;

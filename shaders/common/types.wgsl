@@ -218,7 +218,7 @@ struct Params {
     regir_cell_size: f32,         // a fraction of frame.scene_scale
     regir_build_samples: u32,
     regir_jitter: f32,            // cells
-    _pad0: u32,
+    reference_light_samples: u32, // light samples per reference vertex, ≥ 1
     di: DiParams,
     gi: GiParams,
     pt: PtParams,

@@ -41,7 +41,7 @@ impl Settings {
             regir_cell_size: self.regir_cell_size,
             regir_build_samples: self.regir_build_samples.max(1),
             regir_jitter: self.regir_jitter,
-            _pad: 0,
+            reference_light_samples: self.reference_light_samples_in_use(),
             di: di::settings::gpu_params(self, height),
             gi: gi::settings::gpu_params(self, height),
             pt: pt::settings::gpu_params(self, height),

@@ -112,6 +112,16 @@ macro_rules! rows {
                         \"At every vertex\").";
                 reference_spp: u32 = 4, ParamKind::Int { min: 1, max: 4096 }, "Reference spp",
                     "Samples per pixel per frame of the reference renderer.";
+                reference_light_samples: u32 = 1,
+                    ParamKind::Int { min: 1, max: MAX_REFERENCE_LIGHT_SAMPLES as i64 },
+                    "Reference light samples",
+                    "Light samples (each with its shadow ray) at every vertex of a reference \
+                        path, weighed with its one BSDF sample by the multi-sample balance \
+                        heuristic (docs/src/frame.md, \"The reference\"). Unbiased at any \
+                        count; more spends a sample's camera ray and path on more of the \
+                        light, which is where a scene of many small lights is noisy. At \
+                        most 16 per path (count × bounces; lavapipe's loop bound): 8 at 2 \
+                        bounces. 1: the reference as it always was, to the bit.";
                 max_bounces: u32 = 1, ParamKind::Int { min: 1, max: MAX_BOUNCES as i64 }, "Max bounces",
                     "Path vertices the reference shades. 1: emission seen directly + \
                         direct light at the first hit (what nee, ris and restir estimate). \

@@ -150,6 +150,27 @@ fn reference_spp_reaches_the_gpu_as_the_count_a_frame_renders() {
     assert_eq!(s.gpu_params(100).reference_spp, 64);
 }
 
+/// The reference's light samples reach the GPU within their bounds: at most
+/// REFERENCE_PATH_LIGHT_SAMPLES over a path (lavapipe's loop bound), never 0.
+#[test]
+fn reference_light_samples_stay_within_a_paths_bound() {
+    let at = |samples: u32, bounces: u32| {
+        let s = Settings {
+            reference_light_samples: samples,
+            max_bounces: bounces,
+            ..Settings::default()
+        };
+        s.gpu_params(100).reference_light_samples
+    };
+    assert_eq!(at(1, 1), 1);
+    assert_eq!(at(8, 1), 8);
+    assert_eq!(at(8, 2), 8);
+    assert_eq!(at(16, 2), REFERENCE_PATH_LIGHT_SAMPLES / 2);
+    assert_eq!(at(16, 8), 2);
+    assert_eq!(at(0, 1), 1, "0 is one sample");
+    assert_eq!(at(u32::MAX, 1), MAX_REFERENCE_LIGHT_SAMPLES);
+}
+
 /// With GI on, the reference traces at least 2 bounces (GI's image is direct + one bounce).
 #[test]
 fn the_reference_follows_gi_with_two_bounces() {

@@ -36,10 +36,10 @@ use std::time::Duration;
 use anyhow::Context;
 use serde::{Deserialize, Serialize};
 
-use crate::Renderer;
 use crate::effects::{EffectSet, SceneFeatures};
 use crate::image::LinearImage;
 use crate::scene::{Camera, Scene};
+use crate::{Renderer, Settings};
 
 /// The seed of every reference: fixed and different from any seed a benchmark uses, so the
 /// reference's random numbers are independent of the frames measured against it, and one
@@ -74,6 +74,9 @@ pub struct ReferenceRequest {
     /// Path vertices shaded (`max_bounces`): 1 is direct light only, 2 adds one bounce of
     /// indirect light. A reference is compared with frames that estimate the same integral.
     pub max_bounces: u32,
+    /// Light samples per vertex (`reference_light_samples`, 1 as every reference before
+    /// it): more make a sample worth more where lights are many and small.
+    pub light_samples: u32,
     /// With jitter off: rasterise at this jitter phase's sub-pixel offset instead of the
     /// pixel centres, the reference of the frames of that phase (`None`: pixel centres).
     /// Jittered frames scored against it measure their estimator, not the pixel footprint
@@ -92,7 +95,7 @@ impl ReferenceRequest {
         spp: u32,
         jitter: bool,
     ) -> ReferenceRequest {
-        let settings = reference_settings(jitter, 1, 1, false);
+        let settings = reference_settings(jitter, 1, 1, false, 1);
         ReferenceRequest {
             scene: scene_spec.to_string(),
             camera,
@@ -106,6 +109,7 @@ impl ReferenceRequest {
             scene_time: scene.animation.as_ref().map(|a| a.posed_at),
             light_bvh: false,
             max_bounces: 1,
+            light_samples: 1,
             jitter_phase: None,
         }
     }
@@ -113,7 +117,7 @@ impl ReferenceRequest {
     /// The same request with its lights sampled by the light BVH at every vertex
     /// (`light_bvh`) or by the power table, and the effect set that follows.
     pub fn with_light_bvh(self, light_bvh: bool, scene: &Scene) -> ReferenceRequest {
-        let settings = reference_settings(self.jitter, 1, 1, light_bvh);
+        let settings = reference_settings(self.jitter, 1, 1, light_bvh, 1);
         ReferenceRequest {
             effects: EffectSet::detect(&SceneFeatures::of(scene), &settings, false),
             light_bvh,
@@ -135,6 +139,20 @@ impl ReferenceRequest {
     pub fn with_max_bounces(self, max_bounces: u32) -> ReferenceRequest {
         ReferenceRequest {
             max_bounces: max_bounces.clamp(1, crate::shader_constants::MAX_BOUNCES),
+            ..self
+        }
+    }
+
+    /// The same request with `light_samples` per vertex (clamped as the parameter is, for
+    /// its `max_bounces`: set those first).
+    pub fn with_light_samples(self, light_samples: u32) -> ReferenceRequest {
+        let settings = Settings {
+            reference_light_samples: light_samples,
+            max_bounces: self.max_bounces,
+            ..Settings::default()
+        };
+        ReferenceRequest {
+            light_samples: settings.reference_light_samples_in_use(),
             ..self
         }
     }
@@ -356,6 +374,35 @@ mod tests {
         assert_ne!(key, request(false).at_jitter_phase(6).key().unwrap());
         // Phases wrap with the period, as frames do.
         assert_eq!(request(false).at_jitter_phase(5 + 64).jitter_phase, Some(5));
+    }
+
+    /// Light samples per vertex are in the key only beyond one (every cached reference of
+    /// before keeps its key), and follow the parameter's clamp for the bounces.
+    #[test]
+    fn light_samples_have_their_own_key() {
+        let scene = crate::scene::builtin::builtin_scene("cornell").unwrap();
+        let one = ReferenceRequest::new(
+            "builtin:cornell",
+            &scene,
+            scene.default_camera(),
+            (8, 6),
+            4,
+            false,
+        );
+        let same = one.clone().with_light_samples(1);
+        assert_eq!(same.key().unwrap(), one.key().unwrap());
+        assert!(!one.key().unwrap().description.contains("light_samples"));
+        let eight = one.clone().with_light_samples(8);
+        assert!(
+            eight
+                .key()
+                .unwrap()
+                .description
+                .contains("light_samples=8\n")
+        );
+        assert_ne!(eight.key().unwrap(), one.key().unwrap());
+        let deep = one.with_max_bounces(8).with_light_samples(8);
+        assert_eq!(deep.light_samples, 2, "16 light samples per path at most");
     }
 
     #[test]

@@ -277,6 +277,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         effects: effects.clone(),
         max_bounces: 1,
         light_bvh: base.reference_light_bvh,
+        light_samples: base.reference_light_samples,
         phases: if base.jitter {
             references::measured_phases(
                 args.seeds,

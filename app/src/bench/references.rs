@@ -166,6 +166,8 @@ pub struct ReferencePlan<'a> {
     pub max_bounces: u32,
     /// The references sample lights with the light BVH (`--set reference_light_bvh=true`).
     pub light_bvh: bool,
+    /// Light samples per vertex of the references (`--set reference_light_samples=N`).
+    pub light_samples: u32,
 }
 
 /// Loads or renders the references of frames `first..first + count` of `shot` (one for a
@@ -247,7 +249,9 @@ fn request_of(
     if let Some(e) = &plan.effects {
         request.effects = e.clone();
     }
-    request.with_max_bounces(plan.max_bounces)
+    request
+        .with_max_bounces(plan.max_bounces)
+        .with_light_samples(plan.light_samples)
 }
 
 /// Loads or renders one reference with progress on stderr, and counts it into `refs`.

@@ -167,7 +167,13 @@ fn run(
     if let Some(reference) = cache.load(request).map_err(text)? {
         return Ok(reference);
     }
-    let settings = reference_settings(request.jitter, 1, request.max_bounces, request.light_bvh);
+    let settings = reference_settings(
+        request.jitter,
+        1,
+        request.max_bounces,
+        request.light_bvh,
+        request.light_samples,
+    );
     let mut renderer =
         Renderer::new(gpu, scene, request.width, request.height, settings).map_err(text)?;
     cache

@@ -86,6 +86,10 @@ pub fn key_of(request: &ReferenceRequest) -> anyhow::Result<ReferenceKey> {
     if request.max_bounces != 1 {
         description.push_str(&format!("max_bounces={}\n", request.max_bounces));
     }
+    // And only with more than one light sample per vertex.
+    if request.light_samples != 1 {
+        description.push_str(&format!("light_samples={}\n", request.light_samples));
+    }
     // And only for a jitter phase's reference (the pixel centres' keys stay as they were).
     if let Some(phase) = request.jitter_phase {
         description.push_str(&format!("jitter_phase={phase}\n"));

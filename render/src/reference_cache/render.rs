@@ -17,18 +17,20 @@ const SAMPLES_PER_FRAME_TARGET: u64 = 1 << 20;
 /// The most samples per pixel one reference frame takes (the `reference_spp` range).
 const MAX_SPP_PER_FRAME: u32 = 256;
 
-/// The settings of a reference frame: defaults (the reference reads only these three).
+/// The settings of a reference frame: defaults (the reference reads only these).
 pub(super) fn reference_settings(
     jitter: bool,
     spp_per_frame: u32,
     max_bounces: u32,
     light_bvh: bool,
+    light_samples: u32,
 ) -> Settings {
     Settings {
         jitter,
         reference_spp: spp_per_frame,
         max_bounces,
         reference_light_bvh: light_bvh,
+        reference_light_samples: light_samples,
         ..Settings::default()
     }
     .for_reference()
@@ -62,6 +64,7 @@ pub fn render_reference(
         per_frame,
         request.max_bounces,
         request.light_bvh,
+        request.light_samples,
     ));
     renderer.set_mode(Mode::Reference);
     renderer.set_camera(request.camera);

@@ -30,8 +30,8 @@ pub fn check_comparable(job: &Job, animated: bool) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The reference of a side's last frame (same scene time, camera, size, jitter and bounces)
-/// and its own noise (luma RMSE), for `set_reference_image`.
+/// The reference of a side's last frame (same scene time, camera, size, jitter, bounces and
+/// reference light sampling) and its own noise (luma RMSE), for `set_reference_image`.
 pub fn reference_of(run: &SideRun, gpu: &Gpu, job: &Job) -> anyhow::Result<(LinearImage, f32)> {
     let settings = run.renderer.settings().clone();
     let mut request = ReferenceRequest::new(
@@ -42,7 +42,9 @@ pub fn reference_of(run: &SideRun, gpu: &Gpu, job: &Job) -> anyhow::Result<(Line
         job.reference_spp,
         settings.jitter,
     )
-    .with_max_bounces(settings.reference_bounces());
+    .with_light_bvh(settings.reference_light_bvh, run.scene.scene())
+    .with_max_bounces(settings.reference_bounces())
+    .with_light_samples(settings.reference_light_samples);
     if let Some(e) = &job.effects {
         request.effects = e.clone();
     }

@@ -4,11 +4,12 @@
 # (scene, camera) is an independent job: run any subset, on any machine, in any order;
 # each writes its own folder and a finished one is skipped. Then `restir-viewer bench-map
 # docs/bench/crossover/map` writes map.md and map.csv. Usage: run.sh [FILTER] (a substring
-# of "scene camera").
+# of "scene camera"); OUT, CONFIGS and BIN override the folder, the configurations (the
+# first is the baseline) and the binary.
 set -e
 BIN=${BIN:-target/release/restir-viewer}
 OUT=${OUT:-docs/bench/crossover/map}
-CONFIGS='ris+denoise,restir-denoised,restir-pairwise+denoise'
+CONFIGS=${CONFIGS:-'ris+denoise,restir-denoised,restir-pairwise+denoise'}
 # Still cells first, then panning; animated scenes and moving cameras take a reference per
 # frame (256 spp each), a still one 2048 spp.
 for job in "concourse static" "many-lights:65536 static" "city:131072 static" \

@@ -399,3 +399,70 @@ fn bad_denoiser_values_get_one_line() {
     let warnings = s.apply_assignments(["denoise_iterations=99"]).unwrap();
     assert_eq!(s.denoise_iterations, 5, "{warnings:?}");
 }
+
+/// `denoise_auto_depth` on the GPU's own frames: no choice until the history has been warm
+/// for `DEPTH_PROBE_FRAMES` frames and the next frame has been held out, then one that is
+/// finite, the least held-out error, and what the next frames filter at; the same seed
+/// chooses the same; new settings forget it, and a bad value gets one line. (That the
+/// choice is the true best depth is measured on simulated histories with a known truth in
+/// the model's tests, and against references in docs/bench.md, "Choosing the depth per
+/// scene".)
+#[test]
+fn the_depth_probe_chooses_once_warm_and_the_frames_follow_it() {
+    use restir_render::denoise::depth_probe::DEPTH_PROBE_FRAMES;
+    let choose = || {
+        let mut r = denoising("builtin:detail", &["denoise_auto_depth=true"]);
+        // The first frame has no history: it counts no warm frame. The last warm one is
+        // kept, the next held out.
+        for _ in 0..DEPTH_PROBE_FRAMES + 1 {
+            frame(&mut r);
+        }
+        assert_eq!(
+            r.denoise_depth_choice(),
+            None,
+            "chose before holding a frame out"
+        );
+        frame(&mut r);
+        let choice = r.denoise_depth_choice().cloned().expect("the probe ran");
+        (r, choice)
+    };
+    let (mut r, choice) = choose();
+    eprintln!("{choice:?}");
+    assert_eq!(choice.held_out_error.len(), 6, "depths 0..=5");
+    assert!(
+        choice.held_out_error.iter().all(|v| v.is_finite()),
+        "{choice:?}"
+    );
+    // Jitter is off: every pixel with a surface is seen again.
+    assert!(choice.pixels > W * H / 2, "{choice:?}");
+    let least = (1..6)
+        .min_by(|&a, &b| choice.held_out_error[a].total_cmp(&choice.held_out_error[b]))
+        .unwrap();
+    assert_eq!(choice.iterations as usize, least);
+    assert_eq!(r.effective_settings().denoise_iterations, choice.iterations);
+    frame(&mut r);
+    assert_eq!(r.denoise_depth_choice(), Some(&choice), "the choice holds");
+    let again = choose().1;
+    assert_eq!(
+        (again.iterations, &again.held_out_error, again.pixels),
+        (choice.iterations, &choice.held_out_error, choice.pixels),
+        "the same seed chose differently"
+    );
+    assert!(choice.probe_ms > 0.0, "{choice:?}");
+
+    let mut s = r.settings().clone();
+    s.denoise_alpha = 0.3;
+    r.set_settings(s);
+    assert_eq!(
+        r.denoise_depth_choice(),
+        None,
+        "new settings kept the old choice"
+    );
+
+    let mut s = restir_render::Settings::default();
+    let e = s
+        .apply_assignments(["denoise_auto_depth=sometimes"])
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("denoise_auto_depth") && !e.contains('\n'), "{e}");
+}

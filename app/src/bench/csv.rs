@@ -149,6 +149,7 @@ pub fn write_results(
         "shadow_rays_per_pixel",
         "useful_candidate_share",
         "ray_backend",
+        "denoise_auto_depth",
         "frame_mse_vs_nee",
         "budget_ms",
         "budget_used_ms",
@@ -209,6 +210,9 @@ pub fn write_results(
             num(Some(r.times.shadow_rays_per_pixel_total)),
             num(Some(r.times.useful_candidate_share)),
             r.ray_backend.map_or("", |b| b.name()).to_string(),
+            r.denoise_auto_depth
+                .map(|d| d.to_string())
+                .unwrap_or_default(),
             num(r.frame_mse_vs_nee),
             num(r.budget.map(|b| b.budget.ms)),
             num(r.budget.map(|b| b.used_ms)),

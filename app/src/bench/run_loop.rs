@@ -63,6 +63,8 @@ pub struct ConfigResult {
     pub flicker: Option<f64>,
     /// What traced the configuration's rays (`ray_backend` resolved on the device).
     pub ray_backend: Option<restir_render::tracing::RayBackend>,
+    /// The à-trous depth `denoise_auto_depth`'s probe chose (none: off, or not yet run).
+    pub denoise_auto_depth: Option<u32>,
     /// A still camera's per-pixel moments of this seed's frames (seed_figures.rs).
     pub moments: Option<PixelMoments>,
     /// Filled in by `mod.rs` once every seed ran: the image figures over the seeds.
@@ -218,6 +220,7 @@ impl<'a> ConfigRun<'a> {
             budget_mse_vs_nee: None,
             flicker: self.flicker.mean(),
             ray_backend: self.renderer.last_ray_backend(),
+            denoise_auto_depth: self.renderer.denoise_depth_choice().map(|c| c.iterations),
         };
         Ok((result, self.renderer))
     }

@@ -76,6 +76,9 @@ pub fn after_frame(
     state.device.ray_backend = renderer.last_ray_backend();
     state.accumulated_frames = renderer.accumulated_frames();
     state.window_frames = renderer.temporal_window_frames();
+    if state.denoise_depth.as_ref() != renderer.denoise_depth_choice() {
+        state.denoise_depth = renderer.denoise_depth_choice().cloned();
+    }
     // Copied only when they change (an effect set carries a sentence per effect).
     if state.scene.effects.as_ref() != renderer.last_effects() {
         state.scene.effects = renderer.last_effects().cloned();

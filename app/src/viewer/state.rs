@@ -387,6 +387,8 @@ pub struct ViewerState {
     pub accumulated_frames: u32,
     /// Frames in the boiling views' temporal window (0 while no such view is shown).
     pub window_frames: u32,
+    /// `denoise_auto_depth`'s choice, once its probe has run (the Stats panel shows it).
+    pub denoise_depth: Option<restir_render::denoise::depth_probe::DepthChoice>,
     pub actions: Vec<Action>,
 }
 
@@ -417,6 +419,7 @@ impl ViewerState {
             render_size: (0, 0),
             accumulated_frames: 0,
             window_frames: 0,
+            denoise_depth: None,
             actions: Vec::new(),
         }
     }

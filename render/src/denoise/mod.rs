@@ -4,11 +4,14 @@
 //! the floors `di/mod.rs` names.
 
 pub mod constants;
+pub mod depth_probe;
 pub mod model;
 pub mod params;
 pub mod passes;
 pub mod rows;
 pub mod settings;
 
+#[cfg(test)]
+mod depth_probe_tests;
 #[cfg(test)]
 mod tests;

@@ -128,7 +128,7 @@ impl Frame<'_> {
 }
 
 /// Whether last frame's surface `prev` is this pixel's point seen again.
-fn same_surface(p: &Pixel, prev: &Pixel) -> bool {
+pub fn same_surface(p: &Pixel, prev: &Pixel) -> bool {
     prev.valid
         && p.normal.dot(prev.normal) >= DENOISE_NORMAL_COS
         && (prev.position - p.position).length() <= DENOISE_POSITION_TOLERANCE * p.depth

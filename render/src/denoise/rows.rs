@@ -33,6 +33,16 @@ macro_rules! rows {
                         error (ris + denoiser: 0.0184 luma RMSE; 4: 0.0197; 5: 0.0207) and \
                         each iteration costs ~6 % of a restir frame; a larger image wants \
                         more.";
+                denoise_auto_depth: bool = false, ParamKind::Bool, "Depth by a held-out frame",
+                    "Chooses the à-trous depth per scene (docs/src/denoiser.md, \"Choosing \
+                        the depth\"): once the history has been valid for 6 frames, it is \
+                        filtered on the CPU at every depth (the denoiser's model) and compared \
+                        with the next frame's raw light, whose noise is its own, so the depth \
+                        closest to it is the depth closest to the truth; later frames filter \
+                        at that depth (the Stats panel and --stats show it) until the settings \
+                        change. With temporal reuse the next frame shares samples with the \
+                        history and shallow depths look better than they are. Off: \
+                        denoise_iterations.";
                 denoise_alpha: f32 = 0.2, ParamKind::Float { min: 0.01, max: 1.0 }, "History blend α",
                     "Smallest weight of this frame in the temporal blend (1/length while \
                         the history is shorter than 1/α): 0.2 keeps ~5 frames; lower is \

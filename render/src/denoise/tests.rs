@@ -6,12 +6,12 @@ use glam::{Vec2, Vec3, Vec4};
 use super::model::{self, Frame, Params, Pixel, Planted};
 use crate::test_hash::hash;
 
-const W: u32 = 48;
-const H: u32 = 32;
+pub(super) const W: u32 = 48;
+pub(super) const H: u32 = 32;
 const PIXEL_ANGLE: f32 = 0.01;
 
 /// A W × H frame whose surfaces did not move since the last one.
-fn still_frame<'a>(pixels: &'a [Pixel], radiance: &'a [Vec3]) -> Frame<'a> {
+pub(super) fn still_frame<'a>(pixels: &'a [Pixel], radiance: &'a [Vec3]) -> Frame<'a> {
     Frame {
         width: W,
         height: H,
@@ -21,12 +21,12 @@ fn still_frame<'a>(pixels: &'a [Pixel], radiance: &'a [Vec3]) -> Frame<'a> {
     }
 }
 
-fn params() -> Params {
+pub(super) fn params() -> Params {
     super::settings::model_params(&crate::Settings::default(), PIXEL_ANGLE)
 }
 
 /// A wall facing the camera at depth `depth(x)` per column, grey, not moving.
-fn wall(depth: impl Fn(u32) -> f32) -> Vec<Pixel> {
+pub(super) fn wall(depth: impl Fn(u32) -> f32) -> Vec<Pixel> {
     let mut out = Vec::new();
     for y in 0..H {
         for x in 0..W {

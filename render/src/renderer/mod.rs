@@ -5,10 +5,12 @@
 //! uniforms; `bind_groups.rs` caches the bind groups; `reports.rs` gathers each
 //! frame's counters, times and inspected pixel; `readback.rs` brings images and per-pixel
 //! records back to the CPU; `inspect.rs` is the pixel inspector's capture; `prepare.rs`
-//! readies a new scene off the window thread.
+//! readies a new scene off the window thread; `depth_probe.rs` runs the denoiser's depth
+//! probe between frames.
 
 mod bind_groups;
 mod comparison;
+mod depth_probe;
 pub mod frame_plan;
 mod inspect;
 mod inspect_pt;
@@ -103,6 +105,8 @@ pub struct Renderer {
     frozen_noise: bool,
     /// `Mode::Reference` rasterises at this jitter phase's offset (`set_reference_phase`).
     reference_phase: Option<u32>,
+    /// `denoise_auto_depth`'s warm-up count and choice.
+    depth_probe: depth_probe::DepthProbeState,
 }
 
 impl Renderer {
@@ -210,6 +214,7 @@ impl Renderer {
         }
         self.targets = FrameTargets::new(&self.gpu, width, height);
         self.bind_groups.clear();
+        self.forget_depth_choice();
         // The new targets start without history buffers.
         self.history.carried = resolve::Carried::default();
         self.invalidate_history();
@@ -224,6 +229,7 @@ impl Renderer {
     pub fn set_mode(&mut self, mode: Mode) {
         if mode != self.mode {
             self.mode = mode;
+            self.forget_depth_choice();
             self.invalidate_history();
             self.reset_accumulation();
         }
@@ -238,6 +244,7 @@ impl Renderer {
     pub fn set_settings(&mut self, settings: Settings) {
         if settings != self.settings {
             self.settings = settings;
+            self.forget_depth_choice();
             self.reset_accumulation();
         }
     }

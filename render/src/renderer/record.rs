@@ -199,6 +199,7 @@ impl Renderer {
                 .light_candidates
                 .min(crate::effects::AUTO_BVH_CANDIDATES);
         }
+        self.apply_depth_choice(&mut settings);
         settings
     }
 
@@ -404,6 +405,7 @@ impl Renderer {
         self.frame_index += 1;
         self.pipelines.last_effects = Some(active.clone());
         self.last_passes = dispatched;
+        self.after_frame_depth_probe(switches.denoise && switches.denoise_history);
         Ok(())
     }
 

@@ -160,6 +160,7 @@ impl Renderer {
             window: Default::default(),
             frozen_noise: false,
             reference_phase: None,
+            depth_probe: Default::default(),
             gpu,
         })
     }

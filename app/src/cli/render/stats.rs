@@ -117,6 +117,10 @@ struct StatsFile<'a> {
     /// `light_sampler=auto`'s probe: its points and how many times fewer samples a sampler
     /// by distance would need than the power table, in hundredths (light_probe.rs).
     light_probe: Option<restir_render::light_probe::LightProbe>,
+    /// `denoise_auto_depth`'s choice: the depth and each depth's error against a held-out
+    /// frame (docs/src/denoiser.md, "Choosing the depth").
+    #[serde(skip_serializing_if = "Option::is_none")]
+    denoise_depth: Option<restir_render::denoise::depth_probe::DepthChoice>,
     #[serde(skip_serializing_if = "Option::is_none")]
     scene_time: Option<SceneTimeStats>,
     /// With the boiling or survivor-change view: the temporal window's figures.
@@ -294,6 +298,7 @@ fn side_stats(side: &Side) -> StatsFile<'_> {
         mean_luminance: side.image.mean_luminance(),
         light_sampler: renderer.light_sampler_stats(),
         light_probe: renderer.light_probe(),
+        denoise_depth: renderer.denoise_depth_choice().cloned(),
         scene_time: side.scene_time.clone(),
         temporal_window: window_stats(renderer),
         summary: StatsSummary::from_reports(&side.reports, side.image.non_finite_count() as u64),

@@ -21,6 +21,7 @@ pub fn ui(ui: &mut Ui, state: &ViewerState) {
         ui.weak("CPU adapter: pass times are CPU wall-clock times, not GPU times");
     }
     ray_backend(ui, device);
+    denoise_depth(ui, state);
     frame_time(ui, &state.stats);
     let window = state.stats.window();
     if window.is_empty() {
@@ -33,6 +34,34 @@ pub fn ui(ui: &mut Ui, state: &ViewerState) {
     history_plot(ui, &state.stats);
     reuse(ui, &summary);
     non_finite(ui, &summary, &state.stats.since_load);
+}
+
+/// `denoise_auto_depth`: the depth its probe chose and each depth's error against the frame
+/// it held out (docs/src/denoiser.md, "Choosing the depth").
+fn denoise_depth(ui: &mut Ui, state: &ViewerState) {
+    if !(state.settings.denoise && state.settings.denoise_auto_depth) {
+        return;
+    }
+    let Some(choice) = &state.denoise_depth else {
+        ui.weak("denoiser depth: probing once the history is warm…");
+        return;
+    };
+    ui.label(format!(
+        "denoiser depth: {} à-trous iterations (closest to a held-out frame; the probe took \
+         {:.0} ms of CPU once)",
+        choice.iterations, choice.probe_ms
+    ));
+    let errors: Vec<String> = choice
+        .held_out_error
+        .iter()
+        .enumerate()
+        .map(|(k, e)| format!("{k}: {e:.2e}"))
+        .collect();
+    ui.weak(format!(
+        "error against the next frame by depth ({} pixels): {}",
+        choice.pixels,
+        errors.join(" · ")
+    ));
 }
 
 /// What traces the rays, and whether the other backend could.

@@ -337,3 +337,32 @@ fn scene_info(
         accel: None,
     }
 }
+
+/// With `denoise_auto_depth` on, the Stats panel says it is waiting for the probe, then the
+/// depth it chose, every depth's error against the held-out frame and what the probe cost.
+#[test]
+fn the_stats_panel_shows_the_depth_the_probe_chose() {
+    let mut s = with_reports(state());
+    s.settings.denoise = true;
+    s.settings.denoise_auto_depth = true;
+    let h = harness(|ui, s: &mut ViewerState| stats::ui(ui, s), s.clone());
+    assert!(shows(&h, "probing once the history is warm"));
+    s.denoise_depth = Some(restir_render::denoise::depth_probe::DepthChoice {
+        iterations: 2,
+        held_out_error: vec![0.5, 0.2, 0.1, 0.15, 0.3, 0.4],
+        pixels: 98_304,
+        probe_ms: 412.0,
+    });
+    let h = harness(|ui, s: &mut ViewerState| stats::ui(ui, s), s.clone());
+    for text in [
+        "denoiser depth: 2 à-trous iterations",
+        "412 ms",
+        "98304 pixels",
+        "2: 1.00e-1",
+    ] {
+        assert!(shows(&h, text), "the stats panel does not show '{text}'");
+    }
+    s.settings.denoise_auto_depth = false;
+    let h = harness(|ui, s: &mut ViewerState| stats::ui(ui, s), s);
+    assert!(!shows(&h, "denoiser depth"), "shown with the probe off");
+}

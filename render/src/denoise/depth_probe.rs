@@ -20,10 +20,10 @@
 //! preset hold out a frame that is not fully independent: the shallow depths look better
 //! than they are), and the history's own lag behind a change.
 
-use glam::{Vec3, Vec4};
+use glam::Vec4;
 
 use super::constants::MAX_DENOISE_ITERATIONS;
-use super::model::{self, Frame, Params, Planted};
+use super::model::{self, Frame, Params, Planted, luminance};
 use crate::gpu_types::GpuDenoiseHistory;
 
 /// The probe keeps the history once it has been valid for this many frames in a row (the
@@ -52,10 +52,6 @@ pub struct DepthChoice {
     /// What the probe cost on the CPU: the readbacks and the model's passes (filled in by
     /// the renderer).
     pub probe_ms: f64,
-}
-
-fn luminance(c: Vec3) -> f32 {
-    crate::image::luminance(c.into())
 }
 
 /// The held-out error at every depth 0..=MAX_DENOISE_ITERATIONS for frame `f` and its

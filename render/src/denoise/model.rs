@@ -100,7 +100,7 @@ pub struct Frame<'a> {
     pub radiance: &'a [Vec3],
 }
 
-fn luminance(c: Vec3) -> f32 {
+pub fn luminance(c: Vec3) -> f32 {
     crate::image::luminance(c.into())
 }
 

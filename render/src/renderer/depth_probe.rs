@@ -11,7 +11,7 @@ use super::Renderer;
 use crate::denoise::depth_probe::{
     DEPTH_PROBE_FRAMES, DepthChoice, choose_depth, crop, probe_window,
 };
-use crate::denoise::model::{Frame, Params, Pixel, same_surface};
+use crate::denoise::model::{Frame, Params, Pixel, luminance, same_surface};
 use crate::gpu_types::GpuDenoiseHistory;
 use crate::settings::Settings;
 
@@ -66,10 +66,12 @@ impl Renderer {
             return;
         }
         self.depth_probe.warm_frames += 1;
-        let settings = self.effective_settings();
-        if !settings.denoise_auto_depth || self.depth_probe.choice.is_some() {
+        let due =
+            self.depth_probe.kept.is_some() || self.depth_probe.warm_frames >= DEPTH_PROBE_FRAMES;
+        if !self.settings.denoise_auto_depth || self.depth_probe.choice.is_some() || !due {
             return;
         }
+        let settings = self.effective_settings();
         let start = std::time::Instant::now();
         if let Some(kept) = self.depth_probe.kept.take() {
             self.depth_probe.choice =
@@ -78,7 +80,7 @@ impl Renderer {
                         probe_ms: kept.ms + start.elapsed().as_secs_f64() * 1e3,
                         ..choice
                     });
-        } else if self.depth_probe.warm_frames >= DEPTH_PROBE_FRAMES {
+        } else {
             self.depth_probe.kept = self.keep_history().map(|kept| Kept {
                 ms: start.elapsed().as_secs_f64() * 1e3,
                 ..kept
@@ -109,20 +111,20 @@ impl Renderer {
     /// This frame's illumination at the kept frame's pixels (through the motion vectors,
     /// where the same surface is seen), then the probe.
     fn compare_with_this_frame(&self, kept: &Kept, settings: &Settings) -> Option<DepthChoice> {
-        let (width, height) = self.size();
+        let height = self.size().1;
         let (x0, y0, w, h) = kept.window;
         let surfaces = self.read_surfaces();
         let radiance = self.read_denoise_input();
         let mut held_out = vec![None; (w * h) as usize];
-        for (i, (s, r)) in surfaces.iter().zip(&radiance.pixels).enumerate() {
+        for (s, r) in surfaces.iter().zip(&radiance.pixels) {
             let now = Pixel::from_surface(s);
             // Where the point was last frame, in the kept window.
             let (px, py) = (now.motion.x.floor(), now.motion.y.floor());
-            if !now.valid || px < x0 as f32 || py < y0 as f32 {
+            if !now.valid || !now.motion.is_finite() || px < x0 as f32 || py < y0 as f32 {
                 continue;
             }
             let (kx, ky) = (px as u32 - x0, py as u32 - y0);
-            if kx >= w || ky >= h || i >= (width * height) as usize {
+            if kx >= w || ky >= h {
                 continue;
             }
             let k = (ky * w + kx) as usize;
@@ -132,7 +134,7 @@ impl Renderer {
             let illumination = (glam::Vec3::new(r[0], r[1], r[2]) - now.emission)
                 .max(glam::Vec3::ZERO)
                 / now.demodulation();
-            held_out[k] = Some(crate::image::luminance(illumination.into()));
+            held_out[k] = Some(luminance(illumination));
         }
         // The probe reads neither last frame's surfaces nor the radiance: it filters the
         // kept history (`model::variance`, `model::atrous`).

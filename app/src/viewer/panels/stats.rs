@@ -47,9 +47,11 @@ fn denoise_depth(ui: &mut Ui, state: &ViewerState) {
         return;
     };
     ui.label(format!(
-        "denoiser depth: {} à-trous iterations (closest to a held-out frame; the probe took \
+        "denoiser depth: {} à-trous iteration{} (closest to a held-out frame; the probe took \
          {:.0} ms of CPU once)",
-        choice.iterations, choice.probe_ms
+        choice.iterations,
+        if choice.iterations == 1 { "" } else { "s" },
+        choice.probe_ms
     ));
     let errors: Vec<String> = choice
         .held_out_error

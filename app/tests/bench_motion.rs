@@ -174,10 +174,30 @@ fn a_knob_that_auto_overrides_is_refused_and_a_named_sampler_runs() {
         err.contains("--knob light_candidates") && err.contains("would render with 4"),
         "{err}"
     );
-    let named = run(&["--set", "light_sampler=bvh"]);
+    let named = run(&["--set", "light_sampler=bvh", "--seeds", "2"]);
     assert!(
         named.status.success(),
         "{}",
         String::from_utf8_lossy(&named.stderr)
     );
+    // Each point keeps both seeds' median frame times (bench-map reads its cost ratios
+    // seed by seed from them), and its milliseconds are their mean.
+    let curves = std::fs::read_to_string(out.join("cost_curves.csv")).unwrap();
+    let mut lines = curves.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let column = |name: &str| header.iter().position(|h| *h == name).expect(name);
+    let (ms, seeds) = (column("median_frame_ms"), column("seed_median_frame_ms"));
+    let points: Vec<&str> = lines.collect();
+    assert_eq!(points.len(), 2, "{curves}");
+    for line in points {
+        let f: Vec<&str> = line.split(',').collect();
+        let each: Vec<f64> = f[seeds].split(';').map(|x| x.parse().unwrap()).collect();
+        assert_eq!(each.len(), 2, "{line}");
+        let mean: f64 = f[ms].parse().unwrap();
+        assert!(each.iter().all(|&x| x > 0.0), "{line}");
+        assert!(
+            (mean - (each[0] + each[1]) / 2.0).abs() < 1e-9 * mean,
+            "{line}"
+        );
+    }
 }

@@ -19,7 +19,11 @@ use super::run_loop::ConfigResult;
 #[derive(Clone, Debug, PartialEq)]
 pub struct CostPoint {
     pub knob: String,
+    /// Median frame time: the mean of the seeds' medians where there are several.
     pub ms: f64,
+    /// Each seed's median frame time, in seed order (empty where unknown: one seed, or a
+    /// `cost_curves.csv` written before they were kept).
+    pub seed_ms: Vec<f64>,
     pub rays_per_pixel: f64,
     pub candidates_per_pixel: f64,
     /// Per-frame luma RMSE (mean over seeds where there are several), the reference's own
@@ -131,9 +135,20 @@ pub fn curves(results: &[ConfigResult], noise: &[f64], knob_name: &str) -> Vec<C
             (None, Some(s)) => (s.mean_luma_rmse, f64::INFINITY),
             _ => continue,
         };
+        let seed_ms = if r.seed_frame_ms.len() > 1 {
+            r.seed_frame_ms.clone()
+        } else {
+            Vec::new()
+        };
+        let ms = if seed_ms.is_empty() {
+            r.median_frame_ms().unwrap_or(f64::NAN)
+        } else {
+            seed_ms.iter().sum::<f64>() / seed_ms.len() as f64
+        };
         let point = CostPoint {
             knob,
-            ms: r.median_frame_ms().unwrap_or(f64::NAN),
+            ms,
+            seed_ms,
             rays_per_pixel: r.times.shadow_rays_per_pixel_total,
             candidates_per_pixel: r.times.light_candidates_per_pixel,
             rmse: without_reference_noise(rmse, noise),
@@ -204,10 +219,12 @@ pub fn write(
         "light_candidates_per_pixel",
         "frame_luma_rmse_without_reference_noise",
         "frame_luma_rmse_ci95",
+        "seed_median_frame_ms",
     ]);
     let num = |x: f64| super::csv::num(Some(x).filter(|v| v.is_finite()));
     for c in &curves {
         for p in &c.points {
+            let seeds: Vec<String> = p.seed_ms.iter().map(|&ms| num(ms)).collect();
             points.row(vec![
                 c.name.clone(),
                 p.knob.clone(),
@@ -216,6 +233,7 @@ pub fn write(
                 num(p.candidates_per_pixel),
                 num(p.rmse),
                 num(p.rmse_ci95),
+                seeds.join(";"),
             ]);
         }
     }
@@ -334,6 +352,7 @@ mod tests {
         CostPoint {
             knob: format!("{ms}"),
             ms,
+            seed_ms: Vec::new(),
             rays_per_pixel: ms,
             candidates_per_pixel: 2.0 * ms,
             rmse,

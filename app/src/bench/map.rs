@@ -6,7 +6,11 @@
 //! rays; its squared bias and variance at the top knob value. Each curve's milliseconds
 //! are first smoothed by a straight-line fit over the knob: lavapipe's per-point medians
 //! scatter when other work shares the cores, and a curve read in the order of noisy times
-//! zig-zags. Writes `map.md` and `map.csv` into DIR.
+//! zig-zags. Where the cells kept each seed's timings, the ratio at the best error is also
+//! read seed by seed (the error curves stay the seeds' mean, so only the load moves it),
+//! and stated with its 95 % interval over the seeds: a verdict near a threshold such as
+//! 0.8× holds only where the whole interval lies on one side. Writes `map.md` and
+//! `map.csv` into DIR.
 
 use std::collections::BTreeMap;
 use std::fmt::Write;
@@ -14,6 +18,8 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use clap::Args;
+
+use restir_render::metrics::seeds::Interval;
 
 use super::csv::Table;
 use super::equal_error::{CostPoint, Reach, cost_at, split_knob};
@@ -34,6 +40,9 @@ pub struct Reading {
     /// Cost to reach the baseline's best (lowest) error and its middle-knob error, each
     /// ÷ the baseline's cost there (ms, then shadow rays); `None`: no usable point.
     pub ms_at_best: Option<(f64, Reach)>,
+    /// `ms_at_best` read with each seed's own timings, over the seeds (none where the cell
+    /// kept no per-seed timings).
+    pub ms_at_best_over_seeds: Option<Interval>,
     pub ms_at_middle: Option<(f64, Reach)>,
     pub rays_at_best: Option<f64>,
     /// The lowest error the curve reaches ÷ the baseline's lowest: where errors stop falling
@@ -125,6 +134,7 @@ fn read_cell(folder: &Path, knob: &str) -> anyhow::Result<Cell> {
         readings.push(Reading {
             config: config.clone(),
             ms_at_best: ratio(at_best, base_best),
+            ms_at_best_over_seeds: ratio_over_seeds(points, &base_points, best_rmse),
             ms_at_middle: ratio(cost_at(points, middle_rmse), base_middle),
             rays_at_best: at_best.map(|r| r.cost().rays_per_pixel),
             floor_ratio: lowest(points) / best_rmse,
@@ -160,9 +170,20 @@ pub fn read_curves(path: &Path) -> anyhow::Result<Vec<(String, Vec<CostPoint>)>>
         let f: Vec<&str> = line.split(',').collect();
         anyhow::ensure!(f.len() >= 7, "a row with {} fields: {line}", f.len());
         let num = |i: usize| f[i].trim().parse::<f64>().unwrap_or(f64::NAN);
+        // The eighth column, each seed's median frame time, came later.
+        let seed_ms = f
+            .get(7)
+            .map(|cell| {
+                cell.split(';')
+                    .filter(|x| !x.trim().is_empty())
+                    .map(|x| x.trim().parse::<f64>().unwrap_or(f64::NAN))
+                    .collect()
+            })
+            .unwrap_or_default();
         let point = CostPoint {
             knob: f[1].to_string(),
             ms: num(2),
+            seed_ms,
             rays_per_pixel: num(3),
             candidates_per_pixel: num(4),
             rmse: num(5),
@@ -177,6 +198,36 @@ pub fn read_curves(path: &Path) -> anyhow::Result<Vec<(String, Vec<CostPoint>)>>
         smooth_ms(points);
     }
     Ok(curves)
+}
+
+/// The cost ratio at `target` read once per seed: every point's milliseconds replaced by
+/// that seed's (then smoothed as the mean's are), on both curves. None unless every point
+/// of both curves holds the same number of seeds, at least two.
+fn ratio_over_seeds(points: &[CostPoint], base: &[CostPoint], target: f64) -> Option<Interval> {
+    let seeds = points.first()?.seed_ms.len();
+    let all = points.iter().chain(base);
+    if seeds < 2 || all.clone().any(|p| p.seed_ms.len() != seeds) {
+        return None;
+    }
+    let of_seed = |curve: &[CostPoint], k: usize| -> Vec<CostPoint> {
+        let mut points: Vec<CostPoint> = curve
+            .iter()
+            .map(|p| CostPoint {
+                ms: p.seed_ms[k],
+                ..p.clone()
+            })
+            .collect();
+        smooth_ms(&mut points);
+        points
+    };
+    let ratios: Vec<f64> = (0..seeds)
+        .filter_map(|k| {
+            let own = cost_at(&of_seed(points, k), target)?;
+            let base = cost_at(&of_seed(base, k), target)?;
+            Some(own.cost().ms / base.cost().ms)
+        })
+        .collect();
+    (ratios.len() == seeds).then(|| Interval::of(&ratios))
 }
 
 fn smooth_ms(points: &mut [CostPoint]) {
@@ -241,6 +292,17 @@ fn ratio_text(r: Option<(f64, Reach)>) -> String {
     }
 }
 
+/// " [0.71–0.83]": the 95 % interval of the ratio read seed by seed (nothing for the
+/// baseline against itself, or without per-seed timings).
+fn seeds_text(i: Option<Interval>) -> String {
+    match i {
+        Some(i) if i.half_width.is_finite() && i.half_width > 0.0 => {
+            format!(" [{:.2}–{:.2}]", i.low(), i.high())
+        }
+        _ => String::new(),
+    }
+}
+
 /// The configuration that reaches the baseline's best error at the least cost (a bound
 /// counts at its value), and that cost ÷ the baseline's.
 pub fn winner(cell: &Cell) -> Option<(&str, f64)> {
@@ -251,6 +313,35 @@ pub fn winner(cell: &Cell) -> Option<(&str, f64)> {
             _ => None,
         })
         .min_by(|a, b| a.1.total_cmp(&b.1))
+}
+
+/// A configuration's name without its settings: `ris+denoise[denoise_iterations=2]` →
+/// `ris+denoise`.
+fn bare(config: &str) -> &str {
+    config.split('[').next().unwrap_or(config)
+}
+
+/// A cell's settings where the map's cells ran the same configurations with other
+/// settings (each scene at its own depth, say): `denoise_iterations=1`, or each
+/// configuration's where they differ within the cell.
+fn settings_text(cell: &Cell) -> String {
+    let inner = |c: &str| {
+        c.find('[').map_or(String::new(), |i| {
+            c[i + 1..].trim_end_matches(']').to_string()
+        })
+    };
+    let mut all: Vec<String> = cell.readings.iter().map(|r| inner(&r.config)).collect();
+    all.dedup();
+    match all.as_slice() {
+        [one] if one.is_empty() => "—".into(),
+        [one] => format!("`{one}`"),
+        _ => cell
+            .readings
+            .iter()
+            .map(|r| format!("`{}`", r.config))
+            .collect::<Vec<_>>()
+            .join(", "),
+    }
 }
 
 pub fn markdown(cells: &[Cell]) -> String {
@@ -264,32 +355,65 @@ pub fn markdown(cells: &[Cell]) -> String {
         let _ = writeln!(
             out,
             "Each configuration's milliseconds to reach the baseline's best error, ÷ the \
-             baseline's (≤: already there at its cheapest point; >: not within the sweep), \
-             and in brackets the lowest error it reaches ÷ the baseline's lowest.\n"
+             baseline's (≤: already there at its cheapest point; >: not within the sweep); \
+             in square brackets, where each seed's timings were kept, the 95 % interval of \
+             that ratio read seed by seed; in round brackets the lowest error it reaches ÷ \
+             the baseline's lowest.\n"
         );
-        let configs: Vec<&str> = cells[0]
-            .readings
+        let names =
+            |c: &Cell| -> Vec<String> { c.readings.iter().map(|r| r.config.clone()).collect() };
+        // Cells that ran the same configurations with other settings share columns by
+        // their bare names, and a column says what each cell ran.
+        let by_settings = cells.iter().any(|c| names(c) != names(cells[0]));
+        let configs: Vec<String> = names(cells[0])
             .iter()
-            .map(|r| r.config.as_str())
+            .map(|n| {
+                if by_settings {
+                    bare(n).to_string()
+                } else {
+                    n.clone()
+                }
+            })
             .collect();
+        let settings_column = if by_settings { " settings |" } else { "" };
         let _ = writeln!(
             out,
-            "| scene | camera | {} | cheapest |",
+            "| scene | camera |{settings_column} {} | cheapest |",
             configs.join(" | ")
         );
-        let _ = writeln!(out, "|{}", " --- |".repeat(configs.len() + 3));
+        let columns = configs.len() + 3 + usize::from(by_settings);
+        let _ = writeln!(out, "|{}", " --- |".repeat(columns));
         for c in &cells {
             let ratios: Vec<String> = configs
                 .iter()
-                .map(|name| match c.readings.iter().find(|r| r.config == *name) {
-                    Some(r) => format!("{} ({:.2})", ratio_text(r.ms_at_best), r.floor_ratio),
-                    None => "—".to_string(),
+                .map(|name| {
+                    let found = c.readings.iter().find(|r| {
+                        if by_settings {
+                            bare(&r.config) == name
+                        } else {
+                            r.config == *name
+                        }
+                    });
+                    match found {
+                        Some(r) => format!(
+                            "{}{} ({:.2})",
+                            ratio_text(r.ms_at_best),
+                            seeds_text(r.ms_at_best_over_seeds),
+                            r.floor_ratio
+                        ),
+                        None => "—".to_string(),
+                    }
                 })
                 .collect();
             let win = winner(c).map_or("—".to_string(), |(w, x)| format!("`{w}` {x:.2}×"));
+            let settings = if by_settings {
+                format!(" {} |", settings_text(c))
+            } else {
+                String::new()
+            };
             let _ = writeln!(
                 out,
-                "| `{}` | {} | {} | {win} |",
+                "| `{}` | {} |{settings} {} | {win} |",
                 c.scene,
                 c.camera,
                 ratios.join(" | ")
@@ -309,6 +433,8 @@ fn csv_table(cells: &[Cell]) -> Table {
         "config",
         "baseline_best_rmse",
         "ms_vs_baseline_at_best",
+        "ms_vs_baseline_at_best_seed_mean",
+        "ms_vs_baseline_at_best_seed_ci95",
         "reach_at_best",
         "ms_vs_baseline_at_middle",
         "rays_per_pixel_at_best",
@@ -334,6 +460,11 @@ fn csv_table(cells: &[Cell]) -> Table {
                 r.config.clone(),
                 c.best_rmse.to_string(),
                 num(r.ms_at_best.map(|x| x.0)),
+                num(r.ms_at_best_over_seeds.map(|i| i.mean)),
+                num(r
+                    .ms_at_best_over_seeds
+                    .map(|i| i.half_width)
+                    .filter(|h| h.is_finite())),
                 r.ms_at_best
                     .map_or(String::new(), |x| code(&x.1).to_string()),
                 num(r.ms_at_middle.map(|x| x.0)),

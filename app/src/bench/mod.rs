@@ -364,6 +364,9 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
             .collect();
         r.over_seeds = seed_figures::of_seeds(&runs, &own.images[0], own.noise_luma_rmse);
     }
+    for (r, runs) in results.iter_mut().zip(&per_seed) {
+        r.seed_frame_ms = runs.iter().filter_map(|r| r.median_frame_ms()).collect();
+    }
     if !shot.moves() && args.seeds > 1 && !args.quiet {
         write_seed_maps(&args.out, &per_seed, &configs, &ref_sets)?;
     }

@@ -69,6 +69,10 @@ pub struct ConfigResult {
     pub moments: Option<PixelMoments>,
     /// Filled in by `mod.rs` once every seed ran: the image figures over the seeds.
     pub over_seeds: Option<SeedFigures>,
+    /// Filled in by `mod.rs` once every seed ran: each seed's median frame time, in seed
+    /// order (`times` is seed S's alone). The seeds' frames interleave the configurations
+    /// alike, so a cost ratio read seed by seed shows how far the load moved it.
+    pub seed_frame_ms: Vec<f64>,
 }
 
 impl ConfigResult {
@@ -212,6 +216,7 @@ impl<'a> ConfigRun<'a> {
             scores: self.scoring.summary()?,
             moments: self.scoring.into_moments(),
             over_seeds: None,
+            seed_frame_ms: Vec::new(),
             config: self.config,
             frames: self.records,
             budget: self.clock,

@@ -4,9 +4,9 @@
 # (scene, camera) is an independent job: run any subset, on any machine, in any order;
 # each writes its own folder and a finished one is skipped. Then `restir-viewer bench-map
 # docs/bench/crossover/map` writes map.md and map.csv. Usage: run.sh [FILTER] (a substring
-# of "scene camera"); OUT, CONFIGS, SEEDS, SIZE and BIN override the folder, the
-# configurations (the first is the baseline), the seed count (4), the size (384x256) and
-# the binary.
+# of "scene camera"); OUT, CONFIGS, SEEDS, SIZE, KNOB and BIN override the folder, the
+# configurations (the first is the baseline), the seed count (4), the size (384x256), the
+# light_candidates values (8,16,32) and the binary.
 set -e
 BIN=${BIN:-target/release/restir-viewer}
 OUT=${OUT:-docs/bench/crossover/map}
@@ -31,6 +31,6 @@ for job in "concourse static" "many-lights:65536 static" "city:131072 static" \
   start=$(date +%s)
   "$BIN" bench --scene "builtin:$scene" --size $size --frames 8 --warmup 8 --seeds ${SEEDS:-4} \
     --reference-spp $spp --camera $cam --configs "$CONFIGS" $extra \
-    --knob light_candidates=8,16,32 --quiet --out "$dir"
+    --knob light_candidates=${KNOB:-8,16,32} --quiet --out "$dir"
   echo "$scene $cam $(( $(date +%s) - start )) s" >> "$OUT/run-times.txt"
 done

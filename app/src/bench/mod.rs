@@ -120,7 +120,8 @@ pub struct BenchArgs {
     /// is then stated as a mean with a 95 % interval over the seeds, with the accumulated
     /// image's squared bias and variance apart (docs/src/results.md, "Error bars"), and the
     /// lag metrics of a dynamic scene's events are averaged over them. Times, frames and
-    /// the strip are seed S's.
+    /// the strip are seed S's, except `--knob`'s cost curves: their milliseconds are the
+    /// mean of every seed's median, each seed's kept beside it.
     #[arg(long, default_value_t = 1)]
     pub seeds: u32,
     /// A job of a sweep: write the tables and figures.json only (no plots, strip or

@@ -396,6 +396,11 @@ fn bad_denoiser_values_get_one_line() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("denoise_alpha") && !e.contains('\n'), "{e}");
+    let e = s
+        .apply_assignments(["denoise_auto_depth=sometimes"])
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("denoise_auto_depth") && !e.contains('\n'), "{e}");
     let warnings = s.apply_assignments(["denoise_iterations=99"]).unwrap();
     assert_eq!(s.denoise_iterations, 5, "{warnings:?}");
 }
@@ -403,10 +408,10 @@ fn bad_denoiser_values_get_one_line() {
 /// `denoise_auto_depth` on the GPU's own frames: no choice until the history has been warm
 /// for `DEPTH_PROBE_FRAMES` frames and the next frame has been held out, then one that is
 /// finite, the least held-out error, and what the next frames filter at; the same seed
-/// chooses the same; new settings forget it, and a bad value gets one line. (That the
-/// choice is the true best depth is measured on simulated histories with a known truth in
-/// the model's tests, and against references in docs/bench.md, "Choosing the depth per
-/// scene".)
+/// chooses the same; new settings forget it (a bad value's one line is checked in
+/// `bad_denoiser_values_get_one_line`). (That the choice is the true best depth is
+/// measured on simulated histories with a known truth in the model's tests, and against
+/// references in docs/bench.md, "Choosing the depth per scene".)
 #[test]
 fn the_depth_probe_chooses_once_warm_and_the_frames_follow_it() {
     use restir_render::denoise::depth_probe::DEPTH_PROBE_FRAMES;
@@ -458,11 +463,4 @@ fn the_depth_probe_chooses_once_warm_and_the_frames_follow_it() {
         None,
         "new settings kept the old choice"
     );
-
-    let mut s = restir_render::Settings::default();
-    let e = s
-        .apply_assignments(["denoise_auto_depth=sometimes"])
-        .unwrap_err()
-        .to_string();
-    assert!(e.contains("denoise_auto_depth") && !e.contains('\n'), "{e}");
 }

@@ -932,3 +932,63 @@ fn bench_map_without_cells_fails_in_one_line() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `bench-bvh` prints a row per scene time with the split tree (moving triangles apart,
+/// `scene::bvh::split`) beside the single tree and the two-level one; the renderer's
+/// `--stats` name the same moving triangles; a static scene is refused in one line.
+#[test]
+fn bench_bvh_measures_the_split_tree_the_renderer_builds() {
+    let out = viewer(&[
+        "bench-bvh",
+        "--scene",
+        "builtin:city-traffic:1024",
+        "--times",
+        "0,0.5",
+        "--repeats",
+        "1",
+        "--rays",
+        "16x10",
+    ]);
+    assert_success(&out);
+    let text = String::from_utf8_lossy(&out.stdout).to_string();
+    let moving: u64 = text
+        .lines()
+        .find_map(|l| l.strip_prefix("split tree: "))
+        .and_then(|l| l.split(" and ").nth(1)?.split(' ').next()?.parse().ok())
+        .unwrap_or_else(|| panic!("no split tree line: {text}"));
+    assert!(moving > 0);
+    let cells = |l: &str| -> Vec<String> {
+        l.trim_matches('|')
+            .split('|')
+            .map(|c| c.trim().to_string())
+            .collect()
+    };
+    let header = cells(text.lines().find(|l| l.starts_with("| time")).unwrap());
+    let rows: Vec<Vec<String>> = text
+        .lines()
+        .filter(|l| l.starts_with("| 0"))
+        .map(cells)
+        .collect();
+    assert_eq!(rows.len(), 2, "{text}");
+    for row in &rows {
+        assert_eq!(row.len(), header.len());
+        // The split tree's nodes per ray: the 13th column, a positive count.
+        assert_eq!(header[12], "split");
+        let visits: f64 = row[12].parse().unwrap();
+        assert!(visits > 0.0, "{row:?}");
+    }
+    let dir = temp_dir("bench_bvh");
+    let stats = dir.join("stats.json");
+    let rendered = render(
+        "builtin:city-traffic:1024",
+        &["--stats", stats.to_str().unwrap()],
+        &dir.join("city.png"),
+    );
+    assert_success(&rendered);
+    let doc = json_file(&stats);
+    assert_eq!(doc["scene"]["bvh_moving_triangles"].as_u64(), Some(moving));
+    assert_one_line_error(
+        &viewer(&["bench-bvh", "--scene", "builtin:cornell"]),
+        &["not an animated scene"],
+    );
+}

@@ -31,6 +31,7 @@ use wgpu::util::DeviceExt;
 use crate::gpu::Gpu;
 use crate::gpu_types::*;
 use crate::scene::bvh::Bvh;
+use crate::scene::bvh::split::MovingPart;
 use crate::scene::lights::LightTable;
 use crate::scene::{Aabb, Scene};
 use crate::tracing::RayBackend;
@@ -55,6 +56,9 @@ pub struct SceneInfo {
     pub bvh_nodes: usize,
     pub bvh_depth: usize,
     pub bvh_build_ms: f64,
+    /// Triangles in the tree's moving part, kept apart from the static ones
+    /// (`scene::bvh::split`); 0 for a single tree.
+    pub bvh_moving_triangles: usize,
     /// The phases from file to uploaded scene (loader's, then upload's; `load_phases.rs`).
     /// `render --stats` writes them, with the pipelines', as its own `load` block.
     #[serde(skip)]
@@ -165,6 +169,9 @@ pub struct GpuScene {
     /// previous triangle records (a rebuild reorders the previous ones too).
     slot_order: Vec<u32>,
     built_sah: f64,
+    /// The tree's moving part (`scene::bvh::split`), `None` for a single tree: what a
+    /// rebuild rebuilds and `built_sah` measures.
+    moving_part: Option<MovingPart>,
     triangle_records: Vec<GpuTriangle>,
     prev_triangle_records: Vec<GpuTriangle>,
     shading_records: Vec<GpuTriangleShading>,
@@ -213,6 +220,15 @@ fn node_capacity(scene: &Scene, bvh: &Bvh) -> Vec<GpuBvhNode> {
     nodes
 }
 
+/// The SAH cost the rebuild policy watches (`rebuild.rs`): the moving part's for a split
+/// tree (the static part never degrades), the whole tree's otherwise.
+fn tree_quality(bvh: &Bvh, moving_part: Option<MovingPart>) -> f64 {
+    match moving_part {
+        Some(part) => bvh.moving_sah_cost(part),
+        None => bvh.sah_cost(),
+    }
+}
+
 /// Σ select_pdf over the lights with a position.
 fn finite_share(pdfs: &[f32], shapes: &[LightShape]) -> f32 {
     pdfs.iter()
@@ -242,7 +258,9 @@ impl GpuScene {
             .map(|t| scene.triangle_positions(t))
             .collect();
         let start = Instant::now();
-        let mut bvh = Bvh::build(&positions);
+        // An animated scene keeps its moving meshes' triangles apart from the static ones,
+        // so their motion refits and rebuilds their part of the tree only (bvh/split.rs).
+        let (mut bvh, moving_part) = Bvh::build_split(&positions, &scene.moving_triangles());
         if bvh.nodes.is_empty() {
             // No triangles (the loaders refuse this, but stay safe): one empty-handed leaf
             // over the zero fallback triangle, so traversal ends at once.
@@ -259,7 +277,15 @@ impl GpuScene {
             quiet,
             "BVH build",
             bvh_build_ms,
-            format!("{} triangles, {} nodes", positions.len(), bvh.nodes.len()),
+            match moving_part {
+                Some(part) => format!(
+                    "{} triangles ({} moving, in their own subtree), {} nodes",
+                    positions.len(),
+                    positions.len() - part.first_slot,
+                    bvh.nodes.len()
+                ),
+                None => format!("{} triangles, {} nodes", positions.len(), bvh.nodes.len()),
+            },
         );
         let start = Instant::now();
         let (kept_materials, keep_punctual) = light_slots(scene);
@@ -399,6 +425,7 @@ impl GpuScene {
             bvh_nodes: bvh.nodes.len(),
             bvh_depth: bvh.depth(),
             bvh_build_ms,
+            bvh_moving_triangles: moving_part.map_or(0, |p| positions.len() - p.first_slot),
             bounds_min: bounds.min.into(),
             bounds_max: bounds.max.into(),
             environment: scene.environment.as_deref().map(|e| EnvironmentInfo {
@@ -472,7 +499,8 @@ impl GpuScene {
             light_motion_generation: 0,
             light_entries: lights.entries,
             slot_order: bvh.triangle_order.clone(),
-            built_sah: bvh.sah_cost(),
+            built_sah: tree_quality(&bvh, moving_part),
+            moving_part,
             triangle_records: if dynamic {
                 triangles.clone()
             } else {

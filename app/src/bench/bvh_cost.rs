@@ -1,7 +1,9 @@
-//! `bench-bvh`: the per-frame ray-tracing structure of an animated scene, three ways
-//! (docs/bench.md, "BVH: refit, rebuild or two levels"): the renderer's refit (tree built at the
-//! first time, boxes refitted), a full rebuild every frame, and a two-level BVH
-//! (`scene::bvh::two_level`: BLAS per instance built once, TLAS rebuilt every frame). For each
+//! `bench-bvh`: the per-frame ray-tracing structure of an animated scene, four ways
+//! (docs/bench.md, "BVH: refit, rebuild or two levels"): a single tree built at the first time
+//! and refitted, a full rebuild every frame, the renderer's split tree (`scene::bvh::split`:
+//! the moving triangles' subtree apart from the static one, only it refitted, and the price of
+//! rebuilding only it), and a two-level BVH (`scene::bvh::two_level`: BLAS per instance built
+//! once, TLAS rebuilt every frame). For each
 //! scene time: the CPU time of the per-frame work, the SAH cost, and the nodes visited and
 //! triangles tested by a fixed set of rays — primary rays from the scene camera and one shadow ray
 //! per hit to a point on an emitter — which measures traversal cost independently of the machine.
@@ -14,6 +16,7 @@ use glam::{Mat4, Vec3};
 use restir_render::load_scene;
 use restir_render::scene::Scene;
 use restir_render::scene::animation::ClipChoice;
+use restir_render::scene::bvh::split::MovingPart;
 use restir_render::scene::bvh::two_level::TwoLevelBvh;
 use restir_render::scene::bvh::{Bvh, Ray, Visits};
 use restir_render::scene::camera::Camera;
@@ -145,6 +148,29 @@ fn trace_single(bvh: &Bvh, ordered: &[[Vec3; 3]], rays: &RaySet) -> Visits {
     v
 }
 
+/// What rebuilding only the moving part costs (median), each time on a copy made before the
+/// clock starts: the split column stays refitted, as the renderer's tree between rebuilds.
+fn moving_part_rebuild_ms(
+    split: &Bvh,
+    part: MovingPart,
+    positions: &[[Vec3; 3]],
+    repeats: u32,
+) -> f64 {
+    let mut times: Vec<f64> = (0..repeats.max(1))
+        .map(|_| {
+            let mut copy = Bvh {
+                nodes: split.nodes.clone(),
+                triangle_order: split.triangle_order.clone(),
+            };
+            let t = Instant::now();
+            copy.rebuild_moving(part, positions);
+            t.elapsed().as_secs_f64() * 1e3
+        })
+        .collect();
+    times.sort_by(f64::total_cmp);
+    times[times.len() / 2]
+}
+
 fn trace_two_level(two: &TwoLevelBvh, rays: &RaySet) -> Visits {
     let mut v = Visits::default();
     for r in &rays.primary {
@@ -167,6 +193,22 @@ pub fn run(args: BvhCostArgs) -> anyhow::Result<()> {
     };
     anim.pose(&mut scene, first, ClipChoice::All);
     let mut refit = Bvh::build(&positions(&scene));
+    let moving = scene.moving_triangles();
+    let (mut split, part) = Bvh::build_split(&positions(&scene), &moving);
+    let Some(part) = part else {
+        anyhow::bail!(
+            "{}: no moving triangles beside static ones (nothing to keep apart)",
+            args.scene
+        );
+    };
+    let split_links = split.refit_links();
+    // What the renderer's rebuild policy compares with `BVH_REBUILD_FACTOR`.
+    let built_moving_sah = split.moving_sah_cost(part).max(f64::MIN_POSITIVE);
+    let refit_links = refit.refit_links();
+    // The single tree's slots of the moving triangles.
+    let refit_moving: Vec<usize> = (0..refit.triangle_order.len())
+        .filter(|&p| moving[refit.triangle_order[p] as usize])
+        .collect();
     let started = Instant::now();
     let mut two = TwoLevelBvh::new(&scene);
     let blas_ms = started.elapsed().as_secs_f64() * 1e3;
@@ -180,18 +222,31 @@ pub fn run(args: BvhCostArgs) -> anyhow::Result<()> {
     );
     println!();
     println!(
-        "| time | refit | rebuild | TLAS | SAH refit | SAH rebuild | SAH two-level | nodes/ray refit | rebuild | two-level | triangles/ray refit | rebuild | two-level |"
+        "split tree: {} static and {} moving triangles",
+        part.first_slot,
+        scene.triangles.len() - part.first_slot
     );
-    println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
+    println!();
+    println!(
+        "| time | refit | rebuild | split refit | split rebuild | TLAS | SAH refit | SAH rebuild | SAH split | SAH two-level | nodes/ray refit | rebuild | split | two-level | triangles/ray refit | rebuild | split | two-level | split: moving part's SAH ÷ built |"
+    );
+    println!(
+        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"
+    );
     for &t in &args.times {
         anim.pose(&mut scene, t, ClipChoice::All);
         let world: Vec<Mat4> = anim.world_matrices(t, ClipChoice::All);
         let pos = positions(&scene);
-        // As `GpuScene::update` does it: reorder into BVH order, then refit.
+        // As `GpuScene::update` does it: the moved triangles' leaves and the nodes above
+        // them (with a split tree, the moving part and the root).
         let refit_ms = median_ms(args.repeats, || {
-            let ordered = in_order(&refit, &pos);
-            refit.refit(&ordered);
+            refit.refit_moved(&refit_links, &refit_moving, |s| pos[s as usize]);
         });
+        let moved_slots: Vec<usize> = (part.first_slot..split.triangle_order.len()).collect();
+        let split_refit_ms = median_ms(args.repeats, || {
+            split.refit_moved(&split_links, &moved_slots, |s| pos[s as usize]);
+        });
+        let split_rebuild_ms = moving_part_rebuild_ms(&split, part, &pos, args.repeats);
         let mut rebuilt = None;
         let rebuild_ms = median_ms(args.repeats, || rebuilt = Some(Bvh::build(&pos)));
         let rebuilt = rebuilt.expect("built at least once");
@@ -202,18 +257,24 @@ pub fn run(args: BvhCostArgs) -> anyhow::Result<()> {
         let n = rays.primary.len() + rays.shadow.len();
         let v_refit = per_ray(trace_single(&refit, &refit_order, &rays), n);
         let v_rebuild = per_ray(trace_single(&rebuilt, &rebuilt_order, &rays), n);
+        let split_order = in_order(&split, &pos);
+        let v_split = per_ray(trace_single(&split, &split_order, &rays), n);
         let v_two = per_ray(trace_two_level(&two, &rays), n);
         println!(
-            "| {t} s | {refit_ms:.3} ms | {rebuild_ms:.3} ms | {tlas_ms:.3} ms | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} |",
+            "| {t} s | {refit_ms:.3} ms | {rebuild_ms:.3} ms | {split_refit_ms:.3} ms | {split_rebuild_ms:.3} ms | {tlas_ms:.3} ms | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.2} |",
             refit.sah_cost(),
             rebuilt.sah_cost(),
+            split.sah_cost(),
             two.sah_cost(),
             v_refit.0,
             v_rebuild.0,
+            v_split.0,
             v_two.0,
             v_refit.1,
             v_rebuild.1,
+            v_split.1,
             v_two.1,
+            split.moving_sah_cost(part) / built_moving_sah,
         );
     }
     Ok(())

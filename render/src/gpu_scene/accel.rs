@@ -88,22 +88,10 @@ fn needs_test(scene: &Scene, triangle: usize) -> bool {
 
 /// For each triangle (scene order), the animation mesh binding whose vertices it uses.
 fn triangle_meshes(scene: &Scene) -> Vec<Option<usize>> {
-    let Some(anim) = &scene.animation else {
-        return vec![None; scene.triangles.len()];
-    };
-    let mut by_first: Vec<usize> = (0..anim.meshes.len()).collect();
-    by_first.sort_by_key(|&m| anim.meshes[m].first);
-    scene
-        .triangles
-        .iter()
-        .map(|t| {
-            let v = t.indices[0];
-            let after = by_first.partition_point(|&m| anim.meshes[m].first <= v);
-            let m = *by_first.get(after.checked_sub(1)?)?;
-            let mesh = &anim.meshes[m];
-            (v < mesh.first + mesh.local.len() as u32).then_some(m)
-        })
-        .collect()
+    match &scene.animation {
+        Some(anim) => anim.triangle_bindings(&scene.triangles),
+        None => vec![None; scene.triangles.len()],
+    }
 }
 
 /// The world matrix of each moving mesh as posed (`Scene::mesh_transforms`), its node's

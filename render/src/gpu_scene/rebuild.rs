@@ -4,7 +4,9 @@
 //! from their leaf neighbours inflate its boxes (2.4× the nodes per ray at half an orbit of
 //! `dynamic:many-lights:65536`); a rebuild restores the tree at ~30× a refit's price. So
 //! every frame refits and compares the tree's SAH cost with the cost it had when built;
-//! past `BVH_REBUILD_FACTOR` times that, it rebuilds.
+//! past `BVH_REBUILD_FACTOR` times that, it rebuilds. In an animated scene the tree keeps
+//! the moving meshes' triangles in their own subtree (`scene::bvh::split`): only that part
+//! degrades, so only its cost is watched and only it is rebuilt.
 //!
 //! A rebuild reorders the triangles. Light identity survives because slots never move: a
 //! slot's triangle is fixed by `slot_order` (the upload's BVH order), and only the BVH
@@ -31,19 +33,37 @@ pub const BVH_REBUILD_FACTOR: f64 = 1.5;
 pub(super) struct RebuildPlant {
     pub skip_light_remap: bool,
     pub skip_previous_reorder: bool,
+    /// The whole scene rebuilt as one tree, as before its moving part was kept apart.
+    pub rebuild_whole_tree: bool,
 }
 
 impl GpuScene {
     /// After a refit: whether the policy asks for a rebuild now.
     pub(super) fn rebuild_due(&self) -> bool {
-        self.dynamic && self.bvh.sah_cost() > self.bvh_rebuild_factor * self.built_sah
+        self.dynamic
+            && super::tree_quality(&self.bvh, self.moving_part)
+                > self.bvh_rebuild_factor * self.built_sah
     }
 
-    /// A fresh tree over `positions` (scene order). Rewrites what depends on BVH order on
+    /// A fresh tree over `positions` (scene order): of the moving part only for a split
+    /// tree, the static part's nodes and slots kept. Rewrites what depends on BVH order on
     /// the CPU side and the previous triangles on the GPU; the caller writes the current
     /// triangles, shading and nodes (as after any geometry change) and the light table.
     pub(super) fn rebuild_bvh(&mut self, gpu: &Gpu, positions: &[[Vec3; 3]], plant: RebuildPlant) {
-        let bvh = Bvh::build(positions);
+        if plant.rebuild_whole_tree {
+            self.moving_part = None;
+        }
+        let bvh = match self.moving_part {
+            Some(part) => {
+                let mut bvh = Bvh {
+                    nodes: self.bvh.nodes.clone(),
+                    triangle_order: self.bvh.triangle_order.clone(),
+                };
+                bvh.rebuild_moving(part, positions);
+                bvh
+            }
+            None => Bvh::build(positions),
+        };
         let n = bvh.triangle_order.len();
         let mut old_position = vec![0usize; n];
         for (p, &source) in self.bvh.triangle_order.iter().enumerate() {
@@ -81,7 +101,7 @@ impl GpuScene {
         }
         self.bvh = bvh;
         self.motion_index = None;
-        self.built_sah = self.bvh.sah_cost();
+        self.built_sah = super::tree_quality(&self.bvh, self.moving_part);
         if !plant.skip_light_remap {
             repoint_triangle_entries(
                 &mut self.light_entries,

@@ -1,6 +1,7 @@
 //! Per-frame scene update for animated scenes: triangles and the BVH when geometry moved
-//! (a refit: same tree, new boxes; a rebuild once the refitted tree has degraded, see
-//! `rebuild.rs` and docs/bench.md) and the TLAS of the ray-query backend (`accel.rs`), the
+//! (a refit: same tree, new boxes, of the moving part only since that part is kept apart,
+//! `scene::bvh::split`; a rebuild of that part once it has degraded, see `rebuild.rs` and
+//! docs/bench.md) and the TLAS of the ray-query backend (`accel.rs`), the
 //! light
 //! table, punctual lights and materials only when lights changed. Buffers are rewritten in
 //! place, so bind groups stay valid, and light-table indices stay the light's identity

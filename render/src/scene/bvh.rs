@@ -13,6 +13,7 @@ use super::Aabb;
 use crate::gpu_types::GpuBvhNode;
 
 mod refit;
+pub mod split;
 mod traverse;
 pub mod two_level;
 

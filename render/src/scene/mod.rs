@@ -356,6 +356,15 @@ impl Scene {
         tri.indices.map(|i| self.vertices[i as usize].position)
     }
 
+    /// Per triangle, whether it belongs to a moving mesh of the animation (what the BVH keeps
+    /// apart, `bvh::split`); empty for a scene without animation.
+    pub fn moving_triangles(&self) -> Vec<bool> {
+        self.animation.as_ref().map_or_else(Vec::new, |a| {
+            let bindings = a.triangle_bindings(&self.triangles);
+            bindings.iter().map(Option::is_some).collect()
+        })
+    }
+
     /// True when the scene has no camera of its own (a file without one): the start
     /// camera is then [`Camera::framing`] of the bounds.
     pub fn camera_is_automatic(&self) -> bool {

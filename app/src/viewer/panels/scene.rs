@@ -40,6 +40,14 @@ pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
                     ),
                 ),
                 (
+                    // An animated scene's tree keeps them in their own subtree.
+                    "BVH moving part",
+                    match info.bvh_moving_triangles {
+                        0 => "none".to_string(),
+                        moving => format!("{moving} triangles, own subtree"),
+                    },
+                ),
+                (
                     "Ray-query structures",
                     info.accel
                         .map_or("none (no ray queries on this device)".to_string(), |a| {

@@ -181,22 +181,32 @@ impl SceneAnimation {
         events
     }
 
+    /// For each triangle, the mesh binding whose vertices it uses (`None`: it never
+    /// moves). A mesh's triangles use its own vertices only, so the first one tells; the
+    /// bindings sorted by first vertex make this O(T log meshes) even for 65536 separately
+    /// moving lights.
+    pub fn triangle_bindings(&self, triangles: &[super::Triangle]) -> Vec<Option<usize>> {
+        let mut by_first: Vec<usize> = (0..self.meshes.len()).collect();
+        by_first.sort_by_key(|&m| self.meshes[m].first);
+        triangles
+            .iter()
+            .map(|t| {
+                let v = t.indices[0];
+                let after = by_first.partition_point(|&m| self.meshes[m].first <= v);
+                let m = *by_first.get(after.checked_sub(1)?)?;
+                let mesh = &self.meshes[m];
+                (v < mesh.first + mesh.local.len() as u32).then_some(m)
+            })
+            .collect()
+    }
+
     /// Records which materials each moving mesh uses (once, after the triangles exist), so
     /// `pose` can tell cheaply whether a moving mesh is an emitter.
     pub fn bind_materials(&mut self, triangles: &[super::Triangle]) {
-        // Meshes sorted by first vertex: each triangle finds its mesh by binary search, so
-        // this is O(T log meshes) even for 65536 separately moving lights.
-        let mut by_first: Vec<usize> = (0..self.meshes.len()).collect();
-        by_first.sort_by_key(|&m| self.meshes[m].first);
         let mut materials: Vec<Vec<u32>> = vec![Vec::new(); self.meshes.len()];
-        for t in triangles {
-            let v = t.indices[0];
-            let after = by_first.partition_point(|&m| self.meshes[m].first <= v);
-            if let Some(&m) = after.checked_sub(1).map(|i| &by_first[i]) {
-                let mesh = &self.meshes[m];
-                if v < mesh.first + mesh.local.len() as u32 {
-                    materials[m].push(t.material);
-                }
+        for (t, binding) in triangles.iter().zip(self.triangle_bindings(triangles)) {
+            if let Some(m) = binding {
+                materials[m].push(t.material);
             }
         }
         for (mesh, mut used) in self.meshes.iter_mut().zip(materials) {

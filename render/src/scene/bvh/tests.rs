@@ -7,12 +7,12 @@ use super::traverse::intersect_triangle;
 use super::*;
 use crate::reservoir::test_support::Rng;
 
-fn random_point(rng: &mut Rng, lo: f32, hi: f32) -> Vec3 {
+pub(super) fn random_point(rng: &mut Rng, lo: f32, hi: f32) -> Vec3 {
     Vec3::new(rng.range(lo, hi), rng.range(lo, hi), rng.range(lo, hi))
 }
 
 /// Triangles of log-uniform sizes in the unit cube, with some large and some degenerate.
-fn random_soup(rng: &mut Rng, n: usize) -> Vec<[Vec3; 3]> {
+pub(super) fn random_soup(rng: &mut Rng, n: usize) -> Vec<[Vec3; 3]> {
     (0..n)
         .map(|_| {
             let center = random_point(rng, 0.0, 1.0);
@@ -32,7 +32,7 @@ fn random_soup(rng: &mut Rng, n: usize) -> Vec<[Vec3; 3]> {
         .collect()
 }
 
-fn random_ray(rng: &mut Rng) -> Ray {
+pub(super) fn random_ray(rng: &mut Rng) -> Ray {
     let dir = if rng.f32() < 0.1 {
         // Axis-aligned: exercises the infinite components of 1/dir.
         let mut d = Vec3::ZERO;
@@ -57,7 +57,7 @@ fn in_bvh_order(bvh: &Bvh, tris: &[[Vec3; 3]]) -> Vec<[Vec3; 3]> {
     bvh.in_leaf_order(tris)
 }
 
-fn brute_force(tris: &[[Vec3; 3]], ray: &Ray) -> Option<f32> {
+pub(super) fn brute_force(tris: &[[Vec3; 3]], ray: &Ray) -> Option<f32> {
     tris.iter()
         .filter_map(|tri| intersect_triangle(tri, ray.origin, ray.dir, ray.t_max))
         .map(|(t, _, _)| t)
@@ -116,7 +116,7 @@ fn closest_and_any_hit_match_brute_force() {
 
 /// Every triangle in exactly one reachable leaf, leaves of at most `MAX_LEAF` triangles,
 /// children inside parents, triangles inside their leaves, depth within the limit.
-fn check_structure(bvh: &Bvh, tris: &[[Vec3; 3]]) {
+pub(super) fn check_structure(bvh: &Bvh, tris: &[[Vec3; 3]]) {
     let n = tris.len();
     let mut seen = vec![false; n];
     for &i in &bvh.triangle_order {

@@ -3,7 +3,9 @@
 //! levels"): a bottom-level tree (BLAS) per instance — each animated mesh binding, plus one
 //! for every triangle that never moves — built once in the instance's own space, and a
 //! top-level tree (TLAS) over the instances' world boxes, rebuilt every frame. The renderer
-//! does not use it: the GPU traverses the single-level tree (shaders/common/trace_bvh.wgsl).
+//! does not use it: the GPU traverses one tree whose root keeps the moving triangles apart
+//! from the static ones (`split.rs`, shaders/common/trace_bvh.wgsl), refitted rather than
+//! re-placed.
 
 use glam::{Mat4, Vec3};
 

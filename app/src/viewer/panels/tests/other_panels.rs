@@ -243,6 +243,21 @@ fn the_scene_panel_lists_the_files_extensions() {
     assert!(!shows(&harness(scene::ui, s), "glTF extensions"));
 }
 
+/// The BVH's moving part: how many triangles the tree keeps apart, or none.
+#[test]
+fn the_scene_panel_says_when_moving_triangles_have_their_own_subtree() {
+    let mut s = state();
+    let mut info = scene_info(Vec::new());
+    info.bvh_moving_triangles = 102;
+    s.scene.info = Some(info);
+    let h = harness(scene::ui, s);
+    assert!(shows(&h, "BVH moving part") && shows(&h, "102 triangles, own subtree"));
+    let mut s = state();
+    s.scene.info = Some(scene_info(Vec::new()));
+    let h = harness(scene::ui, s);
+    assert!(shows(&h, "1 nodes, depth 1, 0 ms") && !shows(&h, "own subtree"));
+}
+
 /// The phases from file to first frame (docs/src/load-time.md, "Loading in the viewer"), and
 /// a load's phase on its progress bar.
 #[test]
@@ -328,6 +343,7 @@ fn scene_info(
         bvh_nodes: 1,
         bvh_depth: 1,
         bvh_build_ms: 0.1,
+        bvh_moving_triangles: 0,
         load: Default::default(),
         bounds_min: [0.0; 3],
         bounds_max: [1.0; 3],

@@ -27,6 +27,7 @@ fn the_side_panel_keeps_its_width_whatever_it_shows() {
         bvh_nodes: 250_000,
         bvh_depth: 31,
         bvh_build_ms: 812.0,
+        bvh_moving_triangles: 4096,
         load: Default::default(),
         bounds_min: [-1.0; 3],
         bounds_max: [1.0; 3],

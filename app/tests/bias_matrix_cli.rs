@@ -97,8 +97,29 @@ fn bench_states_image_figures_over_seeds_and_its_jobs_merge_to_the_same_figures(
         }
         assert!(!r["bias_verdict"].is_empty());
     }
+    // The equal-time gain over the first configuration, with its interval: exactly 1 for
+    // the first, an interval around the second's.
+    let gain = |r: &std::collections::HashMap<String, String>, c: &str| -> f64 {
+        r[c].parse().unwrap_or_else(|_| panic!("{c}: {:?}", r[c]))
+    };
+    assert_eq!(gain(&rows[0], "equal_time_gain_vs_first"), 1.0);
+    let (g, lo, hi) = (
+        gain(&rows[1], "equal_time_gain_vs_first"),
+        gain(&rows[1], "equal_time_gain_low"),
+        gain(&rows[1], "equal_time_gain_high"),
+    );
+    assert!(
+        0.0 < lo && lo < g && g < hi && hi.is_finite(),
+        "{lo} {g} {hi}"
+    );
     let md = read(&out.join("results.md"));
     assert!(md.contains("## Over 3 seeds"), "{md}");
+    assert!(
+        md.contains("## Equal time over 3 seeds: against `nee`")
+            && md.contains("| `nee` |")
+            && md.contains("1 (the baseline)"),
+        "{md}"
+    );
     assert!(out.join("seeds.png").is_file());
 
     // The same bench as one job per configuration under GNU parallel, then merged.

@@ -11,7 +11,7 @@ use anyhow::Context;
 use super::BenchInfo;
 use super::events::{EventLag, recovery_cell};
 use super::run_loop::ConfigResult;
-use super::seed_figures;
+use super::{equal_time_gain, seed_figures};
 
 /// The passes in pipeline order; others (from a newer renderer) follow alphabetically.
 pub const PASS_ORDER: &[&str] = &[
@@ -167,9 +167,11 @@ pub fn write_results(
         "timing",
     ]);
     header.extend(seed_figures::CSV_COLUMNS);
+    header.extend(equal_time_gain::CSV_COLUMNS);
     header.extend(LAG_COLUMNS);
     let mut table = Table::new(&header);
-    for r in results {
+    let gains = equal_time_gain::gains_vs_first(results);
+    for (r, gain) in results.iter().zip(gains) {
         let s = r.scores.clone().unwrap_or_default();
         let scored = r.scores.is_some();
         let mut cells = vec![
@@ -230,6 +232,7 @@ pub fn write_results(
             info.timing_note().to_string(),
         ]);
         cells.extend(seed_figures::csv_cells(r.over_seeds.as_ref()));
+        cells.extend(equal_time_gain::csv_cells(gain));
         for lag in lag_rows(info.event_source, &r.lag) {
             let mut row = cells.clone();
             row.extend(lag);

@@ -5,9 +5,11 @@ use std::fmt::Write;
 
 use super::BenchInfo;
 use super::csv::pass_names;
+use super::equal_time_gain;
 use super::references::CameraPath;
 use super::run_loop::ConfigResult;
 use super::seed_figures::SeedFigures;
+use restir_render::metrics::seeds::Interval;
 
 /// A number with 4 significant digits (errors), or "n/a".
 pub fn sig(x: Option<f64>) -> String {
@@ -259,6 +261,73 @@ fn seeds_table(md: &mut String, info: &BenchInfo, results: &[ConfigResult]) {
         .filter_map(|r| Some((r.config.name.as_str(), r.over_seeds.as_ref()?)))
         .collect();
     seed_figures_table(md, &rows);
+    equal_time_table(md, info, results);
+}
+
+/// Each configuration's equal-time gain over the first one, with its interval over the
+/// seeds (`equal_time_gain.rs`).
+fn equal_time_table(md: &mut String, info: &BenchInfo, results: &[ConfigResult]) {
+    let gains = equal_time_gain::gains_vs_first(results);
+    let Some(first) = results
+        .first()
+        .filter(|_| gains.iter().any(Option::is_some))
+    else {
+        return;
+    };
+    let _ = writeln!(
+        md,
+        "\n## Equal time over {} seeds: against `{}`\n",
+        info.seeds, first.config.name
+    );
+    let header: Vec<String> = [
+        "configuration",
+        "per-frame MSE",
+        "ms/frame (seeds' medians)",
+        "equal-time gain[^g]",
+        "verdict",
+    ]
+    .map(String::from)
+    .to_vec();
+    let rows: Vec<Vec<String>> = results
+        .iter()
+        .zip(&gains)
+        .enumerate()
+        .map(|(i, (r, gain))| {
+            let by_seed = r
+                .over_seeds
+                .as_ref()
+                .map_or(&[][..], |f| &f.frame_luma_rmse_by_seed[..]);
+            let mse: Vec<f64> = by_seed.iter().map(|x| x * x).collect();
+            let mse = Interval::of(&mse);
+            let ms = Interval::of(&r.seed_frame_ms);
+            vec![
+                format!("`{}`", r.config.name),
+                format!("{:.3e} ± {:.1e}", mse.mean, mse.half_width),
+                ms.display(1),
+                match gain {
+                    _ if i == 0 => "1 (the baseline)".to_string(),
+                    Some(g) => format!("{:.2} [{:.2}–{:.2}]", g.value, g.low, g.high),
+                    None => "n/a".to_string(),
+                },
+                match gain {
+                    _ if i == 0 => "–",
+                    Some(g) => g.verdict(),
+                    None => "n/a",
+                }
+                .to_string(),
+            ]
+        })
+        .collect();
+    table(md, &header, &rows);
+    let _ = writeln!(
+        md,
+        "\n[^g]: (per-frame MSE × ms/frame of `{}`) ÷ the row's, each the mean over the \
+         seeds (a seed's MSE: its mean per-frame luma RMSE squared; its ms: its median frame \
+         time). In brackets the 95 % interval: each mean's t-interval, relative, added in \
+         quadrature on the log scale. \"better\" where the interval lies above 1, \"worse\" \
+         below. Times are CPU times on lavapipe: ratios within one run only.",
+        first.config.name
+    );
 }
 
 /// One row of figures over seeds per named configuration, with the footnotes that define

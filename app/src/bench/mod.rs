@@ -16,6 +16,7 @@ pub(crate) mod csv;
 pub mod env_cost;
 mod equal_error;
 mod equal_time;
+mod equal_time_gain;
 mod event_strip;
 mod events;
 pub mod jobs;
@@ -121,7 +122,8 @@ pub struct BenchArgs {
     /// image's squared bias and variance apart (docs/src/results.md, "Error bars"), and the
     /// lag metrics of a dynamic scene's events are averaged over them. Times, frames and
     /// the strip are seed S's, except `--knob`'s cost curves: their milliseconds are the
-    /// mean of every seed's median, each seed's kept beside it.
+    /// mean of every seed's median, each seed's kept beside it, and the equal-time gain over
+    /// the first configuration, which rests on every seed's error and median time.
     #[arg(long, default_value_t = 1)]
     pub seeds: u32,
     /// A job of a sweep: write the tables and figures.json only (no plots, strip or

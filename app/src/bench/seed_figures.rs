@@ -19,6 +19,10 @@ pub struct SeedFigures {
     /// Measured frames per seed.
     pub frames: usize,
     pub frame_luma_rmse: Interval,
+    /// Each seed's mean per-frame luma RMSE, in seed order (the equal-time gain's input,
+    /// `equal_time_gain.rs`).
+    #[serde(default)]
+    pub frame_luma_rmse_by_seed: Vec<f64>,
     pub low_frequency_rmse: Interval,
     /// RGB RMSE of each seed's running average (still camera only).
     pub accumulated_rgb_rmse: Option<Interval>,
@@ -113,6 +117,7 @@ pub fn of_seeds(
         seeds: scores.len(),
         frames,
         frame_luma_rmse: each(&|s| s.mean_luma_rmse),
+        frame_luma_rmse_by_seed: scores.iter().map(|s| s.mean_luma_rmse).collect(),
         low_frequency_rmse: each(&|s| s.mean_low_frequency_rmse),
         accumulated_rgb_rmse: scores
             .iter()

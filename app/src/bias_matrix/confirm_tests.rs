@@ -42,6 +42,7 @@ fn row(cell: &Cell, frames: usize, ratios: &[f64]) -> FigureRow {
             seeds: ratios.len(),
             frames,
             frame_luma_rmse: Interval::of(&[0.1, 0.1]),
+            frame_luma_rmse_by_seed: vec![0.1, 0.1],
             low_frequency_rmse: Interval::of(&[0.01, 0.01]),
             accumulated_rgb_rmse: None,
             luma_ratio,

@@ -302,7 +302,11 @@ fn equal_time_table(md: &mut String, info: &BenchInfo, results: &[ConfigResult])
             let ms = Interval::of(&r.seed_frame_ms);
             vec![
                 format!("`{}`", r.config.name),
-                format!("{:.3e} ± {:.1e}", mse.mean, mse.half_width),
+                if mse.samples < 2 {
+                    "n/a".to_string()
+                } else {
+                    format!("{:.3e} ± {:.1e}", mse.mean, mse.half_width)
+                },
                 ms.display(1),
                 match gain {
                     _ if i == 0 => "1 (the baseline)".to_string(),
@@ -325,7 +329,7 @@ fn equal_time_table(md: &mut String, info: &BenchInfo, results: &[ConfigResult])
          seeds (a seed's MSE: its mean per-frame luma RMSE squared; its ms: its median frame \
          time). In brackets the 95 % interval: each mean's t-interval, relative, added in \
          quadrature on the log scale. \"better\" where the interval lies above 1, \"worse\" \
-         below. Times are CPU times on lavapipe: ratios within one run only.",
+         below. Like every time here, a ratio within this run only.",
         first.config.name
     );
 }

@@ -52,13 +52,18 @@ fn per_ray(v: Visits, rays: usize) -> (f64, f64) {
 }
 
 fn median_ms(repeats: u32, mut f: impl FnMut()) -> f64 {
-    let mut times: Vec<f64> = (0..repeats.max(1))
-        .map(|_| {
-            let t = Instant::now();
-            f();
-            t.elapsed().as_secs_f64() * 1e3
-        })
-        .collect();
+    median(
+        (0..repeats.max(1))
+            .map(|_| {
+                let t = Instant::now();
+                f();
+                t.elapsed().as_secs_f64() * 1e3
+            })
+            .collect(),
+    )
+}
+
+fn median(mut times: Vec<f64>) -> f64 {
     times.sort_by(f64::total_cmp);
     times[times.len() / 2]
 }
@@ -156,19 +161,19 @@ fn moving_part_rebuild_ms(
     positions: &[[Vec3; 3]],
     repeats: u32,
 ) -> f64 {
-    let mut times: Vec<f64> = (0..repeats.max(1))
-        .map(|_| {
-            let mut copy = Bvh {
-                nodes: split.nodes.clone(),
-                triangle_order: split.triangle_order.clone(),
-            };
-            let t = Instant::now();
-            copy.rebuild_moving(part, positions);
-            t.elapsed().as_secs_f64() * 1e3
-        })
-        .collect();
-    times.sort_by(f64::total_cmp);
-    times[times.len() / 2]
+    median(
+        (0..repeats.max(1))
+            .map(|_| {
+                let mut copy = Bvh {
+                    nodes: split.nodes.clone(),
+                    triangle_order: split.triangle_order.clone(),
+                };
+                let t = Instant::now();
+                copy.rebuild_moving(part, positions);
+                t.elapsed().as_secs_f64() * 1e3
+            })
+            .collect(),
+    )
 }
 
 fn trace_two_level(two: &TwoLevelBvh, rays: &RaySet) -> Visits {

@@ -42,17 +42,22 @@ pub struct SeedCosts<'a> {
 }
 
 impl SeedCosts<'_> {
-    fn mse(&self) -> Interval {
-        Interval::of(
-            &self
-                .frame_luma_rmse
-                .iter()
-                .map(|r| r * r)
-                .collect::<Vec<_>>(),
-        )
+    /// A bench configuration's, `None` when it was not scored.
+    pub fn of(r: &ConfigResult) -> Option<SeedCosts<'_>> {
+        Some(SeedCosts {
+            frame_luma_rmse: &r.over_seeds.as_ref()?.frame_luma_rmse_by_seed,
+            frame_ms: &r.seed_frame_ms,
+        })
     }
 
-    fn ms(&self) -> Interval {
+    /// The per-frame MSE over the seeds (each seed's RMSE squared).
+    pub fn mse(&self) -> Interval {
+        let squares: Vec<f64> = self.frame_luma_rmse.iter().map(|r| r * r).collect();
+        Interval::of(&squares)
+    }
+
+    /// The ms/frame over the seeds (each seed's median).
+    pub fn ms(&self) -> Interval {
         Interval::of(self.frame_ms)
     }
 }
@@ -85,13 +90,7 @@ pub fn equal_time_gain(base: &SeedCosts, row: &SeedCosts) -> Option<Gain> {
 /// seed, or a configuration that was not scored). The first against itself is exactly 1:
 /// the same seeds on both sides of the ratio, not two independent samples.
 pub fn gains_vs_first(results: &[ConfigResult]) -> Vec<Option<Gain>> {
-    fn costs(r: &ConfigResult) -> Option<SeedCosts<'_>> {
-        Some(SeedCosts {
-            frame_luma_rmse: &r.over_seeds.as_ref()?.frame_luma_rmse_by_seed,
-            frame_ms: &r.seed_frame_ms,
-        })
-    }
-    let base = results.first().and_then(costs);
+    let base = results.first().and_then(SeedCosts::of);
     let exactly_one = Gain {
         value: 1.0,
         low: 1.0,
@@ -101,7 +100,7 @@ pub fn gains_vs_first(results: &[ConfigResult]) -> Vec<Option<Gain>> {
         .iter()
         .enumerate()
         .map(|(i, r)| {
-            let gain = equal_time_gain(base.as_ref()?, &costs(r)?)?;
+            let gain = equal_time_gain(base.as_ref()?, &SeedCosts::of(r)?)?;
             Some(if i == 0 { exactly_one } else { gain })
         })
         .collect()

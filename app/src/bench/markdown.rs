@@ -5,11 +5,10 @@ use std::fmt::Write;
 
 use super::BenchInfo;
 use super::csv::pass_names;
-use super::equal_time_gain;
+use super::equal_time_gain::{self, SeedCosts};
 use super::references::CameraPath;
 use super::run_loop::ConfigResult;
 use super::seed_figures::SeedFigures;
-use restir_render::metrics::seeds::Interval;
 
 /// A number with 4 significant digits (errors), or "n/a".
 pub fn sig(x: Option<f64>) -> String {
@@ -293,21 +292,16 @@ fn equal_time_table(md: &mut String, info: &BenchInfo, results: &[ConfigResult])
         .zip(&gains)
         .enumerate()
         .map(|(i, (r, gain))| {
-            let by_seed = r
-                .over_seeds
-                .as_ref()
-                .map_or(&[][..], |f| &f.frame_luma_rmse_by_seed[..]);
-            let mse: Vec<f64> = by_seed.iter().map(|x| x * x).collect();
-            let mse = Interval::of(&mse);
-            let ms = Interval::of(&r.seed_frame_ms);
+            let costs = SeedCosts::of(r);
             vec![
                 format!("`{}`", r.config.name),
-                if mse.samples < 2 {
-                    "n/a".to_string()
-                } else {
-                    format!("{:.3e} ± {:.1e}", mse.mean, mse.half_width)
+                match costs.as_ref().map(SeedCosts::mse) {
+                    Some(mse) if mse.samples >= 2 => {
+                        format!("{:.3e} ± {:.1e}", mse.mean, mse.half_width)
+                    }
+                    _ => "n/a".to_string(),
                 },
-                ms.display(1),
+                costs.map_or("n/a".into(), |c| c.ms().display(1)),
                 match gain {
                     _ if i == 0 => "1 (the baseline)".to_string(),
                     Some(g) => format!("{:.2} [{:.2}–{:.2}]", g.value, g.low, g.high),

@@ -55,8 +55,10 @@ impl GpuScene {
         }
         let bvh = match self.moving_part {
             Some(part) => {
+                // The nodes move over (nothing below reads the old ones); the old order
+                // stays for the reorder.
                 let mut bvh = Bvh {
-                    nodes: self.bvh.nodes.clone(),
+                    nodes: std::mem::take(&mut self.bvh.nodes),
                     triangle_order: self.bvh.triangle_order.clone(),
                 };
                 bvh.rebuild_moving(part, positions);

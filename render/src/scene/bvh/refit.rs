@@ -9,6 +9,7 @@
 use glam::Vec3;
 
 use super::Bvh;
+use crate::gpu_types::GpuBvhNode;
 use crate::scene::Aabb;
 
 /// What a partial refit climbs: `Bvh::refit_links`.
@@ -96,11 +97,7 @@ impl Bvh {
                 }
                 b
             } else {
-                let child = |c: usize| Aabb {
-                    min: Vec3::from(self.nodes[c].min),
-                    max: Vec3::from(self.nodes[c].max),
-                };
-                child(first).union(child(first + 1))
+                node_box(&self.nodes[first]).union(node_box(&self.nodes[first + 1]))
             };
             self.nodes[i].min = bounds.min.to_array();
             self.nodes[i].max = bounds.max.to_array();
@@ -116,22 +113,28 @@ impl Bvh {
         let Some(root) = self.nodes.first() else {
             return 0.0;
         };
-        let area = |n: &crate::gpu_types::GpuBvhNode| {
-            Aabb {
-                min: Vec3::from(n.min),
-                max: Vec3::from(n.max),
-            }
-            .half_area() as f64
-        };
-        let root_area = area(root).max(f64::MIN_POSITIVE);
-        self.nodes
-            .iter()
-            .map(|n| {
-                let weight = if n.count > 0 { n.count as f64 } else { 1.0 };
-                area(n) / root_area * weight
-            })
-            .sum()
+        let root_area = node_area(root).max(f64::MIN_POSITIVE);
+        self.nodes.iter().map(|n| sah_term(n, root_area)).sum()
     }
+}
+
+/// A node's box.
+pub(super) fn node_box(n: &GpuBvhNode) -> Aabb {
+    Aabb {
+        min: Vec3::from(n.min),
+        max: Vec3::from(n.max),
+    }
+}
+
+pub(super) fn node_area(n: &GpuBvhNode) -> f64 {
+    node_box(n).half_area() as f64
+}
+
+/// One node's share of an SAH cost measured against a box of `root_area`: its area, times
+/// its triangles for a leaf (one traversal step for an interior node).
+pub(super) fn sah_term(n: &GpuBvhNode, root_area: f64) -> f64 {
+    let weight = if n.count > 0 { n.count as f64 } else { 1.0 };
+    node_area(n) / root_area * weight
 }
 
 #[cfg(test)]

@@ -17,8 +17,8 @@
 use glam::Vec3;
 
 use super::Bvh;
+use super::refit::{node_area, node_box, sah_term};
 use crate::gpu_types::GpuBvhNode;
-use crate::scene::Aabb;
 
 /// Where the moving part of a split tree lives.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -96,10 +96,7 @@ impl Bvh {
         let moving = std::iter::once(MOVING_ROOT).chain(part.first_node..self.nodes.len());
         moving
             .filter_map(|i| self.nodes.get(i))
-            .map(|n| {
-                let weight = if n.count > 0 { n.count as f64 } else { 1.0 };
-                node_area(n) / root_area * weight
-            })
+            .map(|n| sah_term(n, root_area))
             .sum()
     }
 
@@ -109,17 +106,6 @@ impl Bvh {
         self.nodes[0].min = b.min.to_array();
         self.nodes[0].max = b.max.to_array();
     }
-}
-
-fn node_box(n: &GpuBvhNode) -> Aabb {
-    Aabb {
-        min: Vec3::from(n.min),
-        max: Vec3::from(n.max),
-    }
-}
-
-fn node_area(n: &GpuBvhNode) -> f64 {
-    node_box(n).half_area() as f64
 }
 
 /// Copies `sub` into `nodes`: its root to `root_at`, its other nodes appended (sibling pairs

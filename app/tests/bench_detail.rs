@@ -1,8 +1,9 @@
-//! The scene where small shadow detail matters (`builtin:detail`, docs/bench.md, "Shadow
-//! detail") and the figure that sees it lost: the detail a frame keeps across the
-//! reference's edges. Raw RIS keeps about all of it (its noise is zero-mean across an
-//! edge); the denoiser's à-trous blur visibly does not. FLIP on the same edges judges
-//! both what is lost and what is added: raw noise is the more visible difference there.
+//! The scene where small shadow detail matters (`builtin:detail`,
+//! docs/src/measured/how-the-bench-measures.md, "Shadow detail") and the figure that sees it lost:
+//! the detail a frame keeps across the reference's edges. Raw RIS keeps about all of it (its noise
+//! is zero-mean across an edge); the denoiser's à-trous blur visibly does not. FLIP on the same
+//! edges judges both what is lost and what is added: raw noise is the more visible difference
+//! there.
 
 mod bench_support;
 use bench_support::quick_bench;

@@ -1,9 +1,9 @@
-//! `bench`'s lag metrics on `builtin:dynamic:blinking-lights` end to end (docs/bench.md,
-//! "Lag and ghosting"): the
-//! lag columns of `results.csv` are there and finite for the switch-off at 1 s, `events.csv`,
-//! `lag.png`, `lag_vs_noise.png` and `event_strip.png` are written, and — test power — a configuration that
-//! cannot let go of its history (M cap 10⁶, ratio clamp off) shows far more lag than one
-//! without history (M cap 1). GPU test (lavapipe in CI); ~15 s there.
+//! `bench`'s lag metrics on `builtin:dynamic:blinking-lights` end to end
+//! (docs/src/measured/how-the-bench-measures.md, "Light events: lag and ghosting"): the lag columns
+//! of `results.csv` are there and finite for the switch-off at 1 s, `events.csv`, `lag.png`,
+//! `lag_vs_noise.png` and `event_strip.png` are written, and — test power — a configuration that
+//! cannot let go of its history (M cap 10⁶, ratio clamp off) shows far more lag than one without
+//! history (M cap 1). GPU test (lavapipe in CI); ~15 s there.
 
 mod bench_support;
 

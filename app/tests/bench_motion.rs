@@ -1,6 +1,6 @@
-//! The bench with the camera or the scene moving (docs/bench.md, "Errors where the view
-//! moves"): a pan and a walk get a reference per frame that follows the camera, the
-//! denoiser stays finite there, and the error is stated within each frame's disoccluded
+//! The bench with the camera or the scene moving (docs/src/measured/how-the-bench-measures.md,
+//! "Errors where the view moves"): a pan and a walk get a reference per frame that follows the
+//! camera, the denoiser stays finite there, and the error is stated within each frame's disoccluded
 //! pixels and around moving triangles.
 
 mod bench_support;

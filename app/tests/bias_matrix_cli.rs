@@ -1,6 +1,6 @@
-//! Figures over seeds and sweeps as independent jobs (docs/src/results.md, "Error bars";
-//! docs/src/headless.md, "Sweeps as independent jobs"): `bench --seeds K` states every
-//! image figure with an interval; `bench --list-jobs` / `--merge` and `bias-matrix
+//! Figures over seeds and sweeps as independent jobs (docs/src/measured/how-the-bench-measures.md,
+//! "Error bars"; docs/src/headless.md, "Sweeps as independent jobs"): `bench --seeds K` states
+//! every image figure with an interval; `bench --list-jobs` / `--merge` and `bias-matrix
 //! --list-jobs` / `--merge` run the same sweep as separate processes under GNU parallel,
 //! and the merged table equals the one a single process writes.
 

@@ -16,23 +16,23 @@ use crate::shader_constants::{LIGHT_TILE_COUNT, LIGHT_TILE_SIZE};
 /// The light count from which `light_sampler=auto` presamples light tiles. Below it the
 /// fixed cost of presampling LIGHT_TILE_COUNT × LIGHT_TILE_SIZE lights every frame exceeds
 /// what the smaller working set saves; measured by the tiles on/off sweep over
-/// `builtin:many-lights:N` (docs/bench.md, "Light tiles: where they pay").
+/// `builtin:many-lights:N` (docs/src/measured/many-lights.md, "Light tiles: where they pay").
 pub const LIGHT_TILES_BREAK_EVEN: usize = 16384;
 
 /// `light_sampler=auto` takes the light BVH where the load-time probe (`light_probe.rs`)
 /// finds that a sampler by distance would need at least this many times fewer samples than
 /// the power table, and the scene has at least `LIGHT_BVH_MIN_LIGHTS` lights. The walk
-/// made the initial pass 2.7–5.9× the table's at 2^20 (docs/bench.md, "Light samplers at
-/// scale"): a gain of this size is what it must bring. Calibrated on the probe's figures
-/// for the measured scenes (docs/src/light-samplers.md, "Choosing"): the lowest where the
+/// made the initial pass 2.7–5.9× the table's at 2^20 (docs/src/measured/many-lights.md, "Light
+/// samplers at scale"): a gain of this size is what it must bring. Calibrated on the probe's
+/// figures for the measured scenes (docs/src/light-samplers.md, "Choosing"): the lowest where the
 /// BVH won at equal time is 24 (`city:1024`; 24–36 over `city:N`), the highest where it lost
 /// 6.2 (`many-lights:65536`; `concourse` 4.5); the threshold is their geometric mean.
 pub const LIGHT_BVH_MIN_LOCALITY: f32 = 12.0;
 /// Light candidates per pixel when `auto` takes the BVH (at most: `light_candidates` caps
-/// it). Chosen by equal-time measurement on `city:N` (docs/bench.md, "Light samplers at
-/// scale"): the count whose walk stays within a tenth of the frame at 2^20 (9.4 %) with the
-/// best equal-time gain over the tiles among those: 6.1× at 2^20, 5.1–6.7× down to 2^10.
-/// With 8 the gain is 7.3× but the walk 15 % of the frame; with 32, 8.1× and 40 %.
+/// it). Chosen by equal-time measurement on `city:N` (docs/src/measured/many-lights.md, "Light
+/// samplers at scale"): the count whose walk stays within a tenth of the frame at 2^20 (9.4 %) with
+/// the best equal-time gain over the tiles among those: 6.1× at 2^20, 5.1–6.7× down to 2^10. With 8
+/// the gain is 7.3× but the walk 15 % of the frame; with 32, 8.1× and 40 %.
 pub const AUTO_BVH_CANDIDATES: u32 = 4;
 /// Below this many lights the BVH was not measured against the table; `auto` keeps the
 /// table or the tiles there.
@@ -48,8 +48,8 @@ pub fn auto_takes_bvh(f: &SceneFeatures) -> bool {
 }
 
 /// The sampler `choice` means for a scene, and why: `auto` by the measurements
-/// (docs/bench.md, "Light tiles: where they pay" and "Light samplers at scale") and the
-/// scene's probe.
+/// (docs/src/measured/many-lights.md, "Light tiles: where they pay" and "Light samplers at scale")
+/// and the scene's probe.
 pub fn resolve_light_sampler(f: &SceneFeatures, choice: LightSampler) -> (LightSampler, String) {
     let lights = f.emissive_triangles + f.punctual_lights;
     let probe = match f.light_probe {

@@ -1,6 +1,7 @@
-//! The bench's temporal-stability figure (docs/bench.md, "How it measures"): how much the image
-//! changes from one frame to the next, relative to how bright the true image is. For consecutive
-//! frames t−1, t with references R (one per frame for a moving camera or scene, else the same):
+//! The bench's temporal-stability figure (docs/src/measured/how-the-bench-measures.md, "How it
+//! measures"): how much the image changes from one frame to the next, relative to how bright the
+//! true image is. For consecutive frames t−1, t with references R (one per frame for a moving
+//! camera or scene, else the same):
 //!
 //! ```text
 //! flicker_t = Σ_p |e_t(p) − e_{t−1}(p)| / Σ_p luma(R_t(p)),   e = luma(frame) − luma(R)
@@ -8,9 +9,9 @@
 //!
 //! For a still camera and scene e_t − e_{t−1} is the plain frame-to-frame luminance
 //! change; with motion or a light event it leaves out the true change of the image (as
-//! the stability RMSE does, docs/bench.md "How it measures"). It is an L1 figure, unlike
-//! the stability RMSE, and dimensionless: 0.05 = the average pixel moves by 5 % of the
-//! reference's mean luminance from one frame to the next. Pixels that are not finite in
+//! the stability RMSE does, docs/src/measured/how-the-bench-measures.md "How it measures"). It is
+//! an L1 figure, unlike the stability RMSE, and dimensionless: 0.05 = the average pixel moves by
+//! 5 % of the reference's mean luminance from one frame to the next. Pixels that are not finite in
 //! either image are skipped (the metrics module's rule).
 
 use crate::image::{LinearImage, luminance};

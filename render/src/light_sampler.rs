@@ -22,7 +22,7 @@ use crate::shader_constants::{LIGHT_BVH_CONE_SLACK, LIGHT_BVH_LEAF, LIGHT_BVH_NO
 /// Rewritten nodes closer than this are uploaded in one write with the nodes between them.
 const UPLOAD_GAP: usize = 64;
 
-/// What the light samplers cost, for `--stats`, the viewer and docs/bench.md.
+/// What the light samplers cost, for `--stats`, the viewer and docs/src/measured/many-lights.md.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct LightSamplerStats {
     /// Lights in the BVH, its nodes, its bytes on the GPU (nodes and trails).

@@ -1,6 +1,6 @@
-//! Image metrics against a converged reference (docs/bench.md, "How it measures"): per-frame
-//! accuracy, frame-to-frame
-//! stability, accumulated accuracy and energy bias (luma ratio), plus an error heatmap.
+//! Image metrics against a converged reference (docs/src/measured/how-the-bench-measures.md, "How
+//! it measures"): per-frame accuracy, frame-to-frame stability, accumulated accuracy and energy
+//! bias (luma ratio), plus an error heatmap.
 //!
 //! Non-finite pixels (NaN or ±∞ in any colour channel of either image) are skipped by every
 //! metric rather than turning it into NaN; [`non_finite_pixels`] and
@@ -197,8 +197,8 @@ pub fn error_heatmap_scaled(
     })
 }
 
-/// Feeds frames one at a time against a reference and reports the numbers docs/bench.md
-/// defines ("How it measures").
+/// Feeds frames one at a time against a reference and reports the numbers
+/// docs/src/measured/how-the-bench-measures.md defines ("How it measures").
 pub struct SequenceMetrics {
     reference: LinearImage,
     previous: Option<LinearImage>,

@@ -1,4 +1,5 @@
-//! Converged reference images (docs/bench.md, "Reference cache"), cached on disk.
+//! Converged reference images (docs/src/measured/how-the-bench-measures.md, "Reference cache"),
+//! cached on disk.
 //!
 //! A reference is the average of many frames of `Mode::Reference` (the unbiased
 //! light + BSDF MIS estimator). Rendering one takes seconds to minutes, so it is stored as

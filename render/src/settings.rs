@@ -177,7 +177,7 @@ impl LightSampler {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RayBackendChoice {
     /// Ray queries on a GPU that has them, else the software BVH (also on CPU adapters,
-    /// whose ray queries are slower than it: docs/bench.md "Ray queries").
+    /// whose ray queries are slower than it: docs/src/measured/compile-and-load.md "Ray queries").
     Auto,
     /// The BVH built on the CPU, traversed in WGSL (every adapter).
     Software,

@@ -63,7 +63,8 @@ pub use crate::gpu::RayQueryUnavailable;
 pub struct Device<'a> {
     pub ray_query: bool,
     /// A CPU implementation (lavapipe): its ray queries are software too, and slower than
-    /// this project's BVH (docs/bench.md "Ray queries"), so `auto` keeps the BVH there.
+    /// this project's BVH (docs/src/measured/compile-and-load.md "Ray queries"), so `auto` keeps
+    /// the BVH there.
     pub is_cpu: bool,
     pub adapter: &'a str,
 }

@@ -1,11 +1,10 @@
-//! The bias matrix's fast slice (docs/src/results.md, "The bias matrix"): six cells at a
-//! small size, each a signed bias with its 95 % interval over seeds and the matrix's
-//! verdict, computed with the same code the `bias-matrix` command uses
-//! (`metrics::seeds`, `metrics::pixel_moments`). Unbiased estimators must land on
-//! "consistent with 0" (or at least an interval that contains 0, where it is too wide to
-//! decide); each planted error — a dropped 1/M, a missing Jacobian, a wrong PDF — must
-//! land on "biased". Every cell also checks its own power: an interval so wide that the
-//! planted errors would fit in it proves nothing.
+//! The bias matrix's fast slice (docs/src/measured/unbiased-reuse.md, "The bias matrix"): six cells
+//! at a small size, each a signed bias with its 95 % interval over seeds and the matrix's verdict,
+//! computed with the same code the `bias-matrix` command uses (`metrics::seeds`,
+//! `metrics::pixel_moments`). Unbiased estimators must land on "consistent with 0" (or at least an
+//! interval that contains 0, where it is too wide to decide); each planted error — a dropped 1/M, a
+//! missing Jacobian, a wrong PDF — must land on "biased". Every cell also checks its own power: an
+//! interval so wide that the planted errors would fit in it proves nothing.
 //!
 //! Sizes are tiny (lavapipe on two cores); every tolerance says where it comes from.
 
@@ -241,11 +240,11 @@ fn the_light_bvh_is_unbiased_and_a_wrong_pdf_is_caught() {
 
 #[test]
 fn restir_di_on_the_glossy_room_is_unbiased_over_seeds() {
-    // The room whose one-seed figure once read "3 % dark" (docs/src/results.md, "Why the
-    // glossy room converges slowly"): over 8 seeds its mean is the reference's. Its
-    // accumulated image spreads far wider than RIS's, so this interval is the widest of
-    // the slice (measured +0.54 % ± 1.51 %); ±2.5 % of power still tells a −3 % bias, the
-    // size the one-seed figure suggested, from none.
+    // The room whose one-seed figure once read "3 % dark" (docs/src/measured/unbiased-reuse.md,
+    // "Why the glossy room converges slowly"): over 8 seeds its mean is the reference's. Its
+    // accumulated image spreads far wider than RIS's, so this interval is the widest of the slice
+    // (measured +0.54 % ± 1.51 %); ±2.5 % of power still tells a −3 % bias, the size the one-seed
+    // figure suggested, from none.
     let glossy = Cell {
         scene: "builtin:glossy",
         seeds: 8,

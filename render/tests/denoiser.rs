@@ -411,7 +411,7 @@ fn bad_denoiser_values_get_one_line() {
 /// chooses the same; new settings forget it (a bad value's one line is checked in
 /// `bad_denoiser_values_get_one_line`). (That the choice is the true best depth is
 /// measured on simulated histories with a known truth in the model's tests, and against
-/// references in docs/bench.md, "Choosing the depth per scene".)
+/// references in docs/src/measured/denoiser.md, "Choosing the depth per scene".)
 #[test]
 fn the_depth_probe_chooses_once_warm_and_the_frames_follow_it() {
     use restir_render::denoise::depth_probe::DEPTH_PROBE_FRAMES;

@@ -4,12 +4,12 @@
 //! frame's geometry (the shortcut before, kept as the setting's off state and as the planted
 //! twin here) a moving occluder credits the previous pixel with samples it could not see,
 //! and the image comes out dark: `builtin:dynamic:moving-occluder` was 0.980 of its
-//! per-frame references (docs/bench.md).
+//! per-frame references (docs/src/measured/unbiased-reuse.md, "Animated scenes").
 //!
 //! The detector: the blade turning at 10 frames per second (9° a frame, three times the
-//! 30-fps sweep of docs/bench.md, so the bias is larger than at 30 fps and the test can stay
-//! small), restir's running average over the frames against the average of per-frame
-//! references, for both backends. Needs a device with ray queries
+//! 30-fps sweep of docs/src/measured/unbiased-reuse.md, so the bias is larger than at 30 fps and
+//! the test can stay small), restir's running average over the frames against the average of
+//! per-frame references, for both backends. Needs a device with ray queries
 //! (docs/src/getting-started.md, "A machine without a GPU").
 
 mod common;
@@ -96,8 +96,8 @@ fn a_moving_occluder_leaves_the_image_unbiased_with_last_frames_geometry() {
         );
         // Measured 1.004 with either backend, the twin 0.948. Tolerance: 2 seeds × 12 frames
         // at 48×32 against 12 references of 64 spp leave the ratio a noise of about 0.5 %
-        // (docs/bench.md's 4 seeds at 64×48: ± 0.2 %); 1.5 % is three of those, and the
-        // twin is 5 % dark, more than twice the tolerance below the fix.
+        // (docs/src/measured/unbiased-reuse.md's 4 seeds at 64×48: ± 0.2 %); 1.5 % is three of
+        // those, and the twin is 5 % dark, more than twice the tolerance below the fix.
         assert!(
             (ratio - 1.0).abs() < 0.015,
             "{backend}: {ratio:.4} of the references"

@@ -3,11 +3,11 @@
 //! pixel's luminance and its survivor-change fraction. The detector has two halves: a
 //! frozen scene rendered by the reference with jitter off and the same random numbers
 //! every frame does not boil at all (0 everywhere), and ReSTIR at M cap 100 with
-//! permutation sampling boils more than at M cap 5 (docs/bench.md, "A high M cap on a
-//! static stretch": a mosaic of long-lived samples passed between neighbours). The
-//! planted twin computes "boiling" from the current frame alone (its 3 × 3 neighbourhood)
-//! and must fail the detector; a second guard shows the zero is not the window's doing
-//! (new random numbers per frame do boil).
+//! permutation sampling boils more than at M cap 5 (docs/src/measured/dynamic-scenes.md, "A high M
+//! cap on a static stretch": a mosaic of long-lived samples passed between neighbours). The planted
+//! twin computes "boiling" from the current frame alone (its 3 × 3 neighbourhood) and must fail the
+//! detector; a second guard shows the zero is not the window's doing (new random numbers per frame
+//! do boil).
 //!
 //! 48 × 32 pixels, a few dozen frames each (lavapipe on two cores).
 

@@ -147,9 +147,9 @@ fn frozen_high_cap_ratio(planted: &[&str], extra: &[&str]) -> f64 {
 fn a_high_m_cap_with_permutation_is_unbiased() {
     // The history is a neighbour's reservoir carrying 100× the fresh sample's confidence;
     // rejecting it for its sample gave the canonical sample weight 1 instead of ~1/101
-    // (+3–6 % in docs/bench.md). Kept as a domain the estimate is unbiased: 8 seeds measured
-    // 0.998–1.012, mean 1.0036 ± 0.0016. 1.5 % is > 6 σ of the 4-seed mean (one seed spreads by
-    // ±0.45 %); the planted twin's seeds are all above +3.5 %.
+    // (+3–6 % in docs/src/measured/dynamic-scenes.md). Kept as a domain the estimate is
+    // unbiased: 8 seeds measured 0.998–1.012, mean 1.0036 ± 0.0016. 1.5 % is > 6 σ of the
+    // 4-seed mean (one seed spreads by ±0.45 %); the planted twin's seeds are all above +3.5 %.
     let ratio = frozen_high_cap_ratio(&[], &[]);
     eprintln!("frozen blinking-lights, M cap 100: restir / reference = {ratio:.4}");
     assert!((ratio - 1.0).abs() < 0.015, "ratio {ratio:.4}");

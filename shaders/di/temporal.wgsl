@@ -96,7 +96,7 @@ fn previous_lights() -> bool {
 // Which frame's geometry the previous pixel's visibility is traced against: last frame's
 // (`previous_geometry`, animated scenes) or, as a shortcut, this frame's. A moving occluder
 // makes the two differ: with this frame's the previous pixel's domain is credited with
-// samples it could not see (moving-occluder 2 % dark, docs/bench.md).
+// samples it could not see (moving-occluder 2 % dark, docs/src/measured/unbiased-reuse.md).
 fn previous_geometry() -> u32 {
 #ifdef ANIMATION
     if (params.flags & PARAM_FLAG_PREVIOUS_GEOMETRY) != 0u {

@@ -1,5 +1,5 @@
-//! What the bias matrix runs (docs/src/results.md, "The bias matrix"): every built-in
-//! scene (the families at a stated N), the real-world models, and every estimator a user
+//! What the bias matrix runs (docs/src/measured/unbiased-reuse.md, "The bias matrix"): every
+//! built-in scene (the families at a stated N), the real-world models, and every estimator a user
 //! can pick. A cell is one scene and one estimator; each runs as one `bench` command.
 
 use crate::bench::jobs::slug;

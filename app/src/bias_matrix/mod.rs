@@ -1,5 +1,5 @@
 //! `bias-matrix`: every scene × every estimator over K seeds against a high-spp reference,
-//! one verdict per cell (docs/src/results.md, "The bias matrix"). Each cell is one
+//! one verdict per cell (docs/src/measured/unbiased-reuse.md, "The bias matrix"). Each cell is one
 //! `bench` run writing `figures.json` under `OUT/cells/SCENE/ESTIMATOR/`, so the same sweep
 //! runs in this process, or as independent jobs (`--list-jobs` prints one command per cell
 //! for GNU parallel, a Slurm array or a Kubernetes indexed Job; `--merge` builds the table
@@ -8,8 +8,8 @@
 //! A cell found biased is run again with `--confirm` times the frames before the table
 //! calls it biased: a real bias keeps its size as frames grow, while the shortfall of an
 //! unbiased estimator with heavy tails (rare huge samples that K seeds of a few frames
-//! never drew) shrinks or widens into an undecided interval (docs/src/results.md, "The
-//! bias matrix").
+//! never drew) shrinks or widens into an undecided interval (docs/src/measured/unbiased-reuse.md,
+//! "The bias matrix").
 
 pub mod cells;
 mod table;

@@ -1,10 +1,9 @@
 //! The denoiser's companion preset: switching the denoiser on in the Pipeline panel
 //! switches to `restir-denoised` (render/src/settings/preset.rs), the ReSTIR that the
-//! crossover map found cheapest through the denoiser (docs/bench.md, "The crossover map at
-//! 384×256"), and opens the split screen with denoised RIS as B, so both errors stand on
-//! the image. Switching the denoiser off again brings back the settings, mode and split
-//! screen of before. The Pipeline panel's "Denoiser on: switch to restir-denoised" box
-//! turns this off.
+//! crossover map found cheapest through the denoiser (docs/src/measured/denoiser.md, "The crossover
+//! map at 384×256"), and opens the split screen with denoised RIS as B, so both errors stand on the
+//! image. Switching the denoiser off again brings back the settings, mode and split screen of
+//! before. The Pipeline panel's "Denoiser on: switch to restir-denoised" box turns this off.
 
 use restir_render::settings::preset;
 use restir_render::{Mode, Settings};
@@ -46,7 +45,7 @@ pub fn follow_denoiser(state: &mut ViewerState, was_on: bool) {
         state.compare.error = None;
         state.preset_message = Some(format!(
             "Denoiser on: restir-denoised (temporal reuse, M cap 4, no spatial reuse), \
-             B = {COMPARE_WITH} (docs/bench.md, \"The crossover map at 384×256\")"
+             B = {COMPARE_WITH} (docs/src/measured/denoiser.md, \"The crossover map at 384×256\")"
         ));
     } else if let Some(saved) = state.denoised_preset.saved.take() {
         state.settings = Settings {

@@ -29,7 +29,8 @@ macro_rules! rows {
                 denoise_iterations: u32 = 3, ParamKind::Int { min: 1, max: MAX_DENOISE_ITERATIONS as i64 }, "À-trous iterations",
                     "À-trous passes, taps 1, 2, 4, … pixels apart: 3 reach 2 × (1 + 2 + \
                         4) = 14 px each way. Measured on builtin:concourse at 96×64 \
-                        (docs/bench.md, \"Through a denoiser\"): 3 gave the lowest per-frame \
+                        (docs/src/measured/denoiser.md, \"Through a denoiser\"): 3 gave the \
+                        lowest per-frame \
                         error (ris + denoiser: 0.0184 luma RMSE; 4: 0.0197; 5: 0.0207) and \
                         each iteration costs ~6 % of a restir frame; a larger image wants \
                         more.";

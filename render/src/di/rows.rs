@@ -71,8 +71,8 @@ macro_rules! rows {
                         neighbourhood mean (docs/src/spatial-reuse.md, \"The boiling \
                         filter\"). 0 = off. Biased: the decision looks at the sample's \
                         value, so it darkens (2: −3.5 % on a frozen blinking-lights at M cap \
-                        100, −5 % on the concourse) while it lowers flicker (docs/bench.md, \
-                        \"Boiling\").";
+                        100, −5 % on the concourse) while it lowers flicker \
+                        (docs/src/measured/dynamic-scenes.md, \"Boiling\").";
             }
             Resampling {
                 m_cap: f32 = 20.0, ParamKind::Float { min: 0.0, max: 1e6 }, "M cap",

@@ -26,13 +26,14 @@ macro_rules! rows {
                         light, separately). 10, half the direct light's: a GI sample's \
                         cached radiance is never re-evaluated, so it outlives a lighting \
                         change for about M cap frames (recovery took ~M cap frames for \
-                        direct light, docs/bench.md \"Lag and ghosting\").";
+                        direct light, docs/src/measured/dynamic-scenes.md \"Lag and \
+                        ghosting\").";
                 gi_light_candidates: u32 = 0, ParamKind::Int { min: 0, max: 256 }, "GI light candidates",
                     "Light candidates of the RIS at GI's secondary vertex (the direct \
                         light its sample carries). 0: DI's `light_candidates`. With the \
                         light BVH at the vertices a few of its candidates do what 32 of the \
-                        table's do, for an eighth of the walks (docs/bench.md, \"At every \
-                        vertex\").";
+                        table's do, for an eighth of the walks \
+                        (docs/src/measured/many-lights.md, \"At every vertex\").";
                 gi_spatial_neighbours: u32 = 3, ParamKind::Int { min: 0, max: MAX_SPATIAL_NEIGHBOURS as i64 }, "GI neighbours",
                     "Neighbours tried per pixel in GI spatial reuse. 3, fewer than direct \
                         light's 5: each one costs a reconnection shadow ray when GI \

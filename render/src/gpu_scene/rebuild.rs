@@ -1,12 +1,12 @@
 //! Refit, then rebuild when the refitted tree got too slow: the BVH policy for animated
-//! scenes, chosen from `restir-viewer bench-bvh` (docs/bench.md "BVH: refit, rebuild or two
-//! levels"). A refit keeps the tree's order and costs little, but emitters drifting away
-//! from their leaf neighbours inflate its boxes (2.4× the nodes per ray at half an orbit of
-//! `dynamic:many-lights:65536`); a rebuild restores the tree at ~30× a refit's price. So
-//! every frame refits and compares the tree's SAH cost with the cost it had when built;
-//! past `BVH_REBUILD_FACTOR` times that, it rebuilds. In an animated scene the tree keeps
-//! the moving meshes' triangles in their own subtree (`scene::bvh::split`): only that part
-//! degrades, so only its cost is watched and only it is rebuilt.
+//! scenes, chosen from `restir-viewer bench-bvh` (docs/src/measured/dynamic-scenes.md "BVH: refit,
+//! rebuild or two levels"). A refit keeps the tree's order and costs little, but emitters drifting
+//! away from their leaf neighbours inflate its boxes (2.4× the nodes per ray at half an orbit of
+//! `dynamic:many-lights:65536`); a rebuild restores the tree at ~30× a refit's price. So every
+//! frame refits and compares the tree's SAH cost with the cost it had when built; past
+//! `BVH_REBUILD_FACTOR` times that, it rebuilds. In an animated scene the tree keeps the moving
+//! meshes' triangles in their own subtree (`scene::bvh::split`): only that part degrades, so only
+//! its cost is watched and only it is rebuilt.
 //!
 //! A rebuild reorders the triangles. Light identity survives because slots never move: a
 //! slot's triangle is fixed by `slot_order` (the upload's BVH order), and only the BVH
@@ -24,7 +24,7 @@ use crate::scene::bvh::Bvh;
 /// Rebuild when the refitted SAH cost exceeds the built tree's by this factor. 1.5 keeps
 /// traversal within 1.5× of a fresh tree; on `dynamic:many-lights:65536` (4 s orbits) it
 /// rebuilds about every 15 frames at 30 fps, which amortises the rebuild to well under a
-/// two-level BVH's per-frame top-level build (measured in docs/bench.md).
+/// two-level BVH's per-frame top-level build (measured in docs/src/measured/dynamic-scenes.md).
 pub const BVH_REBUILD_FACTOR: f64 = 1.5;
 
 /// Which part of a rebuild to leave out: test-only plants, so the tests can show that

@@ -1,7 +1,7 @@
 //! Per-frame scene update for animated scenes: triangles and the BVH when geometry moved
 //! (a refit: same tree, new boxes, of the moving part only since that part is kept apart,
 //! `scene::bvh::split`; a rebuild of that part once it has degraded, see `rebuild.rs` and
-//! docs/bench.md) and the TLAS of the ray-query backend (`accel.rs`), the
+//! docs/src/measured/dynamic-scenes.md) and the TLAS of the ray-query backend (`accel.rs`), the
 //! light
 //! table, punctual lights and materials only when lights changed. Buffers are rewritten in
 //! place, so bind groups stay valid, and light-table indices stay the light's identity
@@ -75,7 +75,8 @@ impl MotionIndex {
     }
 }
 
-/// What one update cost on the CPU (milliseconds), for `--stats` and docs/bench.md.
+/// What one update cost on the CPU (milliseconds), for `--stats` and
+/// docs/src/measured/many-lights.md.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct SceneUpdateTimes {
     /// Refitting the BVH to the new positions (and rebuilding it when due).

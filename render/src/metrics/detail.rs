@@ -1,7 +1,7 @@
-//! Small detail, measured (docs/bench.md, "Shadow detail"): the reference's strong local
-//! edges — shadow boundaries and silhouettes — and how much of each a frame keeps. A
-//! frame's mean error hides a blurred stripe pattern (its pixels are a few among many,
-//! and blur lowers their noise); these two figures do not:
+//! Small detail, measured (docs/src/measured/how-the-bench-measures.md, "Shadow detail"): the
+//! reference's strong local edges — shadow boundaries and silhouettes — and how much of each a
+//! frame keeps. A frame's mean error hides a blurred stripe pattern (its pixels are a few among
+//! many, and blur lowers their noise); these two figures do not:
 //! - the luma RMSE within the edge pixels;
 //! - **detail kept**: the frame's luminance step across each reference edge, projected on
 //!   the reference's step, over the reference's steps: Σ s·(f_p − f_q) / Σ |r_p − r_q| with

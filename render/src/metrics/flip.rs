@@ -3,7 +3,7 @@
 //! wgpu's tests use) rather than a port: per pixel, 0 (no visible difference) to 1. It sees
 //! what a mean error hides on small shadow detail — a stripe blurred into grey is a large
 //! FLIP error at its edges, while zero-mean noise of the same RMSE reads smaller where it is
-//! fine-grained (docs/bench.md, "Shadow detail").
+//! fine-grained (docs/src/measured/how-the-bench-measures.md, "Shadow detail").
 //!
 //! FLIP compares what a display shows (LDR, sRGB). Both images go through one display made
 //! from the reference: an exposure that puts the reference's [`WHITE_PERCENTILE`] luminance

@@ -1,6 +1,6 @@
 //! Which pixels of a moving shot a reuse-based estimator finds hardest, from geometry alone
-//! (the same for every estimator, so their errors there compare; docs/bench.md, "Errors
-//! where the view moves"):
+//! (the same for every estimator, so their errors there compare;
+//! docs/src/measured/how-the-bench-measures.md, "Errors where the view moves"):
 //! - **disoccluded**: the surface a pixel sees was not visible in the previous frame (off
 //!   screen, or behind something then) — where temporal reuse has no history, and where a
 //!   ReSTIR that trusts a bad history smears dark (the failure users of Quake II RTX's port

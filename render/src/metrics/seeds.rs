@@ -1,7 +1,7 @@
-//! Figures over seeds (docs/src/results.md, "Error bars"): one seed's figure is a guess, so
-//! the bench runs K seeds and states every number as a mean with a 95 % interval over them,
-//! splits the accumulated image's error into squared bias and variance per pixel, and
-//! says how many independent frames the accumulated image is worth.
+//! Figures over seeds (docs/src/measured/how-the-bench-measures.md, "Error bars"): one seed's
+//! figure is a guess, so the bench runs K seeds and states every number as a mean with a 95 %
+//! interval over them, splits the accumulated image's error into squared bias and variance per
+//! pixel, and says how many independent frames the accumulated image is worth.
 //!
 //! The seeds are independent runs of the same estimator (every random stream is keyed by
 //! the seed), so their per-seed figures are i.i.d. and Student's t gives an honest interval
@@ -14,9 +14,9 @@ use crate::image::LinearImage;
 /// Confidence of every interval the lab prints.
 pub const CONFIDENCE: f64 = 0.95;
 
-/// |signed bias| the bias matrix resolves (docs/src/results.md, "The bias matrix"): an
-/// estimator whose interval lies inside ±0.5 % is consistent with no bias at that
-/// resolution, one whose interval lies wholly outside is biased.
+/// |signed bias| the bias matrix resolves (docs/src/measured/unbiased-reuse.md, "The bias matrix"):
+/// an estimator whose interval lies inside ±0.5 % is consistent with no bias at that resolution,
+/// one whose interval lies wholly outside is biased.
 pub const BIAS_TOLERANCE: f64 = 0.005;
 
 /// Two-sided 95 % quantile of Student's t with `df` degrees of freedom (t such that
@@ -162,7 +162,7 @@ fn finite_or_null<S: serde::Serializer>(x: f64, s: S) -> Result<S::Ok, S::Error>
 }
 
 /// What the bias matrix concludes from a signed bias's interval (an equivalence test at
-/// ±[`BIAS_TOLERANCE`]; docs/src/results.md, "The bias matrix").
+/// ±[`BIAS_TOLERANCE`]; docs/src/measured/unbiased-reuse.md, "The bias matrix").
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Verdict {
     /// The whole interval lies within ±0.5 %: no bias the matrix can resolve.
@@ -218,9 +218,9 @@ impl Estimate {
     }
 }
 
-/// The accumulated image's error over K seeds, split per pixel (docs/src/results.md,
-/// "Error bars"): with m_p,k the accumulated luminance of pixel p in seed k, m̄_p their
-/// mean and s²_p their sample variance,
+/// The accumulated image's error over K seeds, split per pixel
+/// (docs/src/measured/how-the-bench-measures.md, "Error bars"): with m_p,k the accumulated
+/// luminance of pixel p in seed k, m̄_p their mean and s²_p their sample variance,
 /// - `variance` = mean over pixels of s²_p: how far one seed's accumulated image strays;
 /// - `squared_bias` = mean over pixels of (m̄_p − r_p)² − s²_p/K − σ²_ref: the part of the
 ///   error no number of frames removes, with the noise of the mean over seeds and of the

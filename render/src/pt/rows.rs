@@ -65,7 +65,8 @@ macro_rules! rows {
                     "Biased, off by default (0): clamp every shift's |J| into [1/c, c] (c \
                         ≥ 1). Bounds the fireflies of near or grazing reconnections at the \
                         price of a wrong change of measure: the image is no longer the \
-                        integral (docs/bench.md measures how far off).";
+                        integral (measured in docs/src/measured/path-reuse.md, \
+                        \"ReSTIR PT on builtin:glossy\").";
             }
         }
     };

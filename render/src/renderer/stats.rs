@@ -94,7 +94,8 @@ pub struct StatsSummary {
     /// of the light sampler's work can pay (docs/src/light-samplers.md).
     pub useful_candidate_share: f64,
     /// DI's initial light candidates per surface pixel and frame: with the shadow rays, the
-    /// hardware-neutral cost of a configuration (docs/bench.md, "Equal error").
+    /// hardware-neutral cost of a configuration (docs/src/measured/how-the-bench-measures.md,
+    /// "Equal error").
     pub light_candidates_per_pixel: f64,
     /// MCMC mutation steps per surface pixel and frame, and the share accepted (0 with
     /// none tried; docs/src/mcmc-mutation.md).

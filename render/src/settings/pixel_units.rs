@@ -13,10 +13,10 @@ use super::Settings;
 pub const REFERENCE_HEIGHT: u32 = 1080;
 
 /// The smallest effective spatial radius (px), unless the parameter itself is smaller.
-/// Measured (docs/bench.md, "Spatial radius at small sizes"): per-frame error falls as the
-/// radius shrinks from 12 px to 2 px on `many-lights` at 96×96 (0.288 → 0.227) and is
-/// flat within 10 % from 2 to 5 px on `concourse` at 225×180; at 1 px, where the disk is
-/// the 8 direct neighbours, it rises again in both.
+/// Measured (docs/src/measured/reuse.md, "Spatial radius at small sizes"): per-frame error falls as
+/// the radius shrinks from 12 px to 2 px on `many-lights` at 96×96 (0.288 → 0.227) and is flat
+/// within 10 % from 2 to 5 px on `concourse` at 225×180; at 1 px, where the disk is the 8 direct
+/// neighbours, it rises again in both.
 pub const MIN_SPATIAL_RADIUS_PX: f32 = 2.0;
 
 /// What a length of `pixels_at_1080p` is in an image `height` pixels high, with `floor`

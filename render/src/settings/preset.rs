@@ -4,9 +4,9 @@
 use super::*;
 
 /// `restir-denoised`: ReSTIR DI as the crossover map found it cheapest through the
-/// denoiser (docs/bench.md, "The crossover map at 384×256"): a short temporal history, no
-/// spatial reuse, the denoiser on. Reuse lowers the blur the denoiser adds; a long history
-/// or wide spatial reuse adds correlated noise it cannot average away.
+/// denoiser (docs/src/measured/denoiser.md, "The crossover map at 384×256"): a short temporal
+/// history, no spatial reuse, the denoiser on. Reuse lowers the blur the denoiser adds; a long
+/// history or wide spatial reuse adds correlated noise it cannot average away.
 pub const RESTIR_DENOISED: &[&str] = &["temporal=true", "spatial=false", "m_cap=4", "denoise=true"];
 
 /// The presets known by name (`--preset NAME`, the viewer's Preset row, `--compare NAME`):

@@ -20,7 +20,7 @@ macro_rules! rows {
                         frame by RIS toward each cell's lights; a pixel reads a jittered \
                         cell. bvh: a light BVH walked by distance and orientation, each \
                         candidate's PDF exact. auto: by the scene, as the measurements say \
-                        (docs/bench.md, \"Light samplers at scale\").";
+                        (docs/src/measured/many-lights.md, \"Light samplers at scale\").";
                 regir_grid: u32 = 16, ParamKind::Int { min: 1, max: MAX_REGIR_GRID as i64 }, "ReGIR cells per side",
                     "The ReGIR grid is this many cells along each axis, centred on the \
                         camera and snapped to whole cells (docs/src/light-samplers.md, \
@@ -138,8 +138,9 @@ macro_rules! rows {
                         ray queries (VK_KHR_ray_query: NVIDIA, AMD, Intel GPUs, and Mesa \
                         25's lavapipe on the CPU); auto, ray queries on a GPU that has them, \
                         software on a CPU adapter (lavapipe's ray queries run on the CPU too \
-                        and measured 0.3–0.7× the BVH's rays per second, docs/bench.md \"Ray \
-                        queries\"). Both give the same image (ties between equally near hits \
+                        and measured 0.3–0.7× the BVH's rays per second, \
+                        docs/src/measured/compile-and-load.md \"Ray queries\"). Both give the \
+                        same image (ties between equally near hits \
                         may resolve differently); the Stats panel names the one running.";
             }
         }

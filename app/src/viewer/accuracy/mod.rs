@@ -1,8 +1,8 @@
 //! The live accuracy measurement (docs/src/viewer.md, "Accuracy"): while the camera
 //! stands still, the reference of the current view is loaded from the cache or rendered
 //! in the background; once it is there, every displayed frame is read back and scored
-//! against it (docs/bench.md, "How it measures": per-frame luma RMSE, stability, accumulated
-//! RGB RMSE, luma ratio), one curve per pipeline configuration.
+//! against it (docs/src/measured/how-the-bench-measures.md, "How it measures": per-frame luma RMSE,
+//! stability, accumulated RGB RMSE, luma ratio), one curve per pipeline configuration.
 //!
 //! - this file: the plain state the panel shows and edits (no GPU, testable);
 //! - `curves.rs`: curves, points and how a change of configuration is labelled;

@@ -15,7 +15,7 @@ pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
             "Scene time is playing: a reference is of one moment, and per-frame references \
              are far too slow to render live on a CPU. Nothing is measured until time is \
              paused; then the reference is of the paused moment. For lag over time use \
-             `bench` (docs/bench.md).",
+             `bench` (docs/src/measured/dynamic-scenes.md).",
         );
         return;
     }

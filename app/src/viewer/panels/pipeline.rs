@@ -37,8 +37,9 @@ pub fn ui(ui: &mut Ui, state: &mut ViewerState) {
     )
     .on_hover_text(
         "Switching the denoiser on applies the restir-denoised preset (temporal reuse, M cap 4, \
-         no spatial reuse: what the crossover map found pays through the denoiser, docs/bench.md) \
-         and shows denoised RIS beside it; switching it off brings back the settings of before.",
+         no spatial reuse: what the crossover map found pays through the denoiser, \
+         docs/src/measured/denoiser.md) and shows denoised RIS beside it; switching it off brings \
+         back the settings of before.",
     );
     crate::viewer::denoised_preset::follow_denoiser(state, denoiser_was_on);
     ui.horizontal(|ui| {

@@ -1,5 +1,5 @@
 #!/bin/sh
-# The à-trous depth `denoise_auto_depth` chooses (docs/bench.md, "Choosing the depth per
+# The à-trous depth `denoise_auto_depth` chooses (docs/src/measured/denoiser.md, "Choosing the depth per
 # scene"), on the still cells of the crossover map at 384×256: each scene, each denoised
 # estimator, each candidate count of the map's knob and each of its four seeds. A choice
 # needs no reference: its probe reads the noisy history alone. Its error is the error of

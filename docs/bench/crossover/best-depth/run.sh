@@ -1,5 +1,5 @@
 #!/bin/sh
-# The crossover map with each scene at its own à-trous depth (docs/bench.md, "Each scene at
+# The crossover map with each scene at its own à-trous depth (docs/src/measured/denoiser.md, "Each scene at
 # its depth, the cost over seeds"): the depth that is best for both estimators there
 # (../auto-depth: one iteration on detail, two on concourse and the dynamic scenes, four on
 # many-lights:65536; the city's three were not swept), the cells, seeds and knob of

@@ -1,5 +1,5 @@
 #!/bin/sh
-# The denoiser's edge weights swept per estimator on the training scene (docs/bench.md,
+# The denoiser's edge weights swept per estimator on the training scene (docs/src/measured/denoiser-history.md,
 # "The denoiser tuned per estimator"): concourse, still, 384×256, the map's seeds and knob,
 # each estimator at its best depth (two) with one φ moved at a time — the luminance gate
 # halved and doubled (default 4), the normal exponent a quarter (default 128), the depth

@@ -1,5 +1,5 @@
 #!/bin/sh
-# The crossover map's bounds read exactly (docs/bench.md, "The crossover map at 384×256"):
+# The crossover map's bounds read exactly (docs/src/measured/denoiser.md, "The crossover map at 384×256"):
 # the still cells whose preset was already at the baseline's best error at 8 candidates
 # (marked ≤), swept from 1 candidate up, same settings otherwise. Usage: run.sh [FILTER].
 # Then `restir-viewer bench-map docs/bench/crossover/low-candidates`.

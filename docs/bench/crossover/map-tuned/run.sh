@@ -1,5 +1,5 @@
 #!/bin/sh
-# The crossover map with the denoiser tuned per estimator (docs/bench.md, "The denoiser
+# The crossover map with the denoiser tuned per estimator (docs/src/measured/denoiser-history.md, "The denoiser
 # tuned per estimator"): on the training scene (concourse at 384×256) both denoised RIS and
 # the restir-denoised preset reach their lowest error with two à-trous iterations, so here
 # each runs with its own best, on the cells of ../map/run.sh (same sizes, seeds, knob).

@@ -1,5 +1,5 @@
 #!/bin/sh
-# The crossover map at 384×256 (docs/bench.md, "The crossover map"): every scene, still
+# The crossover map at 384×256 (docs/src/measured/denoiser.md, "The crossover map"): every scene, still
 # and panning, 4 seeds, each configuration over light_candidates = 8, 16, 32. Each
 # (scene, camera) is an independent job: run any subset, on any machine, in any order;
 # each writes its own folder and a finished one is skipped. Then `restir-viewer bench-map

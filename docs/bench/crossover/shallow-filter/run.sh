@@ -1,5 +1,5 @@
 #!/bin/sh
-# A ReSTIR tuned for the denoiser (docs/bench.md, "The denoiser tuned per estimator"): with
+# A ReSTIR tuned for the denoiser (docs/src/measured/denoiser-history.md, "The denoiser tuned per estimator"): with
 # temporal reuse taking out part of the noise, does the preset need fewer à-trous
 # iterations than RIS? Denoised RIS at its own best depth (two) against the preset at one
 # and two, on the cells where the map is closest to the goal. Same settings as the map.

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# GI's vertex sampler with DI at auto's default for the city (docs/bench.md, "At every
-# vertex"): as ../gi-candidates/run.sh, but DI draws the 4 tree candidates `auto` gives it
+# GI's vertex sampler with DI at auto's default for the city
+# (docs/src/measured/many-lights.md, "At every vertex"): as ../gi-candidates/run.sh, but DI draws the 4 tree candidates `auto` gives it
 # instead of 32, so DI's initial pass no longer dominates the frame. The power table at the
 # vertex with 32 and 8 candidates against the tree with 8 and 4. Usage: run.sh [N ...]
 set -euo pipefail

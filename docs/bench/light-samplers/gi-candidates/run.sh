@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# GI's own light candidates at its secondary vertex (docs/bench.md, "At every vertex"): ReSTIR
-# GI on the city with the power table at the vertex (32 candidates, DI's count) against the
-# light BVH there with 32, 8 and 4 (`gi_light_candidates`); DI keeps its 32 from the tree.
+# GI's own light candidates at its secondary vertex (docs/src/measured/many-lights.md, "At
+# every vertex"): ReSTIR GI on the city with the power table at the vertex (32 candidates,
+# DI's count) against the light BVH there with 32, 8 and 4 (`gi_light_candidates`); DI keeps
+# its 32 from the tree.
 # References sample with the tree. Usage: run.sh [N ...]
 set -euo pipefail
 cd "$(dirname "$0")/../../../.."

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A reference with n light samples per vertex (docs/bench.md, "Light samplers at scale",
+# A reference with n light samples per vertex (docs/src/measured/many-lights.md,
 # "At every vertex"): the 1-spp reference estimator on the city with the power table, with
 # the light BVH, and with the BVH drawing 8 light samples per vertex, at 1 and 2 bounces.
 # Per-frame MSE of one sample is what N samples divide by N: the ratio of two rows' MSE is

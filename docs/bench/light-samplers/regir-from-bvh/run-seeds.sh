@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# ReGIR fed by the tree against the tiles with enough seeds for a verdict (docs/bench.md,
-# "ReGIR fed by the tree"): the tiles first, so results.md's equal-time table states every
+# ReGIR fed by the tree against the tiles with enough seeds for a verdict
+# (docs/src/measured/many-lights.md, "ReGIR fed by the tree"): the tiles first, so results.md's equal-time table states every
 # row's gain over them with its 95 % interval; the table-filled grid at 32 slots and the
 # tree-filled one at 8, the two that read 1.47x in the three-seed run. SEEDS (default 30)
 # and N (default 1048576) from the environment. Run it on an otherwise idle machine.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# ReGIR fed by the tree (docs/bench.md, "Light samplers at scale", "ReGIR fed by the tree"):
+# ReGIR fed by the tree (docs/src/measured/many-lights.md, "Light samplers at scale", "ReGIR fed by the tree"):
 # ReSTIR (pairwise) on the city with its candidates from the tiles, from ReGIR filled from
 # the power table and from the light BVH (32 slots per cell, and 8), and from the BVH
 # itself. References sample with the tree (reference_light_bvh=true). Usage: run.sh [N ...]

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The scene's tree with the moving triangles kept apart (docs/bench.md, "The moving
-# triangles kept apart"): bench-bvh's CPU comparison on the city with cars and on the
+# The scene's tree with the moving triangles kept apart (docs/src/measured/dynamic-scenes.md,
+# "The moving triangles kept apart"): bench-bvh's CPU comparison on the city with cars and on the
 # orbiting lights, then `render --stats` of the city at 2^17 and 2^20, two runs each,
 # interleaved with a build from before the split (BASE=path to its restir-viewer; without
 # it only the split runs). Run it on an otherwise idle machine.

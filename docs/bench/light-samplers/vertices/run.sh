@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The light sampler at every vertex (docs/bench.md, "Light samplers at scale", "At every
+# The light sampler at every vertex (docs/src/measured/many-lights.md, "At every
 # vertex"): on the city, GI and PT with the light BVH at their path vertices against the
 # power table there, and the 1-spp reference estimator (path-2b) with each. The references
 # sample with the tree (reference_light_bvh=true), which render/tests/vertex_light_sampler.rs

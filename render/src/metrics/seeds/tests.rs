@@ -1,5 +1,5 @@
 //! The figures over seeds on synthetic estimators whose mean, bias and variance are known,
-//! each with a planted twin (docs/src/results.md, "Error bars").
+//! each with a planted twin (docs/src/measured/how-the-bench-measures.md, "Error bars").
 
 use super::*;
 use crate::test_hash::hash;

@@ -214,7 +214,7 @@ fn signs(b: &mut SceneBuilder) {
 mod tests {
     use super::*;
 
-    /// Every light in the scene (downlights, sconces, sign segments): 640.
+    /// Every light in the scene (downlights, sconces, sign segments): 664.
     const LIGHTS: usize = DOWNLIGHT_COLUMNS * DOWNLIGHT_ROWS
         + 2 * SCONCES_PER_WALL
         + 2 * SIGNS_PER_WALL * SEGMENTS_PER_SIGN;

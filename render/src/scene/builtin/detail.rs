@@ -1,8 +1,8 @@
 //! `detail`: many small lights over fine occluders, the scene where small shadow detail
-//! matters (docs/bench.md, "Shadow detail"). Four chandeliers of 64 tiny lights hang over a
-//! grille of 2 cm slats held 30 cm above the floor, running away from the camera so that the
-//! floor shows between them, and a fence of thin posts stands by the back wall: each
-//! chandelier throws the slats' stripes onto the floor with a penumbra about as wide as a
+//! matters (docs/src/measured/how-the-bench-measures.md, "Shadow detail"). Four chandeliers of 64
+//! tiny lights hang over a grille of 2 cm slats held 30 cm above the floor, running away from the
+//! camera so that the floor shows between them, and a fence of thin posts stands by the back wall:
+//! each chandelier throws the slats' stripes onto the floor with a penumbra about as wide as a
 //! slat, and the four sets overlap into a fine pattern. A denoiser that blurs, or reuse that
 //! carries one pixel's light sample to a neighbour across a stripe, loses it.
 

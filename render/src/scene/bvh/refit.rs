@@ -3,8 +3,9 @@
 //! the topology and `triangle_order` stay, which keeps BVH-order indices — and with them
 //! light-table entries — stable while a scene moves. The price is tree quality: boxes of
 //! nodes whose triangles moved apart grow. `sah_cost` measures that, so the choice between
-//! refitting and rebuilding is a number (docs/bench.md). When only a few triangles moved
-//! (cars in a city), `refit_moved` rewrites their leaves and the nodes above them only.
+//! refitting and rebuilding is a number (docs/src/measured/dynamic-scenes.md). When only a few
+//! triangles moved (cars in a city), `refit_moved` rewrites their leaves and the nodes above them
+//! only.
 
 use glam::Vec3;
 

@@ -26,7 +26,7 @@ pub struct Hit {
 
 /// What a traversal touched: nodes whose box was tested or popped, and primitive tests
 /// (triangles; instances at the top level of a two-level tree). The measure of a tree's
-/// traversal cost that does not depend on the machine (docs/bench.md).
+/// traversal cost that does not depend on the machine (docs/src/measured/dynamic-scenes.md).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Visits {
     pub nodes: u64,

@@ -1,5 +1,5 @@
 //! A two-level BVH on the CPU, measured against refitting and rebuilding the single tree
-//! (`restir-viewer bench-bvh`, docs/bench.md "BVH: refit, rebuild or two
+//! (`restir-viewer bench-bvh`, docs/src/measured/dynamic-scenes.md "BVH: refit, rebuild or two
 //! levels"): a bottom-level tree (BLAS) per instance — each animated mesh binding, plus one
 //! for every triangle that never moves — built once in the instance's own space, and a
 //! top-level tree (TLAS) over the instances' world boxes, rebuilt every frame. The renderer

@@ -21,6 +21,13 @@ const ROOTS: [&str; 5] = ["render/", "app/", "shaders/", "docs/", "assets/"];
 /// Third-party files carried as they came, and this file, whose twin breaks every rule.
 const SKIP: [&str; 2] = ["assets/khronos/", "app/tests/citations.rs"];
 
+/// A measurement's `results.md` under `docs/bench/` is what `bench` wrote when it ran: its
+/// footnotes cite the book as it was then, and a rerun writes them anew. The book's pages,
+/// the presets and the scripts beside them are checked.
+fn bench_output(file: &str) -> bool {
+    file.starts_with("docs/bench/") && file.ends_with("/results.md")
+}
+
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
 }
@@ -320,7 +327,7 @@ fn read_repo() -> (Repo, Vec<(String, String)>) {
     let checked = files
         .iter()
         .filter(|(f, _)| TEXT.iter().any(|e| f.ends_with(e)))
-        .filter(|(f, _)| !SKIP.iter().any(|s| f.starts_with(s)))
+        .filter(|(f, _)| !SKIP.iter().any(|s| f.starts_with(s)) && !bench_output(f))
         .cloned()
         .collect();
     (Repo::new(files), checked)

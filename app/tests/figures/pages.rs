@@ -27,7 +27,6 @@ pub struct FigureLink {
 /// A link whose text is quoted from elsewhere or has no data: not a checked figure, but
 /// not an unbound one either.
 pub struct OtherLink {
-    pub text: Range<usize>,
     pub span: Range<usize>,
     pub target: String,
 }
@@ -119,7 +118,6 @@ impl Page {
                     formula: formula.split_whitespace().collect::<Vec<_>>().join(" "),
                 }),
                 _ => others.push(OtherLink {
-                    text,
                     span,
                     target: dest.to_string(),
                 }),

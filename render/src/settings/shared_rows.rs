@@ -138,7 +138,7 @@ macro_rules! rows {
                         ray queries (VK_KHR_ray_query: NVIDIA, AMD, Intel GPUs, and Mesa \
                         25's lavapipe on the CPU); auto, ray queries on a GPU that has them, \
                         software on a CPU adapter (lavapipe's ray queries run on the CPU too \
-                        and measured 0.3–0.7× the BVH's rays per second, \
+                        and trace fewer rays per second than the BVH there, measured in \
                         docs/src/measured/compile-and-load.md \"Ray queries\"). Both give the \
                         same image (ties between equally near hits \
                         may resolve differently); the Stats panel names the one running.";

@@ -42,7 +42,7 @@ pub fn check_page(page: &Page, tables: &mut Tables, root: &Path) -> Report {
         if !link.file.is_file() {
             report.findings.push(fail(format!(
                 "links `{}`, which does not exist",
-                shown(&link.file, root)
+                shown_path(&link.file, root)
             )));
             continue;
         }
@@ -136,9 +136,21 @@ fn check_table(
                 file: file.path.clone(),
                 row: Some((file.clone(), row)),
             };
+            let shown = page.text[cell.clone()].replace(['`', '*'], "");
             let values = match evaluate(&mut scope, formula) {
-                // A cell that prints no number for an empty data cell agrees with it.
+                // A cell that prints no number for an empty data cell agrees with it, and
+                // one that prints a text cell's text (`never`) too.
                 Err(EvalError::Missing(_)) if printed.is_empty() => continue,
+                Err(EvalError::Text { cell, .. }) if printed.is_empty() => {
+                    if shown.trim() != cell {
+                        let at = shown_path(&file.path, root);
+                        report.findings.push(fail(format!(
+                            "prints `{}`, the data say `{cell}` ({at}: `{formula}`)",
+                            shown.trim()
+                        )));
+                    }
+                    continue;
+                }
                 v => v.map_err(|e| e.to_string()),
             };
             compare(report, &printed, values, &fail, formula, &file.path, root);
@@ -203,7 +215,10 @@ fn compare(
 ) {
     let values = match values {
         Ok(v) => v,
-        Err(e) => return report.findings.push(fail(e)),
+        Err(e) => {
+            let prefix = format!("{}/", root.display());
+            return report.findings.push(fail(e.replace(&prefix, "")));
+        }
     };
     if printed.len() != values.len() {
         return report.findings.push(fail(format!(
@@ -220,7 +235,7 @@ fn compare(
             "prints {}, the data give {} ({}: `{formula}`)",
             p.printed,
             significant(v),
-            shown(file, root)
+            shown_path(file, root)
         )));
         if let Some(fixed) = text::reprint(p, v) {
             report.edits.push((p.span.clone(), fixed));
@@ -260,11 +275,11 @@ fn command_missing(file: &Path, root: &Path) -> Option<String> {
     }
     Some(format!(
         "`{}` has no command.txt or run*.sh beside it or above it: say how it was made",
-        shown(file, root)
+        shown_path(file, root)
     ))
 }
 
-fn shown(file: &Path, root: &Path) -> String {
+fn shown_path(file: &Path, root: &Path) -> String {
     file.strip_prefix(root).unwrap_or(file).display().to_string()
 }
 

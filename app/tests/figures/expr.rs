@@ -41,10 +41,12 @@ pub struct Filter {
 }
 
 /// Why a formula has no value: a referenced cell is empty (a table cell that prints no
-/// number then agrees), or anything else.
+/// number then agrees), holds text (a table cell that prints the same text agrees:
+/// `never`), or anything else.
 #[derive(Debug)]
 pub enum EvalError {
     Missing(String),
+    Text { cell: String, what: String },
     Other(String),
 }
 
@@ -52,6 +54,7 @@ impl std::fmt::Display for EvalError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             EvalError::Missing(s) | EvalError::Other(s) => f.write_str(s),
+            EvalError::Text { what, .. } => f.write_str(what),
         }
     }
 }
@@ -394,7 +397,10 @@ impl Scope<'_> {
                     if cell.is_empty() {
                         EvalError::Missing(what)
                     } else {
-                        EvalError::Other(what)
+                        EvalError::Text {
+                            cell: cell.to_string(),
+                            what,
+                        }
                     }
                 })
             })

@@ -126,7 +126,7 @@ impl Twin {
             data.join("results.csv"),
             "config,median_frame_ms,mean_luma_rmse,black_pixel_fraction\n\
              nee,31.77,0.4824,0.6503\nris,70.14,0.1030,0.1866\n\
-             restir-pairwise,252.13,0.03297,0.00119\n",
+             restir-pairwise,252.13,0.03297,0.00119\nfrozen,never,0.2,0.1\n",
         )
         .unwrap();
         let cmd = data.join("command.txt");
@@ -162,7 +162,8 @@ mean_luma_rmse[config=ris])^2\") RIS's, in `1.5×` code that is not a figure.\n\
 | configuration | time × `nee` | black pixels |\n\
 | --- | --- | --- |\n\
 | `nee` | 1.00× | 65.0 % |\n\
-| `restir-pairwise` | 7.94× | 0.12 % |\n";
+| `restir-pairwise` | 7.94× | 0.12 % |\n\
+| `frozen` | never | 10.0 % |\n";
 
 #[test]
 fn figures_twin_that_agrees_has_no_findings() {
@@ -179,6 +180,7 @@ fn figures_planted_edits_are_caught_with_their_line() {
         ("| 65.0 % |", "| 56.0 % |", "twin.md:11: prints 56.0, the data give 65.03"),
         ("Showcase", "Showcase at 2.5× the cost", "twin.md:1: `2.5× the cost"),
         ("[config=ris]\")", "[config=nee]\")", "twin.md:3: prints 3.59, the data give 7.9361"),
+        ("| never |", "| always |", "twin.md:13: prints `always`, the data say `never`"),
     ];
     for (from, to, expected) in cases {
         let twin = Twin::new("edited", &TWIN_PAGE.replacen(from, to, 1), true);

@@ -6,9 +6,10 @@
 //! whose cells match (`*` in a value matches any text, `'...'` quotes a value holding
 //! commas, brackets or `|`, `$name` is the current table row's own cell); `path.csv:column`
 //! reads another file, its path relative to the figure's file. A column over several rows
-//! is a list: `min`, `max`, `mean`, `median`, `sum` and `count` reduce it, arithmetic
-//! (`+ - * / ^`, comparisons giving 1 or 0) goes element by element, and commas at the top
-//! separate the values of a figure with several numbers (a range, an interval, "11 of 12").
+//! is a list: `min`, `max`, `mean`, `median`, `sum` and `count` reduce it (the last two
+//! read a filter matching no row as nothing), `first(a, b)` takes the first that has a value,
+//! arithmetic (`+ - * / ^`, comparisons giving 1 or 0) goes element by element, and commas
+//! at the top separate the values of a figure with several numbers (a range, an interval, "11 of 12").
 
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
@@ -46,6 +47,8 @@ pub struct Filter {
 #[derive(Debug)]
 pub enum EvalError {
     Missing(String),
+    /// A filter that matches no row: an error, except inside `count` and `sum` (none).
+    NoRow(String),
     Text { cell: String, what: String },
     Other(String),
 }
@@ -53,7 +56,7 @@ pub enum EvalError {
 impl std::fmt::Display for EvalError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            EvalError::Missing(s) | EvalError::Other(s) => f.write_str(s),
+            EvalError::Missing(s) | EvalError::NoRow(s) | EvalError::Other(s) => f.write_str(s),
             EvalError::Text { what, .. } => f.write_str(what),
         }
     }
@@ -344,10 +347,29 @@ impl Scope<'_> {
                 };
                 zip(self.eval(a)?, self.eval(b)?, f)
             }
+            // `first(a, b, ...)`: the first argument that has a value (its cells not empty,
+            // its filters matching), for a figure read from a confirmation run where
+            // there is one and from the first run elsewhere.
+            Expr::Call(name, args) if name == "first" => {
+                let mut why = Vec::new();
+                for a in args {
+                    match self.eval(a) {
+                        Err(e @ (EvalError::Missing(_) | EvalError::NoRow(_))) => {
+                            why.push(e.to_string())
+                        }
+                        v => return v,
+                    }
+                }
+                Err(EvalError::Missing(format!("first(): no argument has a value ({})", why.join("; "))))
+            }
             Expr::Call(name, args) => {
                 let mut all = Vec::new();
                 for a in args {
-                    all.extend(self.eval(a)?);
+                    match self.eval(a) {
+                        // No row is nothing to count or add.
+                        Err(EvalError::NoRow(_)) if name == "count" || name == "sum" => {}
+                        v => all.extend(v?),
+                    }
                 }
                 call(name, all)
             }
@@ -373,11 +395,11 @@ impl Scope<'_> {
             (Some(filters), _) => self.matching(&table, filters)?,
         };
         if rows.is_empty() {
-            return other(format!(
+            return Err(EvalError::NoRow(format!(
                 "{}: no row where {}",
                 table.path.display(),
                 describe(r.filters.as_deref().unwrap_or(&[]))
-            ));
+            )));
         }
         rows.iter()
             .map(|&i| {
@@ -517,7 +539,7 @@ fn call(name: &str, v: Vec<f64>) -> Values {
         "ln" => Ok(v.iter().map(|x| x.ln()).collect()),
         "exp" => Ok(v.iter().map(|x| x.exp()).collect()),
         _ => other(format!(
-            "no function `{name}` (min, max, mean, median, sum, count, sqrt, abs, ln, exp)"
+            "no function `{name}` (min, max, mean, median, sum, count, first, sqrt, abs, ln, exp)"
         )),
     }
 }
@@ -556,6 +578,8 @@ mod tests {
         assert_eq!(v, vec![vec![2.0]]);
         let v = eval_in(CSV, "ms[config='x[1]']").unwrap();
         assert_eq!(v, vec![vec![5.0]]);
+        let v = eval_in(CSV, "first(rmse[config=ris, scene=b], ms[config=ris, scene=b]), count(ms[config=nee])").unwrap();
+        assert_eq!(v, vec![vec![12.0], vec![0.0]]);
     }
 
     #[test]

@@ -158,7 +158,7 @@ RIS's and its MSE is [0.10×](docs/bench/showcase/results.csv \"(mean_luma_rmse[
 mean_luma_rmse[config=ris])^2\") RIS's, in `1.5×` code that is not a figure.\n\
 \n\
 <!-- figures: docs/bench/showcase/results.csv key: config\n\
-     columns: -; median_frame_ms / median_frame_ms[config=nee]; 100 * black_pixel_fraction -->\n\
+     columns: -; median_frame_ms / median_frame_ms[config='x;y'|nee]; 100 * black_pixel_fraction -->\n\
 | configuration | time × `nee` | black pixels |\n\
 | --- | --- | --- |\n\
 | `nee` | 1.00× | 65.0 % |\n\

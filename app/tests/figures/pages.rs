@@ -156,14 +156,15 @@ impl Page {
                 .unwrap_or(spec.len());
             let file = spec[..first_field].trim();
             let rows = match (field("rows:"), field("key:")) {
-                (Some(r), None) => Rows::Listed(r.split(';').map(|s| s.trim().to_string()).collect()),
+                (Some(r), None) => Rows::Listed(split_outside_quotes(&r)),
                 (None, Some(k)) => Rows::Keyed(k),
                 _ => return Err(fail("a bound table needs one of `rows:` or `key:`".into())),
             };
             let columns: Vec<Option<String>> = field("columns:")
-                .ok_or_else(|| fail("a bound table needs `columns:`".into()))?
-                .split(';')
-                .map(|c| Some(c.trim().to_string()).filter(|c| c != "-"))
+                .ok_or_else(|| fail("a bound table needs `columns:`".into()))
+                .map(|c| split_outside_quotes(&c))?
+                .into_iter()
+                .map(|c| Some(c).filter(|c| c != "-"))
                 .collect();
             let body = self.table_after(end + 3).map_err(fail)?;
             if let Some(r) = body.iter().find(|r| r.len() != columns.len()) {
@@ -252,6 +253,23 @@ impl Page {
         }
         out
     }
+}
+
+/// `a; b='x;y'; c` as `a`, `b='x;y'`, `c`: a `;` inside a quoted filter value is the value's.
+fn split_outside_quotes(list: &str) -> Vec<String> {
+    let (mut out, mut part, mut quoted) = (Vec::new(), String::new(), false);
+    for c in list.chars() {
+        match c {
+            '\'' => {
+                quoted = !quoted;
+                part.push(c);
+            }
+            ';' if !quoted => out.push(std::mem::take(&mut part).trim().to_string()),
+            c => part.push(c),
+        }
+    }
+    out.push(part.trim().to_string());
+    out
 }
 
 /// The `[` that opens the link text ending at `close` (the `]` of `](`), brackets nested.

@@ -52,38 +52,40 @@ enum Command {
     /// List the built-in scenes (one `builtin:...` name per line).
     Scenes,
     /// Time building an environment's sampling distribution (default: a 4096×2048 sky).
-    BenchEnv(bench::env_cost::EnvCostArgs),
+    BenchEnv(bench::costs::env_cost::EnvCostArgs),
     /// Compare refit, rebuild and a two-level BVH on an animated scene over time.
-    BenchBvh(bench::bvh_cost::BvhCostArgs),
+    BenchBvh(bench::costs::bvh_cost::BvhCostArgs),
     /// Rays per second of each tracing backend (software BVH, hardware ray queries).
-    BenchRays(bench::ray_cost::RayCostArgs),
+    BenchRays(bench::costs::ray_cost::RayCostArgs),
     /// How long each phase from file to first frame takes (load, upload, pipelines).
-    BenchLoad(bench::load_cost::LoadCostArgs),
+    BenchLoad(bench::costs::load_cost::LoadCostArgs),
     /// ReSTIR PT's path shifts on the CPU toy scene: bias, variance, how shifts fail.
-    BenchShifts(bench::shift_cost::ShiftCostArgs),
+    BenchShifts(bench::costs::shift_cost::ShiftCostArgs),
     /// The crossover map from a folder of `--knob` bench runs, one per (scene, size,
     /// camera): each configuration's cost to reach denoised RIS's best error (map.md, map.csv).
-    BenchMap(bench::map::MapArgs),
+    BenchMap(bench::MapArgs),
 }
 
 fn main() {
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
     let args = Args::parse();
+    // The words after the program name: what `command.txt` says made an output folder.
+    let command: Vec<String> = std::env::args().skip(1).collect();
     let result = match args.command {
         Some(Command::View(a)) => viewer::run(a),
         Some(Command::Render(a)) => cli::render::run(a),
-        Some(Command::Bench(a)) => bench::run(a),
+        Some(Command::Bench(a)) => bench::run(a, &command),
         Some(Command::BiasMatrix(a)) => bias_matrix::run(a),
         Some(Command::Params(a)) => {
             cli::params::run(a);
             Ok(())
         }
-        Some(Command::BenchEnv(a)) => bench::env_cost::run(a),
-        Some(Command::BenchBvh(a)) => bench::bvh_cost::run(a),
-        Some(Command::BenchRays(a)) => bench::ray_cost::run(a),
-        Some(Command::BenchLoad(a)) => bench::load_cost::run(a),
-        Some(Command::BenchShifts(a)) => bench::shift_cost::run(a),
-        Some(Command::BenchMap(a)) => bench::map::run(a),
+        Some(Command::BenchEnv(a)) => bench::costs::env_cost::run(a),
+        Some(Command::BenchBvh(a)) => bench::costs::bvh_cost::run(a),
+        Some(Command::BenchRays(a)) => bench::costs::ray_cost::run(a, &command),
+        Some(Command::BenchLoad(a)) => bench::costs::load_cost::run(a),
+        Some(Command::BenchShifts(a)) => bench::costs::shift_cost::run(a),
+        Some(Command::BenchMap(a)) => bench::map(a, &command),
         Some(Command::Scenes) => {
             cli::params::print_scenes();
             Ok(())

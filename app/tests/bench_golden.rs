@@ -3,15 +3,16 @@
 //! cost curve and the crossover map read from it, a panning camera, a scene with light
 //! events, the light-count sweep) write the files stored under `app/tests/bench_golden/`,
 //! with the same numbers but for times (`bench_golden_support` says what is compared and
-//! within what tolerance). The planted twins at the end show the comparison reports a
-//! changed number and ignores a changed time.
+//! within what tolerance). Each run also leaves `command.txt`, the command line that remakes
+//! its folder (so does `bench-rays --out`). The planted twins at the end show the
+//! comparison reports a changed number and ignores a changed time.
 //!
 //! Run time on two cores with lavapipe (the tests in parallel): about 15 s once Mesa's
 //! shader cache holds the variants, about 100 s with an empty one
 //! (`MESA_SHADER_CACHE_DIR` pointed at an empty folder: every variant compiles first).
 //! GPU tests: they need a wgpu adapter, lavapipe in CI.
 //!
-//! The stored runs were written by the bench as it stands in this commit. To
+//! The stored runs were written by the bench before its code was split into stages. To
 //! store new ones after a change that is meant to change what the bench writes, run
 //! `BENCH_GOLDEN_BLESS=1 cargo test -p restir-viewer --test bench_golden` and say why in
 //! the commit.
@@ -22,7 +23,9 @@ use std::process::Command;
 mod bench_golden_support;
 mod bench_support;
 
-use bench_golden_support::{MANIFEST, compare_dirs, compare_text, csv_rows, manifest};
+use bench_golden_support::{
+    COMMAND_FILE, MANIFEST, compare_dirs, compare_text, csv_rows, manifest,
+};
 
 fn stored(run: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -52,14 +55,20 @@ fn run(args: &[&str], out: &Path, cache: &Path) -> Vec<String> {
     args
 }
 
+/// The folder a command writes: its `--out`, or `bench-map`'s DIR.
+fn folder_of(args: &[String]) -> PathBuf {
+    match args.iter().position(|a| a == "--out") {
+        Some(i) => PathBuf::from(&args[i + 1]),
+        None => PathBuf::from(args.last().expect("bench-map DIR")),
+    }
+}
+
 /// Runs `commands` in a fresh folder, then stores what they wrote (`BENCH_GOLDEN_BLESS`)
 /// or compares it with what is stored under `run`.
 fn check(run_name: &str, commands: &[&[&str]]) {
     let out = bench_support::temp(&format!("golden_{run_name}"));
     let cache = bench_support::temp(&format!("golden_{run_name}_cache"));
-    for c in commands {
-        run(c, &out, &cache);
-    }
+    let ran: Vec<Vec<String>> = commands.iter().map(|c| run(c, &out, &cache)).collect();
     if std::env::var_os("BENCH_GOLDEN_BLESS").is_some() {
         bless(run_name, &out);
         return;
@@ -70,6 +79,15 @@ fn check(run_name: &str, commands: &[&[&str]]) {
         "{run_name} writes other numbers than before:\n{}",
         differences.join("\n")
     );
+    for args in &ran {
+        let written = std::fs::read_to_string(folder_of(args).join(COMMAND_FILE))
+            .unwrap_or_else(|e| panic!("{args:?}: no {COMMAND_FILE}: {e}"));
+        // These arguments need no quoting (a shell reads them back as they are).
+        assert_eq!(
+            written.trim_end(),
+            format!("restir-viewer {}", args.join(" "))
+        );
+    }
 }
 
 /// Replaces the stored run with the text files of `out` and its manifest.
@@ -168,6 +186,29 @@ fn the_light_count_sweep_writes_what_it_wrote_before() {
         "{out}",
     ];
     check("sweep", &[&sweep]);
+}
+
+#[test]
+fn bench_rays_writes_the_command_that_remakes_its_folder() {
+    // Times alone, nothing to compare with a stored run: only the command file.
+    let out = bench_support::temp("golden_rays");
+    let args = [
+        "bench-rays",
+        "--scene",
+        "builtin:cornell",
+        "--size",
+        "16x12",
+        "--dispatches",
+        "1",
+        "--out",
+        "{out}/rays",
+    ];
+    let ran = run(&args, &out, &out);
+    let written = std::fs::read_to_string(out.join("rays").join(COMMAND_FILE)).unwrap();
+    assert_eq!(
+        written.trim_end(),
+        format!("restir-viewer {}", ran.join(" "))
+    );
 }
 
 /// The stored text of one file.

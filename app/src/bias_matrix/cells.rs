@@ -2,7 +2,7 @@
 //! built-in scene (the families at a stated N), the real-world models, and every estimator a user
 //! can pick. A cell is one scene and one estimator; each runs as one `bench` command.
 
-use crate::bench::jobs::slug;
+use crate::bench::plan::jobs::slug;
 
 /// Light count of the families in the matrix: large enough that the tiles, ReGIR and the
 /// light BVH all have work, small enough to build in a second.
@@ -26,7 +26,7 @@ pub const MODELS: [&str; 5] = [
 /// Every estimator a user can pick in the matrix's order: DI without and with reuse, both
 /// bias corrections, GI's two, PT's three shifts, the light samplers under the default
 /// ReSTIR, then the denoiser on one of each family (bench configuration names,
-/// app/src/bench/configs.rs).
+/// app/src/bench/plan/configs.rs).
 pub const ESTIMATORS: [&str; 18] = [
     "nee",
     "ris",
@@ -118,6 +118,6 @@ mod tests {
     #[test]
     fn every_estimator_is_a_bench_configuration() {
         let base = restir_render::Settings::default();
-        crate::bench::configs::parse_configs(&ESTIMATORS.join(","), &base).unwrap();
+        crate::bench::plan::configs::parse_configs(&ESTIMATORS.join(","), &base).unwrap();
     }
 }

@@ -8,7 +8,8 @@ use restir_render::metrics::seeds::{Interval, Verdict};
 
 use super::cells::{Cell, cells};
 use super::{BiasMatrixArgs, Stage, to_confirm};
-use crate::bench::seed_figures::{FIGURES_FILE, FigureRow, SeedFigures, write_rows};
+use crate::bench::score::seed_figures::SeedFigures;
+use crate::bench::write::figures_json::{FIGURES_FILE, FigureRow, write_rows};
 
 #[derive(Parser)]
 struct Cli {

@@ -20,8 +20,8 @@ use std::time::Instant;
 use anyhow::{Context, bail};
 use clap::{Args, Parser};
 
-use crate::bench::jobs::shell_line;
-use crate::bench::seed_figures::FIGURES_FILE;
+use crate::bench::plan::jobs::shell_line;
+use crate::bench::write::figures_json::FIGURES_FILE;
 use crate::bench::{self, BenchArgs};
 use cells::{Cell, ESTIMATORS, all_scenes};
 use restir_render::metrics::seeds::Verdict;
@@ -101,7 +101,7 @@ pub fn run(args: BiasMatrixArgs) -> anyhow::Result<()> {
     let scenes = list_or(&args.scenes, all_scenes());
     let estimators = list_or(&args.estimators, ESTIMATORS.map(String::from).to_vec());
     let base = restir_render::Settings::default();
-    bench::configs::parse_configs(&estimators.join(","), &base)?;
+    bench::plan::configs::parse_configs(&estimators.join(","), &base)?;
     for s in &scenes {
         if !s.starts_with("builtin:") && !Path::new(s).is_file() {
             bail!(
@@ -294,9 +294,11 @@ fn run_cell(args: &BiasMatrixArgs, cell: &Cell, stage: Stage) {
         std::fs::create_dir_all(&dir)
             .with_context(|| format!("{}: cannot create", dir.display()))?;
         let _ = std::fs::remove_file(dir.join(table::ERROR_FILE));
-        let argv = std::iter::once("bench".to_string()).chain(bench_argv(args, cell, stage));
-        let parsed = BenchCommand::try_parse_from(argv)?;
-        bench::run(parsed.bench)
+        let argv: Vec<String> = std::iter::once("bench".to_string())
+            .chain(bench_argv(args, cell, stage))
+            .collect();
+        let parsed = BenchCommand::try_parse_from(&argv)?;
+        bench::run(parsed.bench, &argv)
     })();
     if let Err(e) = result {
         eprintln!("{} · {}: {e:#}", cell.scene, cell.estimator);

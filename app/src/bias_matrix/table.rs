@@ -12,8 +12,8 @@ use restir_render::metrics::seeds::{BIAS_TOLERANCE, Verdict};
 
 use super::BiasMatrixArgs;
 use super::cells::{Cell, scene_label};
-use crate::bench::csv::Table;
-use crate::bench::seed_figures::{FIGURES_FILE, FigureRow, read_rows};
+use crate::bench::write::figures_json::{FIGURES_FILE, FigureRow, read_rows};
+use crate::bench::write::table::Table;
 
 /// What a cell that failed leaves in its folder.
 pub const ERROR_FILE: &str = "error.txt";
@@ -373,7 +373,7 @@ fn markdown(cells: &[Cell], outcomes: &[Outcome], args: &BiasMatrixArgs) -> Stri
             row
         })
         .collect();
-    crate::bench::markdown::table(&mut md, &header, &rows);
+    crate::bench::write::markdown::table(&mut md, &header, &rows);
     list_cells(&mut md, "Biased cells", cells, outcomes, |r| {
         r.verdict() == Verdict::Biased
     });

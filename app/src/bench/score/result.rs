@@ -1,0 +1,63 @@
+//! What one configuration measured in one seed's run, and what scoring adds once every
+//! seed ran: the run loop (run/run_loop.rs) fills in its frames, times and scores, the
+//! stage over the seeds (`over_seeds.rs`) its figures over seeds, lag and ratios to `nee`.
+
+use restir_render::LinearImage;
+use restir_render::metrics::pixel_moments::PixelMoments;
+use restir_render::stats::StatsSummary;
+use restir_render::tracing::RayBackend;
+
+use super::frame_figures::{FrameRecord, ScoreSummary};
+use super::lag::{EventLag, SeedEvent};
+use super::seed_figures::SeedFigures;
+use crate::bench::plan::budget::BudgetClock;
+use crate::bench::plan::configs::Config;
+
+/// What one configuration measured.
+#[derive(Clone, Debug)]
+pub struct ConfigResult {
+    pub config: Config,
+    pub frames: Vec<FrameRecord>,
+    /// Median per-frame and per-pass times.
+    pub times: StatsSummary,
+    pub scores: Option<ScoreSummary>,
+    /// Equal-time mode: the clock when it stopped.
+    pub budget: Option<BudgetClock>,
+    /// Filled in once every configuration ran (`vs_nee.rs`): median frame time, per-frame
+    /// luma MSE and (equal-time mode) the running average's MSE, each relative to `nee`.
+    pub time_vs_nee: Option<f64>,
+    pub frame_mse_vs_nee: Option<f64>,
+    pub budget_mse_vs_nee: Option<f64>,
+    /// A dynamic scene's events: this run's numbers per event, the first event's frames
+    /// for `event_strip.png` (index, image), and (filled in by `over_seeds.rs` once every
+    /// seed ran) the numbers averaged over seeds.
+    pub seed_events: Vec<SeedEvent>,
+    pub event_frames: Vec<(usize, LinearImage)>,
+    pub lag: Vec<EventLag>,
+    /// The temporal-stability figure: mean |Δ luma| between consecutive measured frames
+    /// over the reference's luminance (`restir_render::flicker`; none without scoring).
+    pub flicker: Option<f64>,
+    /// What traced the configuration's rays (`ray_backend` resolved on the device).
+    pub ray_backend: Option<RayBackend>,
+    /// The à-trous depth `denoise_auto_depth`'s probe chose (none: off, or not yet run).
+    pub denoise_auto_depth: Option<u32>,
+    /// A still camera's per-pixel moments of this seed's frames (seed_figures.rs).
+    pub moments: Option<PixelMoments>,
+    /// Filled in by `over_seeds.rs` once every seed ran: the image figures over the seeds.
+    pub over_seeds: Option<SeedFigures>,
+    /// Filled in by `over_seeds.rs` once every seed ran: each seed's median frame time, in seed
+    /// order (`times` is seed S's alone). The seeds' frames interleave the configurations
+    /// alike, so a cost ratio read seed by seed shows how far the load moved it.
+    pub seed_frame_ms: Vec<f64>,
+}
+
+impl ConfigResult {
+    pub fn median_frame_ms(&self) -> Option<f64> {
+        self.times.frame_gpu_ms_median
+    }
+
+    /// The error equal-time mode compares: the running average's RGB RMSE.
+    pub fn final_accumulated_rmse(&self) -> Option<f64> {
+        self.scores.as_ref()?.accumulated_rgb_rmse
+    }
+}

@@ -63,14 +63,14 @@ pub fn check_page(page: &Page, tables: &mut Tables, root: &Path) -> Report {
             bound.push(link.span.clone());
         }
     }
-    match page.bound_tables() {
-        Ok(bound_tables) => {
-            for t in &bound_tables {
-                report.tables += 1;
-                check_table(page, t, tables, root, &mut report, &mut bound);
-            }
-        }
-        Err(e) => report.findings.push(e),
+    let (bound_tables, broken) = page.bound_tables();
+    for t in &bound_tables {
+        report.tables += 1;
+        check_table(page, t, tables, root, &mut report, &mut bound);
+    }
+    for (what, cells) in broken {
+        report.findings.push(what);
+        bound.extend(cells);
     }
     for span in page.unbound_figures(&bound) {
         report.findings.push(format!(

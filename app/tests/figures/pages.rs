@@ -126,63 +126,85 @@ impl Page {
         (figures, others)
     }
 
-    /// The tables bound by a `<!-- figures: FILE rows: ...|key: ... columns: ... -->` comment.
-    pub fn bound_tables(&self) -> Result<Vec<BoundTable>, String> {
-        let mut out = Vec::new();
+    /// The tables bound by a `<!-- figures: FILE rows: ...|key: ... columns: ... -->` comment,
+    /// and the comments that cannot bind their table (each with the table's cells, which
+    /// are then not also reported as unbound).
+    pub fn bound_tables(&self) -> (Vec<BoundTable>, Vec<(String, Vec<Range<usize>>)>) {
+        let (mut out, mut broken) = (Vec::new(), Vec::new());
         for (at, _) in self.text.match_indices("<!-- figures:") {
             if self.code[at] {
                 continue; // an example in a code block
             }
             let line = self.line_of(at);
-            let fail = |what: String| format!("{}:{line}: {what}", self.name);
-            let end = self.text[at..]
-                .find("-->")
-                .map(|e| at + e)
-                .ok_or_else(|| fail("unclosed `<!-- figures:` comment".into()))?;
-            let spec = &self.text[at + "<!-- figures:".len()..end];
-            let field = |name: &str| -> Option<String> {
-                let start = spec.find(name)? + name.len();
-                let stop = ["rows:", "key:", "columns:"]
-                    .iter()
-                    .filter_map(|k| spec[start..].find(k))
-                    .min()
-                    .map_or(spec.len(), |s| start + s);
-                Some(spec[start..stop].split_whitespace().collect::<Vec<_>>().join(" "))
+            let fail = |what: &str| format!("{}:{line}: {what}", self.name);
+            let Some(end) = self.text[at..].find("-->").map(|e| at + e) else {
+                broken.push((fail("unclosed `<!-- figures:` comment"), Vec::new()));
+                continue;
             };
-            let first_field = ["rows:", "key:", "columns:"]
-                .iter()
-                .filter_map(|k| spec.find(k))
-                .min()
-                .unwrap_or(spec.len());
-            let file = spec[..first_field].trim();
-            let rows = match (field("rows:"), field("key:")) {
-                (Some(r), None) => Rows::Listed(split_outside_quotes(&r)),
-                (None, Some(k)) => Rows::Keyed(k),
-                _ => return Err(fail("a bound table needs one of `rows:` or `key:`".into())),
+            let body = match self.table_after(end + 3) {
+                Ok(body) => body,
+                Err(e) => {
+                    broken.push((fail(&e), Vec::new()));
+                    continue;
+                }
             };
-            let columns: Vec<Option<String>> = field("columns:")
-                .ok_or_else(|| fail("a bound table needs `columns:`".into()))
-                .map(|c| split_outside_quotes(&c))?
-                .into_iter()
-                .map(|c| Some(c).filter(|c| c != "-"))
-                .collect();
-            let body = self.table_after(end + 3).map_err(fail)?;
-            if let Some(r) = body.iter().find(|r| r.len() != columns.len()) {
-                return Err(fail(format!(
-                    "the table has {} columns, `columns:` names {}",
-                    r.len(),
-                    columns.len()
-                )));
+            match self.bind(at, &self.text[at + "<!-- figures:".len()..end], body) {
+                Ok(table) => out.push(table),
+                Err((what, body)) => broken.push((fail(&what), body.into_iter().flatten().collect())),
             }
-            out.push(BoundTable {
-                at,
-                file: crate::data::normalise(&self.dir().join(file)),
-                rows,
-                columns,
-                body,
-            });
         }
-        Ok(out)
+        (out, broken)
+    }
+
+    /// One comment's table: its file, rows and columns.
+    #[allow(clippy::type_complexity)]
+    fn bind(
+        &self,
+        at: usize,
+        spec: &str,
+        body: Vec<Vec<Range<usize>>>,
+    ) -> Result<BoundTable, (String, Vec<Vec<Range<usize>>>)> {
+        let field = |name: &str| -> Option<String> {
+            let start = spec.find(name)? + name.len();
+            let stop = ["rows:", "key:", "columns:"]
+                .iter()
+                .filter_map(|k| spec[start..].find(k))
+                .min()
+                .map_or(spec.len(), |s| start + s);
+            Some(spec[start..stop].split_whitespace().collect::<Vec<_>>().join(" "))
+        };
+        let first_field = ["rows:", "key:", "columns:"]
+            .iter()
+            .filter_map(|k| spec.find(k))
+            .min()
+            .unwrap_or(spec.len());
+        let rows = match (field("rows:"), field("key:")) {
+            (Some(r), None) => Rows::Listed(split_outside_quotes(&r)),
+            (None, Some(k)) => Rows::Keyed(k),
+            _ => return Err(("a bound table needs one of `rows:` or `key:`".into(), body)),
+        };
+        let Some(columns) = field("columns:") else {
+            return Err(("a bound table needs `columns:`".into(), body));
+        };
+        let columns: Vec<Option<String>> = split_outside_quotes(&columns)
+            .into_iter()
+            .map(|c| Some(c).filter(|c| c != "-"))
+            .collect();
+        if let Some(r) = body.iter().find(|r| r.len() != columns.len()) {
+            let what = format!(
+                "the table has {} columns, `columns:` names {}",
+                r.len(),
+                columns.len()
+            );
+            return Err((what, body));
+        }
+        Ok(BoundTable {
+            at,
+            file: crate::data::normalise(&self.dir().join(spec[..first_field].trim())),
+            rows,
+            columns,
+            body,
+        })
     }
 
     /// The body cells of the Markdown table that starts on the first non-blank line after
@@ -237,13 +259,13 @@ impl Page {
             if covered[p.span.start] {
                 continue;
             }
-            // `1.3×` is a measured ratio; `14 × 5 m`, `2 × (1 + 2)` and `4×4` are sizes and
-            // arithmetic.
+            // `1.3×` is a measured ratio; `4×4` and `14 × 5 m` are sizes, `2 × (1 + 2)`
+            // arithmetic (a space before the sign).
             let next = &self.text[p.span.end..];
             let ratio = next.starts_with('×')
                 && !next['×'.len_utf8()..]
                     .trim_start()
-                    .starts_with(|c: char| c.is_ascii_digit() || c == '(');
+                    .starts_with(|c: char| c.is_ascii_digit());
             let after = next.trim_start_matches([' ', '\u{a0}', '\u{2009}']);
             let time = after.starts_with("ms")
                 && !after[2..].starts_with(|c: char| c.is_alphanumeric());

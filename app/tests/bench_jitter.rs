@@ -56,4 +56,20 @@ fn with_jitter_on_the_bench_scores_each_frame_against_its_own_offset() {
     );
     let md = std::fs::read_to_string(out.join("results.md")).unwrap();
     assert!(md.contains("own sub-pixel offset"), "{md}");
+    // The reference noise every per-frame error includes is the phases' references', which
+    // ReSTIR's whole per-frame error must exceed (an error measured against a reference
+    // includes that reference's noise). The planted twin is the antialiased reference's
+    // noise, which the bench once reported in its place: the pixel footprint makes it
+    // larger than ReSTIR's per-frame error, which cannot be.
+    let frame_noise = value("restir-pairwise", "frame_reference_noise_luma_rmse");
+    let antialiased_noise = value("restir-pairwise", "reference_noise_luma_rmse");
+    let restir = value("restir-pairwise", "mean_luma_rmse");
+    eprintln!("noise {frame_noise:.4} per phase, {antialiased_noise:.4} antialiased; restir {restir:.4}");
+    assert!(frame_noise < restir, "per-phase noise {frame_noise} ≥ restir's {restir}");
+    assert!(
+        antialiased_noise > restir,
+        "the antialiased reference's noise {antialiased_noise} no longer exceeds restir's \
+         per-frame error {restir}: the twin does not tell the two apart at this size"
+    );
+    assert!(md.contains("jitter phases' references"), "{md}");
 }

@@ -2,7 +2,7 @@
 //! with the same seed against a cached reference and writes `results.csv`, `frames.csv`,
 //! `results.md` and PNG plots; `--budget-ms` compares them at equal time, `--knob` reads
 //! each one's cost to reach a target error, and `--sweep-lights` times light selection
-//! against the light count. See docs/bench.md.
+//! against the light count. See docs/src/measured/how-the-bench-measures.md.
 //!
 //! The folders are the stages `run` goes through, in order:
 //! - `plan/`: what to run, the command line checked into a `Plan` (configurations, a

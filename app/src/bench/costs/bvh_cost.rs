@@ -1,13 +1,13 @@
 //! `bench-bvh`: the per-frame ray-tracing structure of an animated scene, four ways
-//! (docs/bench.md, "BVH: refit, rebuild or two levels"): a single tree built at the first time
-//! and refitted, a full rebuild every frame, the renderer's split tree (`scene::bvh::split`:
-//! the moving triangles' subtree apart from the static one, only it refitted, and the price of
-//! rebuilding only it), and a two-level BVH (`scene::bvh::two_level`: BLAS per instance built
-//! once, TLAS rebuilt every frame). For each
+//! (docs/src/measured/dynamic-scenes.md, "BVH: refit, rebuild or two levels"): a single tree
+//! built at the first time and refitted, a full rebuild every frame, the renderer's split tree
+//! (`scene::bvh::split`: the moving triangles' subtree apart from the static one, only it
+//! refitted, and the price of rebuilding only it), and a two-level BVH
+//! (`scene::bvh::two_level`: BLAS per instance built once, TLAS rebuilt every frame). For each
 //! scene time: the CPU time of the per-frame work, the SAH cost, and the nodes visited and
-//! triangles tested by a fixed set of rays — primary rays from the scene camera and one shadow ray
-//! per hit to a point on an emitter — which measures traversal cost independently of the machine.
-//! Prints a Markdown table; never a timing assertion.
+//! triangles tested by a fixed set of rays — primary rays from the scene camera and one shadow
+//! ray per hit to a point on an emitter — which measures traversal cost independently of the
+//! machine. Prints a Markdown table; never a timing assertion.
 
 use std::time::Instant;
 

@@ -1,9 +1,9 @@
-//! `--sweep-lights N,N,...`: the light-count benchmark (docs/bench.md, "Light count"). For
-//! each N it times the
-//! generation of `builtin:many-lights:N`, its upload (BVH build, light table) and the
-//! per-frame and per-pass times of every configuration. Light selection draws from an
-//! alias table, so the cost of selection should not grow with N; the table reports the
-//! ratio between the largest and the smallest N. Writes sweep.csv, sweep.md and sweep.png.
+//! `--sweep-lights N,N,...`: the light-count benchmark (docs/src/measured/many-lights.md,
+//! "Light count: does light selection stay flat?"). For each N it times the generation of
+//! `builtin:many-lights:N`, its upload (BVH build, light table) and the per-frame and per-pass
+//! times of every configuration. Light selection draws from an alias table, so the cost of
+//! selection should not grow with N; the table reports the ratio between the largest and the
+//! smallest N. Writes sweep.csv, sweep.md and sweep.png.
 
 use std::fmt::Write;
 use std::path::Path;

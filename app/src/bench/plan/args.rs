@@ -29,7 +29,7 @@ pub struct BenchArgs {
     pub configs: String,
     /// A cost curve per configuration: each runs once per value of this parameter
     /// (`light_candidates=1,2,4,8,16`), and results.md states the cost at which each
-    /// reaches the target error (docs/bench.md, "Equal error").
+    /// reaches the target error (docs/src/measured/how-the-bench-measures.md, "Equal error").
     #[arg(long, value_name = "NAME=V1,V2,...")]
     pub knob: Option<String>,
     /// The per-frame luma RMSE the equal-error table reads costs at (default: the first
@@ -50,7 +50,8 @@ pub struct BenchArgs {
     #[arg(long, default_value_t = 1024)]
     pub reference_spp: u32,
     /// Seed, `--set`, preset and effect set of every configuration. The bench applies
-    /// `jitter=false` first (see docs/bench.md); `--set jitter=true` turns it back on.
+    /// `jitter=false` first (docs/src/measured/how-the-bench-measures.md, "How it
+    /// measures"); `--set jitter=true` turns it back on.
     #[command(flatten)]
     pub pipeline: PipelineArgs,
     /// `--env`, `--env-strength`, `--env-rotation` (the reference is keyed by them too).

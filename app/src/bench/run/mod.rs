@@ -130,6 +130,7 @@ impl Bench {
                 SeedReference {
                     image: &own.images[0],
                     noise: own.noise_luma_rmse,
+                    frame_noise: own.frame_noise_luma(),
                 }
             })
             .collect()

@@ -18,9 +18,16 @@ pub struct References {
     /// One image (still camera) or one per measured frame.
     pub images: Vec<LinearImage>,
     pub spp: u32,
-    /// The largest estimated own RMSE among them (see reference_cache docs).
+    /// The largest estimated own RMSE among `images` (see reference_cache docs): the
+    /// noise in every error against them, the accumulated image's included.
     pub noise_luma_rmse: Option<f64>,
     pub noise_rgb_rmse: Option<f64>,
+    /// The largest among the jitter phases' references, which a jittered still shot's
+    /// per-frame errors are measured against instead. Not the antialiased reference's:
+    /// that one integrates the pixel footprint and is several times noisier at the same
+    /// spp (docs/src/measured/how-the-bench-measures.md, "How it measures").
+    pub phase_noise_luma_rmse: Option<f64>,
+    pub phase_noise_rgb_rmse: Option<f64>,
     pub loaded: usize,
     pub rendered: usize,
     pub render_seconds: f64,
@@ -29,6 +36,24 @@ pub struct References {
     /// "Accuracy with jitter on"). `images[0]` stays the antialiased reference that the
     /// running average converges to.
     pub phases: Option<PhaseReferences>,
+}
+
+impl References {
+    /// The reference noise in every per-frame error: the phases' with jitter on (a still
+    /// shot), else the references' own.
+    pub fn frame_noise_luma(&self) -> Option<f64> {
+        match self.phases {
+            Some(_) => self.phase_noise_luma_rmse,
+            None => self.noise_luma_rmse,
+        }
+    }
+}
+
+/// Which of a bench's references one is: its noise is counted with its kind's.
+#[derive(Clone, Copy, PartialEq)]
+enum Kind {
+    Shot,
+    Phase,
 }
 
 /// What the references are rendered with.
@@ -74,6 +99,8 @@ pub fn obtain(
         spp: plan.spp,
         noise_luma_rmse: None,
         noise_rgb_rmse: None,
+        phase_noise_luma_rmse: None,
+        phase_noise_rgb_rmse: None,
         loaded: 0,
         rendered: 0,
         render_seconds: 0.0,
@@ -90,7 +117,7 @@ pub fn obtain(
         let scene = clock.as_deref().map_or(plan.scene, |c| c.scene());
         let request = request_of(plan, scene, shot.camera(frame), renderer.size());
         let label = format!("reference {}/{}{bounces}", i + 1, frames.len());
-        let image = fetch(plan, renderer, &request, &label, &mut refs)?;
+        let image = fetch(plan, renderer, &request, &label, Kind::Shot, &mut refs)?;
         refs.images.push(image);
     }
     if !plan.phases.is_empty() && !shot.moves() {
@@ -99,7 +126,8 @@ pub fn obtain(
             let request = request_of(plan, plan.scene, shot.camera(first), renderer.size())
                 .at_jitter_phase(phase);
             let label = format!("reference of jitter phase {phase}{bounces}");
-            phases.insert(phase, fetch(plan, renderer, &request, &label, &mut refs)?);
+            let image = fetch(plan, renderer, &request, &label, Kind::Phase, &mut refs)?;
+            phases.insert(phase, image);
         }
         refs.phases = Some(phases);
     }
@@ -142,6 +170,7 @@ fn fetch(
     renderer: &mut Renderer,
     request: &ReferenceRequest,
     label: &str,
+    kind: Kind,
     refs: &mut References,
 ) -> anyhow::Result<LinearImage> {
     let mut progress = |p: &Progress| {
@@ -170,8 +199,12 @@ fn fetch(
         (Some(a), Some(b)) => Some(a.max(b)),
         (a, b) => a.or(b),
     };
-    refs.noise_luma_rmse = max(refs.noise_luma_rmse, reference.meta.noise_luma_rmse);
-    refs.noise_rgb_rmse = max(refs.noise_rgb_rmse, reference.meta.noise_rgb_rmse);
+    let (luma, rgb) = match kind {
+        Kind::Shot => (&mut refs.noise_luma_rmse, &mut refs.noise_rgb_rmse),
+        Kind::Phase => (&mut refs.phase_noise_luma_rmse, &mut refs.phase_noise_rgb_rmse),
+    };
+    *luma = max(*luma, reference.meta.noise_luma_rmse);
+    *rgb = max(*rgb, reference.meta.noise_rgb_rmse);
     if reference.image.non_finite_count() > 0 {
         bail!(
             "{}: the reference has non-finite pixels",

@@ -168,6 +168,7 @@ impl<'a> ConfigRun<'a> {
             moments: self.scoring.into_moments(),
             over_seeds: None,
             seed_frame_ms: Vec::new(),
+            frame_reference_noise: None,
             config: self.config,
             frames: self.records,
             budget: self.clock,

@@ -1,12 +1,12 @@
-//! Equal-error cost (docs/bench.md, "Equal error"): with `--knob NAME=V1,V2,...` every
-//! configuration runs once per value of its quality knob (light candidates, say), giving a
-//! curve of per-frame error against cost. The cost at which each curve reaches a target
-//! error, read off the curve, compares configurations where "MSE × ms" cannot: a denoised
-//! image whose error stops falling (a bias or blur floor) does not trade error for time at
-//! the 1/time rate that product assumes. Costs are stated twice: lavapipe's (or the GPU's)
-//! milliseconds, and a hardware-neutral count (shadow rays and light candidates per pixel).
-//! The error is the estimator's: the reference's own noise σ comes out in quadrature
-//! (a frame scored against a noisy reference reads √(RMSE² + σ²)). The files and the
+//! Equal-error cost (docs/src/measured/how-the-bench-measures.md, "Equal error"): with `--knob
+//! NAME=V1,V2,...` every configuration runs once per value of its quality knob (light
+//! candidates, say), giving a curve of per-frame error against cost. The cost at which each
+//! curve reaches a target error, read off the curve, compares configurations where "MSE × ms"
+//! cannot: a denoised image whose error stops falling (a bias or blur floor) does not trade
+//! error for time at the 1/time rate that product assumes. Costs are stated twice: lavapipe's
+//! (or the GPU's) milliseconds, and a hardware-neutral count (shadow rays and light candidates
+//! per pixel). The error is the estimator's: the reference's own noise σ comes out in
+//! quadrature (a frame scored against a noisy reference reads √(RMSE² + σ²)). The files and the
 //! results.md section are written by write/cost_curves.rs.
 
 use super::result::ConfigResult;

@@ -1,11 +1,13 @@
-//! Equal-time gain over seeds (docs/bench.md, "How it measures"): how much less error a
-//! configuration buys than the bench's first one for the same time, with a 95 % interval,
-//! so that a verdict such as "ReGIR fed by the tree beats the tiles" rests on its seeds and
-//! not on one mean.
+//! Equal-time gain over seeds (docs/src/measured/how-the-bench-measures.md, "How it measures"):
+//! how much less error a configuration buys than the bench's first one for the same time, with
+//! a 95 % interval, so that a verdict such as "ReGIR fed by the tree beats the tiles" rests on
+//! its seeds and not on one mean.
 //!
 //! Gain = (per-frame MSE × ms/frame of the first) ÷ (the same of this row), each factor the
-//! mean over the seeds: a seed's per-frame MSE is its mean per-frame luma RMSE squared, its
-//! ms its median frame time. The interval is the delta method on the log scale: each of the
+//! mean over the seeds: a seed's per-frame MSE is its mean per-frame luma RMSE squared less
+//! the reference's own noise² (a frame measured against a noisy reference reads
+//! √(MSE + σ²), and σ², the same for every configuration, would pull every gain towards 1),
+//! its ms its median frame time. The interval is the delta method on the log scale: each of the
 //! four means contributes its relative t-interval half-width (its t at its own seed count),
 //! and the four add in quadrature, the rows' seeds being independent runs. Heavy-tailed
 //! seeds (a firefly in one seed) widen it, which is what it is there to show.
@@ -35,10 +37,12 @@ impl Gain {
     }
 }
 
-/// What one configuration brings: each seed's per-frame luma RMSE and median frame time.
+/// What one configuration brings: each seed's per-frame luma RMSE and median frame time,
+/// and the luma noise of the references its per-frame errors were measured against.
 pub struct SeedCosts<'a> {
     pub frame_luma_rmse: &'a [f64],
     pub frame_ms: &'a [f64],
+    pub reference_noise: f64,
 }
 
 impl SeedCosts<'_> {
@@ -47,12 +51,16 @@ impl SeedCosts<'_> {
         Some(SeedCosts {
             frame_luma_rmse: &r.over_seeds.as_ref()?.frame_luma_rmse_by_seed,
             frame_ms: &r.seed_frame_ms,
+            reference_noise: r.frame_reference_noise.unwrap_or(0.0),
         })
     }
 
-    /// The per-frame MSE over the seeds (each seed's RMSE squared).
+    /// The per-frame MSE over the seeds: each seed's RMSE squared less the reference's
+    /// noise². Not clipped at 0 seed by seed, which would bias the mean up; a mean at or
+    /// below 0 (an error within the reference's own noise) gives no gain.
     pub fn mse(&self) -> Interval {
-        let squares: Vec<f64> = self.frame_luma_rmse.iter().map(|r| r * r).collect();
+        let noise = self.reference_noise * self.reference_noise;
+        let squares: Vec<f64> = self.frame_luma_rmse.iter().map(|r| r * r - noise).collect();
         Interval::of(&squares)
     }
 
@@ -126,7 +134,33 @@ mod tests {
         SeedCosts {
             frame_luma_rmse: rmse,
             frame_ms: ms,
+            reference_noise: 0.0,
         }
+    }
+
+    /// Both rows measured against a reference of noise 0.03: MSE 0.0016 and 0.0004 read as
+    /// 0.0025 and 0.0013 with it. Less the noise the gain is the true 4; the planted twin
+    /// that keeps the noise reads 1.9, pulled towards 1.
+    #[test]
+    fn the_reference_noise_comes_out_of_every_seed_before_the_ratio() {
+        let with_noise = |mse: f64| (mse + 0.03f64 * 0.03).sqrt();
+        let (b, r) = ([with_noise(0.0016); 3], [with_noise(0.0004); 3]);
+        let ms = [100.0; 3];
+        let noisy = |rmse| SeedCosts {
+            frame_luma_rmse: rmse,
+            frame_ms: &ms,
+            reference_noise: 0.03,
+        };
+        let g = equal_time_gain(&noisy(&b), &noisy(&r)).unwrap();
+        assert!((g.value - 4.0).abs() < 1e-9, "{}", g.value);
+        let planted = equal_time_gain(&costs(&b, &ms), &costs(&r, &ms)).unwrap();
+        assert!((planted.value - 0.0025 / 0.0013).abs() < 1e-9, "{}", planted.value);
+        // An error within the reference's own noise has no gain to state.
+        let lost = SeedCosts {
+            frame_luma_rmse: &[0.02; 3],
+            ..noisy(&r)
+        };
+        assert_eq!(equal_time_gain(&noisy(&b), &lost), None);
     }
 
     #[test]

@@ -28,7 +28,7 @@ pub struct FrameRecord {
     pub scores: FrameScores,
 }
 
-/// A run's numbers (docs/bench.md, "How it measures").
+/// A run's numbers (docs/src/measured/how-the-bench-measures.md, "How it measures").
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ScoreSummary {
     /// Per-frame accuracy: luma RMSE vs the reference (with jitter on, each frame's jitter
@@ -58,13 +58,14 @@ pub struct ScoreSummary {
     /// Non-finite pixels seen (each skipped by the metrics).
     pub non_finite_pixels: usize,
     /// Moving shot: the error in each frame's disoccluded pixels and in those near moving
-    /// triangles (`metrics::motion_masks`; docs/bench.md, "Errors where the view moves").
+    /// triangles (`metrics::motion_masks`; docs/src/measured/how-the-bench-measures.md, "Errors
+    /// where the view moves").
     pub disoccluded: Option<MaskedFigures>,
     pub near_moving: Option<MaskedFigures>,
-    /// Within the reference's strong edges (`metrics::detail`; docs/bench.md, "Shadow
-    /// detail"), means over frames: their share of the pixels, the luma RMSE there and the
-    /// detail each frame keeps (1 = as sharp as the reference) and FLIP there. None
-    /// without edges.
+    /// Within the reference's strong edges (`metrics::detail`;
+    /// docs/src/measured/how-the-bench-measures.md, "Shadow detail"), means over frames: their
+    /// share of the pixels, the luma RMSE there and the detail each frame keeps (1 = as sharp
+    /// as the reference) and FLIP there. None without edges.
     pub detail: Option<DetailSummary>,
 }
 

@@ -3,9 +3,9 @@
 //! per-frame error curve (luma RMSE of each frame against that frame's own reference) and
 //! the frames right after the event, the numbers `results.csv` carries per event.
 //!
-//! Definitions (docs/bench.md, "Lag and ghosting"). An event's *segment* is the measured
-//! frames from the event frame (the first frame that shows the change) up to the next event
-//! or the end of the run.
+//! Definitions (docs/src/measured/how-the-bench-measures.md, "Light events: lag and ghosting").
+//! An event's *segment* is the measured frames from the event frame (the first frame that shows
+//! the change) up to the next event or the end of the run.
 //! - `steady_error`: the lower of (a) the median error of the segment's last
 //!   `STEADY_FRAMES` frames — the level the configuration settles at in the changed scene —
 //!   and (b) when the 5 frames before the event are measured and belong to no earlier
@@ -32,10 +32,12 @@ pub use restir_render::timeline::event_frames;
 
 /// Frames of the steady window, of the recovery window and of the signed-bias window.
 pub const STEADY_FRAMES: usize = 5;
-/// Recovered = within 10 % of the steady level (docs/bench.md, "Lag and ghosting").
+/// Recovered = within 10 % of the steady level (docs/src/measured/how-the-bench-measures.md,
+/// "Light events: lag and ghosting").
 pub const RECOVERY_TOLERANCE: f64 = 0.10;
 /// A pixel "changed" when its reference luminance moved by more than 10 % of its value
-/// before the event (docs/bench.md, "Lag and ghosting").
+/// before the event (docs/src/measured/how-the-bench-measures.md, "Light events: lag and
+/// ghosting").
 pub const CHANGE_THRESHOLD: f32 = 0.10;
 
 /// Numbers from one event's error curve.

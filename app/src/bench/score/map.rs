@@ -1,16 +1,16 @@
-//! `bench-map DIR`: the crossover map (docs/bench.md, "The crossover map at 384×256")
-//! from the bench runs under DIR, one folder per (scene, size, camera), each a `--knob` run
-//! whose first configuration is the baseline (denoised RIS). For each cell and configuration: the
-//! milliseconds it needs to reach the baseline's best error and its middle error, as a
-//! ratio to the baseline's own, read off its curve (equal_error.rs); the same in shadow
-//! rays; its squared bias and variance at the top knob value. Each curve's milliseconds
+//! `bench-map DIR`: the crossover map (docs/src/measured/denoiser.md, "The crossover map at
+//! 384×256") from the bench runs under DIR, one folder per (scene, size, camera), each a
+//! `--knob` run whose first configuration is the baseline (denoised RIS). For each cell and
+//! configuration: the milliseconds it needs to reach the baseline's best error and its middle
+//! error, as a ratio to the baseline's own, read off its curve (equal_error.rs); the same in
+//! shadow rays; its squared bias and variance at the top knob value. Each curve's milliseconds
 //! are first smoothed by a straight-line fit over the knob: lavapipe's per-point medians
 //! scatter when other work shares the cores, and a curve read in the order of noisy times
-//! zig-zags. Where the cells kept each seed's timings, the ratio at the best error is also
-//! read seed by seed (the error curves stay the seeds' mean, so only the load moves it),
-//! and stated with its 95 % interval over the seeds: a verdict near a threshold such as
-//! 0.8× holds only where the whole interval lies on one side. write/map.rs writes
-//! `map.md` and `map.csv` into DIR.
+//! zig-zags. Where the cells kept each seed's timings, the ratio at the best error is also read
+//! seed by seed (the error curves stay the seeds' mean, so only the load moves it), and stated
+//! with its 95 % interval over the seeds: a verdict near a threshold such as 0.8× holds only
+//! where the whole interval lies on one side. write/map.rs writes `map.md` and `map.csv` into
+//! DIR.
 
 use std::path::{Path, PathBuf};
 

@@ -12,10 +12,12 @@ use super::seed_figures::{SeedRun, of_seeds};
 use super::vs_nee::compare_with_nee;
 
 /// The reference a configuration's figures over seeds are scored against (the still
-/// camera's, or a moving camera's first) and its own per-pixel luma noise.
+/// camera's, or a moving camera's first) and its own per-pixel luma noise, and the noise of
+/// the references its per-frame errors were measured against (with jitter on, the phases').
 pub struct SeedReference<'a> {
     pub image: &'a LinearImage,
     pub noise: Option<f64>,
+    pub frame_noise: Option<f64>,
 }
 
 /// The light events of a dynamic scene: the measured frame and scene time of each.
@@ -43,6 +45,7 @@ pub fn over_seeds(
             })
             .collect();
         r.over_seeds = of_seeds(&runs, own.image, own.noise);
+        r.frame_reference_noise = own.frame_noise;
     }
     for (r, runs) in results.iter_mut().zip(per_seed) {
         r.seed_frame_ms = runs.iter().filter_map(|r| r.median_frame_ms()).collect();

@@ -49,6 +49,9 @@ pub struct ConfigResult {
     /// order (`times` is seed S's alone). The seeds' frames interleave the configurations
     /// alike, so a cost ratio read seed by seed shows how far the load moved it.
     pub seed_frame_ms: Vec<f64>,
+    /// Filled in by `over_seeds.rs`: the luma noise of the references this configuration's
+    /// per-frame errors were measured against (`References::frame_noise_luma`).
+    pub frame_reference_noise: Option<f64>,
 }
 
 impl ConfigResult {

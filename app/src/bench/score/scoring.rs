@@ -1,9 +1,10 @@
-//! Frames in, the numbers of docs/bench.md ("How it measures") out, using the renderer's metrics
-//! (`SequenceMetrics` for a still camera). With a moving camera each frame has its own reference:
-//! per-frame accuracy is measured against it, stability is the luma RMSE between consecutive
-//! *error* images (frame − its reference; for a still camera that is exactly the frame-to-frame
-//! RMSE, and with motion it leaves out the true change of the image), the luma ratio is averaged
-//! over frames, and the running average is not defined (n/a).
+//! Frames in, the numbers of docs/src/measured/how-the-bench-measures.md ("How it measures")
+//! out, using the renderer's metrics (`SequenceMetrics` for a still camera). With a moving
+//! camera each frame has its own reference: per-frame accuracy is measured against it,
+//! stability is the luma RMSE between consecutive *error* images (frame − its reference; for a
+//! still camera that is exactly the frame-to-frame RMSE, and with motion it leaves out the true
+//! change of the image), the luma ratio is averaged over frames, and the running average is not
+//! defined (n/a).
 
 use restir_render::LinearImage;
 use restir_render::metrics::detail::Edges;

@@ -25,8 +25,12 @@ pub struct BenchInfo {
     pub radius: (f32, f32),
     pub jitter: bool,
     pub reference_spp: u32,
+    /// The references' own noise: of the images the accumulated image is scored against,
+    /// and (luma) of those every per-frame error is measured against, which differ with
+    /// jitter on (`References::frame_noise_luma`).
     pub reference_noise_luma: Option<f64>,
     pub reference_noise_rgb: Option<f64>,
+    pub frame_reference_noise_luma: Option<f64>,
     pub reference_count: usize,
     /// The `max_bounces` of the references (one set each; configurations are scored
     /// against the set of their own max_bounces).
@@ -72,6 +76,7 @@ impl BenchInfo {
             reference_spp: refs.spp,
             reference_noise_luma: max_noise(sets, |r| r.noise_luma_rmse),
             reference_noise_rgb: max_noise(sets, |r| r.noise_rgb_rmse),
+            frame_reference_noise_luma: max_noise(sets, References::frame_noise_luma),
             reference_count: refs.images.len(),
             reference_bounces: sets.bounces().map(|(b, _)| b).collect(),
             seeds: args.seeds,

@@ -7,7 +7,8 @@ use super::info::BenchInfo;
 use super::markdown::{sig, table};
 use crate::bench::score::result::ConfigResult;
 
-/// Per configuration and event: the lag metrics (docs/bench.md, "Lag and ghosting").
+/// Per configuration and event: the lag metrics (docs/src/measured/how-the-bench-measures.md,
+/// "Light events: lag and ghosting").
 pub fn lag_table(md: &mut String, info: &BenchInfo, results: &[ConfigResult]) {
     if results.iter().all(|r| r.lag.is_empty()) {
         return;

@@ -68,7 +68,7 @@ pub fn all(
             .iter()
             .map(|c| {
                 let own = bench.references.for_bounces(c.settings.reference_bounces());
-                own.noise_luma_rmse.unwrap_or(0.0)
+                own.frame_noise_luma().unwrap_or(0.0)
             })
             .collect();
         equal_error(out, &info, results, &noise, knob, args)?;

@@ -163,7 +163,7 @@ fn run_cells(r: &ConfigResult, s: &ScoreSummary) -> Vec<String> {
 }
 
 /// The bench's conditions, the same on every row.
-const BENCH_COLUMNS: [&str; 9] = [
+const BENCH_COLUMNS: [&str; 10] = [
     "scene",
     "size",
     "camera",
@@ -171,6 +171,7 @@ const BENCH_COLUMNS: [&str; 9] = [
     "reference_spp",
     "reference_noise_luma_rmse",
     "reference_noise_rgb_rmse",
+    "frame_reference_noise_luma_rmse",
     "device",
     "timing",
 ];
@@ -184,6 +185,7 @@ fn bench_cells(info: &BenchInfo) -> Vec<String> {
         info.reference_spp.to_string(),
         num(info.reference_noise_luma),
         num(info.reference_noise_rgb),
+        num(info.frame_reference_noise_luma),
         info.device.clone(),
         info.timing_note().to_string(),
     ]

@@ -1,4 +1,4 @@
-//! `results.md`: the tables people paste (into README, an issue, docs/bench.md), with the
+//! `results.md`: the tables people paste (into README, an issue, the book's chapters), with the
 //! device and the conditions named, and the timing caveat next to every time.
 
 use std::fmt::Write;
@@ -111,6 +111,16 @@ fn seeds_line(md: &mut String, info: &BenchInfo) {
 /// The reference: its samples, how many, its bounces, jitter, and its own noise.
 fn reference_line(md: &mut String, info: &BenchInfo) {
     let noise = match (info.reference_noise_luma, info.reference_noise_rgb) {
+        // Jitter on: the per-frame errors are against the phases' references, whose noise
+        // is the pixel centre's lighting alone; the antialiased one's adds the footprint.
+        (Some(l), Some(r)) if info.frame_reference_noise_luma != Some(l) => format!(
+            "its own RMSE ≈ {} luma / {} RGB (antialiased: in the accumulated image's error); \
+             the jitter phases' references', which every per-frame error is measured \
+             against, ≈ {} luma (every per-frame RMSE² includes this²)",
+            sig(Some(l)),
+            sig(Some(r)),
+            sig(info.frame_reference_noise_luma)
+        ),
         (Some(l), Some(r)) => format!(
             "its own RMSE ≈ {} luma / {} RGB (every per-frame RMSE² includes this²)",
             sig(Some(l)),
@@ -244,6 +254,6 @@ fn pass_times(md: &mut String, info: &BenchInfo, results: &[ConfigResult]) {
     let _ = writeln!(
         md,
         "[^c]: 8 × the 8×8-tile error's RMSE / the per-pixel RMSE: 1 for grain, 8 for blotches \
-         a tile wide (docs/bench.md, \"How it measures\")."
+         a tile wide (docs/src/measured/how-the-bench-measures.md, \"How it measures\")."
     );
 }

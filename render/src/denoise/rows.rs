@@ -28,12 +28,10 @@ macro_rules! rows {
                         runs for the gradients alone (its cost is counted). Off: plain SVGF.";
                 denoise_iterations: u32 = 3, ParamKind::Int { min: 1, max: MAX_DENOISE_ITERATIONS as i64 }, "À-trous iterations",
                     "À-trous passes, taps 1, 2, 4, … pixels apart: 3 reach 2 × (1 + 2 + \
-                        4) = 14 px each way. Measured on builtin:concourse at 96×64 \
-                        (docs/src/measured/denoiser.md, \"Through a denoiser\"): 3 gave the \
-                        lowest per-frame \
-                        error (ris + denoiser: 0.0184 luma RMSE; 4: 0.0197; 5: 0.0207) and \
-                        each iteration costs ~6 % of a restir frame; a larger image wants \
-                        more.";
+                        4) = 14 px each way. The best depth depends on the scene and the \
+                        image size (a larger image wants more): docs/src/measured/denoiser.md, \
+                        \"Choosing the depth per scene\", measures it per scene, and \
+                        `denoise_auto_depth` chooses it.";
                 denoise_auto_depth: bool = false, ParamKind::Bool, "Depth by a held-out frame",
                     "Chooses the à-trous depth per scene (docs/src/denoiser.md, \"Choosing \
                         the depth\"): once the history has been valid for 6 frames, it is \

@@ -70,9 +70,8 @@ macro_rules! rows {
                     "Drop a pixel's sample when its W·p̂ exceeds this many times the \
                         neighbourhood mean (docs/src/spatial-reuse.md, \"The boiling \
                         filter\"). 0 = off. Biased: the decision looks at the sample's \
-                        value, so it darkens (2: −3.5 % on a frozen blinking-lights at M cap \
-                        100, −5 % on the concourse) while it lowers flicker \
-                        (docs/src/measured/dynamic-scenes.md, \"Boiling\").";
+                        value, so it darkens the image while it lowers flicker (both measured \
+                        in docs/src/measured/dynamic-scenes.md, \"Boiling\").";
             }
             Resampling {
                 m_cap: f32 = 20.0, ParamKind::Float { min: 0.0, max: 1e6 }, "M cap",
@@ -82,7 +81,7 @@ macro_rules! rows {
                 bias_correction: BiasCorrection = BiasCorrection::Pairwise, ParamKind::Choice(BIAS_CORRECTION_NAMES), "Bias correction",
                     "pairwise (default): defensive pairwise MIS with the pixel's own \
                         reservoir as canonical (unbiased, one extra target evaluation per \
-                        neighbour, ~3 % of the frame). one-over-m: 1/M weights with \
+                        neighbour). one-over-m: 1/M weights with \
                         rejection (biased: darker where reused samples are occluded or \
                         outside a narrow lobe; fast).";
                 mis_visibility: bool = true, ParamKind::Bool, "MIS visibility",
@@ -94,9 +93,9 @@ macro_rules! rows {
                         (against this frame's geometry). Implies initial visibility; shading \
                         then traces no ray (the survivor is known visible). Costs 2 shadow \
                         rays per spatial neighbour and 2 per temporal merge. Off: unshadowed \
-                        MIS terms: darker where neighbours are shadowed differently (sun-lit \
-                        Cornell box −5 %) and black speckles where a pixel picks a sample it \
-                        cannot see.";
+                        MIS terms: darker where neighbours are shadowed differently, and black \
+                        speckles where a pixel picks a sample it cannot see (both measured in \
+                        docs/src/measured/unbiased-reuse.md, \"The bias table\").";
                 previous_lights: bool = true, ParamKind::Bool, "Previous-frame lights",
                     "Animated scenes, pairwise MIS: evaluate this pixel's own (canonical) \
                         sample at the previous pixel with last frame's lights — positions, \
@@ -111,8 +110,9 @@ macro_rules! rows {
                         frame's BVH boxes and triangles with the software backend), as \
                         unbiasedness requires. Off: against this frame's geometry, a common \
                         shortcut; then a moving occluder credits the previous pixel with \
-                        samples it could not see (builtin:dynamic:moving-occluder 2 % dark). \
-                        Static scenes: no difference.";
+                        samples it could not see and darkens (docs/src/measured/unbiased-reuse.md, \
+                        \"The moving occluder against last frame's geometry\"). Static \
+                        scenes: no difference.";
                 mutations: u32 = 0, ParamKind::Int { min: 0, max: MAX_MUTATIONS as i64 }, "MCMC mutations",
                     "Metropolis–Hastings steps applied to each pixel's light sample after \
                         the last reuse pass, toward the pixel's own target (Sawhney et al. \

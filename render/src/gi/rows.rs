@@ -51,15 +51,14 @@ macro_rules! rows {
                 gi_spatial_visibility: bool = true, ParamKind::Bool, "GI reconnection visibility",
                     "Trace a shadow ray from this pixel's visible point to each spatial \
                         neighbour's sample point and drop the sample when occluded. Off: one \
-                        ray fewer per neighbour, biased: light leaks through occluders (+9 % \
-                        behind a blocker hiding 40 % of the light in the CPU test scene, \
-                        gi/model/visibility_tests.rs).";
+                        ray fewer per neighbour, biased: light leaks through occluders (the \
+                        CPU model's blocker test, gi/model/visibility_tests.rs, shows it).";
                 gi_mis_visibility: bool = true, ParamKind::Bool, "GI MIS visibility",
                     "Pairwise, with GI reconnection visibility: also trace from each \
                         neighbour's visible point to this pixel's own sample point, so its \
                         MIS weight knows which neighbours could have found it. Off: one ray \
-                        fewer per neighbour, darker behind occluders (−5 % in the same test; \
-                        unbiased with it on).";
+                        fewer per neighbour, darker behind occluders (the same test; unbiased \
+                        with it on).";
                 gi_bias_correction: BiasCorrection = BiasCorrection::Pairwise, ParamKind::Choice(BIAS_CORRECTION_NAMES), "GI bias correction",
                     "pairwise (default): pairwise MIS with each target expressed in this \
                         pixel's measure through the Jacobian (unbiased). one-over-m: 1/M \

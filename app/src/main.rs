@@ -62,8 +62,12 @@ enum Command {
     /// ReSTIR PT's path shifts on the CPU toy scene: bias, variance, how shifts fail.
     BenchShifts(bench::costs::shift_cost::ShiftCostArgs),
     /// The crossover map from a folder of `--knob` bench runs, one per (scene, size,
-    /// camera): each configuration's cost to reach denoised RIS's best error (map.md, map.csv).
+    /// camera): each configuration's cost to reach denoised RIS's best error (map.md,
+    /// map.csv, map.png).
     BenchMap(bench::MapArgs),
+    /// Redraw the pictures of bench folders from their tables without rerunning: every
+    /// cost_curves.png and map.png at or under DIR, from the CSV beside it.
+    BenchPlot(bench::PlotArgs),
 }
 
 fn main() {
@@ -86,6 +90,7 @@ fn main() {
         Some(Command::BenchLoad(a)) => bench::costs::load_cost::run(a),
         Some(Command::BenchShifts(a)) => bench::costs::shift_cost::run(a),
         Some(Command::BenchMap(a)) => bench::map(a, &command),
+        Some(Command::BenchPlot(a)) => bench::plot(a),
         Some(Command::Scenes) => {
             cli::params::print_scenes();
             Ok(())

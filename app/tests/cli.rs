@@ -933,6 +933,23 @@ fn bench_map_without_cells_fails_in_one_line() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// `bench-plot` on a folder with no table to draw from says so in one line, and on a
+/// missing folder names it.
+#[test]
+fn bench_plot_without_tables_fails_in_one_line() {
+    let dir = std::env::temp_dir().join(format!("restir-plot-empty-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    assert_one_line_error(
+        &viewer(&["bench-plot", dir.to_str().unwrap()]),
+        &["no cost_curves.csv or map.csv"],
+    );
+    assert_one_line_error(
+        &viewer(&["bench-plot", "/nonexistent/plots"]),
+        &["/nonexistent/plots"],
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// `bench-bvh` prints a row per scene time with the split tree (moving triangles apart,
 /// `scene::bvh::split`) beside the single tree and the two-level one; the renderer's
 /// `--stats` name the same moving triangles; a static scene is refused in one line.

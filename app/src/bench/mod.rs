@@ -28,7 +28,7 @@ pub mod write;
 use anyhow::Context;
 
 use plan::Plan;
-pub use plan::args::{BenchArgs, MapArgs};
+pub use plan::args::{BenchArgs, MapArgs, PlotArgs};
 
 /// `bench`, from its arguments and the words of its command line after the program name
 /// (written to `command.txt`).
@@ -62,7 +62,7 @@ pub fn run(args: BenchArgs, command: &[String]) -> anyhow::Result<()> {
 }
 
 /// `bench-map DIR`: the crossover map from the `--knob` runs under DIR, each a cell
-/// (score/map.rs reads them), into DIR's `map.md` and `map.csv`.
+/// (score/map.rs reads them), into DIR's `map.md`, `map.csv` and `map.png`.
 pub fn map(args: MapArgs, command: &[String]) -> anyhow::Result<()> {
     let cells = score::map::read_cells(&args.dir, &args.knob)?;
     anyhow::ensure!(
@@ -72,4 +72,19 @@ pub fn map(args: MapArgs, command: &[String]) -> anyhow::Result<()> {
     );
     write::command_line::write(&args.dir, command)?;
     write::map::write(&args.dir, &cells)
+}
+
+/// `bench-plot DIR`: every `cost_curves.png` and `map.png` at or under DIR redrawn from the
+/// tables beside it (write/redraw.rs); no table is touched and nothing runs.
+pub fn plot(args: PlotArgs) -> anyhow::Result<()> {
+    let written = write::redraw::redraw(&args.dir)?;
+    anyhow::ensure!(
+        !written.is_empty(),
+        "{}: no cost_curves.csv or map.csv at or under it",
+        args.dir.display()
+    );
+    for path in &written {
+        eprintln!("wrote {}", path.display());
+    }
+    Ok(())
 }

@@ -24,9 +24,8 @@ use crate::bench::score::scoring::Scoring;
 use crate::bench::write::info::timing_note;
 use crate::bench::write::markdown::{ms, pass_table, ratio, table, time_footnote};
 use crate::bench::write::passes::{pass_cells, pass_columns, pass_names};
-use crate::bench::write::plots::canvas::{
-    LineChart, Series, color, line_chart, render_png, with_footnote,
-};
+use crate::bench::write::plots::canvas::{color, render_png, with_footnote};
+use crate::bench::write::plots::line_chart::{LineChart, Series, line_chart};
 use crate::bench::write::table::{Table, num};
 
 /// Frames per configuration and light count when `--frames` is not given.
@@ -169,13 +168,12 @@ fn write(
         let series: Vec<Series> = configs
             .iter()
             .enumerate()
-            .map(|(i, c)| Series {
-                name: c.name.clone(),
-                color: color(i),
-                points: rows
+            .map(|(i, c)| {
+                let points = rows
                     .iter()
                     .filter_map(|r| Some((r.lights as f64, r.results[i].median_frame_ms()?)))
-                    .collect(),
+                    .collect();
+                Series::new(c.name.clone(), color(i), points)
             })
             .collect();
         line_chart(

@@ -1,4 +1,5 @@
-//! The command lines of `bench` and `bench-map`: what a user asks to run or read. `Plan`
+//! The command lines of `bench`, `bench-map` and `bench-plot`: what a user asks to run or
+//! read. `Plan`
 //! (plan/mod.rs) checks `bench`'s and turns it into what the stages read.
 
 use std::path::PathBuf;
@@ -80,8 +81,9 @@ pub struct BenchArgs {
     /// the first configuration, which rests on every seed's error and median time.
     #[arg(long, default_value_t = 1)]
     pub seeds: u32,
-    /// A job of a sweep: write the tables and figures.json only (no plots, strip or
-    /// seeds.png) and print nothing.
+    /// A job of a sweep: write the tables, figures.json and, with --knob, cost_curves.png
+    /// (the crossover map's cells are read by it); no other plot, no strip, event strip or
+    /// seeds.png; print nothing.
     #[arg(long)]
     pub quiet: bool,
     /// Print one `bench` command per configuration (each writing OUT/jobs/NAME) and run
@@ -101,4 +103,11 @@ pub struct MapArgs {
     /// The knob the cells swept (`--knob NAME=...`).
     #[arg(long, default_value = "light_candidates")]
     pub knob: String,
+}
+
+#[derive(Args, Debug)]
+pub struct PlotArgs {
+    /// The folder whose pictures to redraw, and every folder under it
+    /// (docs/bench/crossover).
+    pub dir: PathBuf,
 }

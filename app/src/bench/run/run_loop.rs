@@ -163,6 +163,7 @@ impl<'a> ConfigRun<'a> {
             seed_events,
             event_frames,
             lag: Vec::new(),
+            last_frame: None,
             times: StatsSummary::from_reports(&self.reports, 0),
             scores: self.scoring.summary()?,
             moments: self.scoring.into_moments(),

@@ -41,7 +41,8 @@ pub fn every_seed(
 }
 
 /// One seed's run of every configuration, each on its renderer of `renderers`; the
-/// results and the renderers back. The first seed keeps the frames of the event strip.
+/// results and the renderers back. The first seed keeps the frames of the event strip and,
+/// for a still shot, each configuration's last frame (the strip's).
 fn one_seed(
     bench: &Bench,
     renderers: Vec<Renderer>,
@@ -63,7 +64,14 @@ fn one_seed(
             Ok((c.name.clone(), run))
         })
         .collect::<anyhow::Result<Vec<_>>>()?;
-    Ok(run_interleaved(runs, plan)?.into_iter().unzip())
+    let mut done = run_interleaved(runs, plan)?;
+    // Seed S's last frames for the strip, before the next seed renders over them.
+    if first_seed && !bench.shot.moves() {
+        for (result, renderer) in &mut done {
+            result.last_frame = Some(renderer.read_radiance());
+        }
+    }
+    Ok(done.into_iter().unzip())
 }
 
 /// A still shot scores every frame against one reference (with jitter on, against its

@@ -72,25 +72,44 @@ fn cost_of(p: &CostPoint) -> Cost {
     }
 }
 
-/// The cost at which `points` first reach `target` going from cheap to dear: between the
-/// last point above and the first at or below it, log(error) linear in log(ms) (error
-/// falls as a power of the work on such curves, a straight line there), the neutral costs
-/// interpolated at the same place. None without a usable point or target.
+/// The points of a curve in its own order: by knob value where every value is a number
+/// (each knob the bench sweeps buys quality with work as it grows), else as given (the
+/// `--knob` order). Not by measured time: on a loaded machine two neighbouring values'
+/// times can swap, and a curve read in time order then meets the target elsewhere (two
+/// identical runs read `≤ 1.00×` and `1.00×`).
+pub fn in_knob_order<'a>(points: impl IntoIterator<Item = &'a CostPoint>) -> Vec<&'a CostPoint> {
+    let mut ordered: Vec<&CostPoint> = points.into_iter().collect();
+    let values: Option<Vec<f64>> = ordered.iter().map(|p| p.knob.trim().parse().ok()).collect();
+    if values.is_some() {
+        // A stable sort: equal values keep their order.
+        ordered.sort_by(|a, b| {
+            let v = |p: &CostPoint| p.knob.trim().parse::<f64>().unwrap_or(f64::NAN);
+            v(a).total_cmp(&v(b))
+        });
+    }
+    ordered
+}
+
+/// The cost at which `points` first reach `target` along the curve, from its cheapest
+/// knob value to its dearest (`in_knob_order`): between the last point above and the first
+/// at or below it, log(error) linear in log(ms) (error falls as a power of the work on such
+/// curves, a straight line there), the neutral costs interpolated at the same place. None
+/// without a usable point or target.
 pub fn cost_at(points: &[CostPoint], target: f64) -> Option<Reach> {
     // Points without a reading (an error the reference's noise swallows, no time) are
     // left out.
-    let mut sorted: Vec<&CostPoint> = points
-        .iter()
-        .filter(|p| p.ms > 0.0 && p.rmse > 0.0 && p.ms.is_finite() && p.rmse.is_finite())
-        .collect();
-    if sorted.is_empty() || !(target > 0.0 && target.is_finite()) {
+    let curve = in_knob_order(
+        points
+            .iter()
+            .filter(|p| p.ms > 0.0 && p.rmse > 0.0 && p.ms.is_finite() && p.rmse.is_finite()),
+    );
+    if curve.is_empty() || !(target > 0.0 && target.is_finite()) {
         return None;
     }
-    sorted.sort_by(|a, b| a.ms.total_cmp(&b.ms));
-    if sorted[0].rmse <= target {
-        return Some(Reach::AtMost(cost_of(sorted[0])));
+    if curve[0].rmse <= target {
+        return Some(Reach::AtMost(cost_of(curve[0])));
     }
-    for pair in sorted.windows(2) {
+    for pair in curve.windows(2) {
         let (a, b) = (pair[0], pair[1]);
         if b.rmse <= target && a.rmse > target {
             let t = (target.ln() - a.rmse.ln()) / (b.rmse.ln() - a.rmse.ln());
@@ -102,7 +121,7 @@ pub fn cost_at(points: &[CostPoint], target: f64) -> Option<Reach> {
             }));
         }
     }
-    Some(Reach::Beyond(cost_of(sorted[sorted.len() - 1])))
+    Some(Reach::Beyond(cost_of(curve[curve.len() - 1])))
 }
 
 /// A configuration's curve: its name without the knob, and its points in `--knob` order.
@@ -222,10 +241,51 @@ mod tests {
         // Neutral costs interpolate at the same place: halfway in log between 4 and 64.
         assert!((c.rays_per_pixel - 34.0).abs() < 1e-9);
         assert!((c.candidates_per_pixel - 68.0).abs() < 1e-9);
-        // Order of the points does not matter.
+        // Order of the points does not matter: they are read in knob order.
         let mut shuffled = curve.clone();
         shuffled.reverse();
         assert_eq!(cost_at(&shuffled, 0.25), cost_at(&curve, 0.25));
+    }
+
+    #[test]
+    fn a_curve_is_read_in_knob_order_even_where_two_times_swapped() {
+        // Knob 8, 16, 32; a loaded machine timed 16 slower than 32. Read in time order
+        // (8, 32, 16) the curve crosses 0.2 between 8 and 32; along the knob it does so
+        // between 16 and 32.
+        let at = |knob: &str, ms: f64, rmse: f64| CostPoint {
+            knob: knob.into(),
+            ..point(ms, rmse)
+        };
+        let curve = vec![
+            at("8", 80.0, 0.3),
+            at("16", 100.0, 0.25),
+            at("32", 90.0, 0.16),
+        ];
+        let Some(Reach::At(c)) = cost_at(&curve, 0.2) else {
+            panic!("{:?}", cost_at(&curve, 0.2));
+        };
+        // log ms linear in log error between 16 (100 ms) and 32 (90 ms).
+        let t = (0.2f64.ln() - 0.25f64.ln()) / (0.16f64.ln() - 0.25f64.ln());
+        let expected = (100f64.ln() + t * (90f64.ln() - 100f64.ln())).exp();
+        assert!((c.ms - expected).abs() < 1e-9, "{} vs {expected}", c.ms);
+        // The file order does not matter either; a knob that is not a number keeps it.
+        let mut reversed = curve.clone();
+        reversed.reverse();
+        assert_eq!(cost_at(&reversed, 0.2), cost_at(&curve, 0.2));
+        let named: Vec<CostPoint> = ["low", "mid", "high"]
+            .iter()
+            .zip(&curve)
+            .map(|(k, p)| CostPoint {
+                knob: k.to_string(),
+                ..p.clone()
+            })
+            .collect();
+        assert_eq!(cost_at(&named, 0.2), cost_at(&curve, 0.2));
+        // The dearest point is the curve's last, not the slowest measured.
+        assert_eq!(
+            cost_at(&curve, 0.1),
+            Some(Reach::Beyond(cost_of(&curve[2])))
+        );
     }
 
     #[test]

@@ -17,6 +17,7 @@ use std::path::{Path, PathBuf};
 use anyhow::Context;
 use restir_render::metrics::seeds::Interval;
 
+use super::cost_curves_file::{self, NamedCurve};
 use super::equal_error::{CostPoint, Reach, cost_at, split_knob};
 
 /// A cell's reading of one configuration.
@@ -135,37 +136,8 @@ fn read_cell(folder: &Path, knob: &str) -> anyhow::Result<Cell> {
 /// The curves of a `cost_curves.csv`, in file order, each point's milliseconds replaced by
 /// the least-squares line through the curve's (knob, ms) pairs (kept as measured where the
 /// knob is not a number or the line is not positive).
-pub fn read_curves(path: &Path) -> anyhow::Result<Vec<(String, Vec<CostPoint>)>> {
-    let text = std::fs::read_to_string(path)?;
-    let mut curves: Vec<(String, Vec<CostPoint>)> = Vec::new();
-    for line in text.lines().skip(1).filter(|l| !l.trim().is_empty()) {
-        let f: Vec<&str> = line.split(',').collect();
-        anyhow::ensure!(f.len() >= 7, "a row with {} fields: {line}", f.len());
-        let num = |i: usize| f[i].trim().parse::<f64>().unwrap_or(f64::NAN);
-        // The eighth column, each seed's median frame time, came later.
-        let seed_ms = f
-            .get(7)
-            .map(|cell| {
-                cell.split(';')
-                    .filter(|x| !x.trim().is_empty())
-                    .map(|x| x.trim().parse::<f64>().unwrap_or(f64::NAN))
-                    .collect()
-            })
-            .unwrap_or_default();
-        let point = CostPoint {
-            knob: f[1].to_string(),
-            ms: num(2),
-            seed_ms,
-            rays_per_pixel: num(3),
-            candidates_per_pixel: num(4),
-            rmse: num(5),
-            rmse_ci95: num(6),
-        };
-        match curves.iter_mut().find(|(c, _)| c == f[0]) {
-            Some((_, points)) => points.push(point),
-            None => curves.push((f[0].to_string(), vec![point])),
-        }
-    }
+pub fn read_curves(path: &Path) -> anyhow::Result<Vec<NamedCurve>> {
+    let (_, mut curves) = cost_curves_file::read(path)?;
     for (_, points) in &mut curves {
         smooth_ms(points);
     }

@@ -5,8 +5,11 @@
 //! `over_seeds.rs`), the ratios to `nee` (`vs_nee.rs`), the equal-time gain
 //! (`equal_time_gain.rs`), the cost to reach a target error (`equal_error.rs`), the lag
 //! around light events (`lag.rs`) and, from a folder of `--knob` runs, the crossover map
-//! (`map.rs`). Nothing here renders or writes a file.
+//! (`map.rs`, reading each cell's `cost_curves.csv` through `cost_curves_file.rs` and
+//! `csv_read.rs`). Nothing here renders or writes a file.
 
+pub mod cost_curves_file;
+pub mod csv_read;
 pub mod equal_error;
 pub mod equal_time_gain;
 pub mod frame_figures;

@@ -34,6 +34,10 @@ pub struct ConfigResult {
     pub seed_events: Vec<SeedEvent>,
     pub event_frames: Vec<(usize, LinearImage)>,
     pub lag: Vec<EventLag>,
+    /// A still shot's last frame of this run, read back from its renderer before the next
+    /// seed renders on it (run/seeds.rs; none for later seeds): `strip.png`'s picture, the
+    /// same run as the error it is labelled with.
+    pub last_frame: Option<LinearImage>,
     /// The temporal-stability figure: mean |Δ luma| between consecutive measured frames
     /// over the reference's luminance (`restir_render::flicker`; none without scoring).
     pub flicker: Option<f64>,
@@ -62,5 +66,39 @@ impl ConfigResult {
     /// The error equal-time mode compares: the running average's RGB RMSE.
     pub fn final_accumulated_rmse(&self) -> Option<f64> {
         self.scores.as_ref()?.accumulated_rgb_rmse
+    }
+}
+
+/// A result of configuration `name` with a per-frame luma RMSE and nothing else measured:
+/// what the writers' tests draw and label.
+#[cfg(test)]
+pub fn planted(name: &str, mean_luma_rmse: f64) -> ConfigResult {
+    let settings = restir_render::Settings::default();
+    let config = crate::bench::plan::configs::parse_configs(name, &settings)
+        .expect("a built-in configuration")
+        .remove(0);
+    ConfigResult {
+        config,
+        frames: Vec::new(),
+        times: StatsSummary::default(),
+        scores: Some(ScoreSummary {
+            mean_luma_rmse,
+            ..Default::default()
+        }),
+        budget: None,
+        time_vs_nee: None,
+        frame_mse_vs_nee: None,
+        budget_mse_vs_nee: None,
+        seed_events: Vec::new(),
+        event_frames: Vec::new(),
+        lag: Vec::new(),
+        last_frame: None,
+        flicker: None,
+        ray_backend: None,
+        denoise_auto_depth: None,
+        moments: None,
+        over_seeds: None,
+        seed_frame_ms: Vec::new(),
+        frame_reference_noise: None,
     }
 }

@@ -1,13 +1,13 @@
 //! What a `--knob` bench writes about its cost curves (score/equal_error.rs):
 //! `cost_curves.csv` (every point), `equal_error.csv` (each curve's cost at the target,
-//! against the first curve's), `cost_curves.png`, and the "Equal error" section of
-//! results.md.
+//! against the first curve's), `cost_curves.png` (`cost_curves_plot.rs`), and the "Equal
+//! error" section of results.md.
 
 use std::fmt::Write;
 use std::path::Path;
 
+use super::cost_curves_plot::{FILES_SENTENCE, plot};
 use super::markdown::table;
-use super::plots::canvas::{LineChart, Series, color, line_chart, render_png, with_footnote};
 use super::table::{Table, num};
 use crate::bench::score::equal_error::{Curve, Reach, cost_at, curves, default_target};
 use crate::bench::score::result::ConfigResult;
@@ -17,14 +17,15 @@ fn finite(x: f64) -> String {
     num(Some(x).filter(|v| v.is_finite()))
 }
 
-/// Writes the files; returns the markdown section for results.md (empty without a target).
+/// Writes the files (the plot where `draw`); returns the markdown section for results.md
+/// (empty without a target).
 pub fn write(
     out: &Path,
     results: &[ConfigResult],
     noise: &[f64],
-    knob_name: &str,
-    target: Option<f64>,
+    (knob_name, target): (&str, Option<f64>),
     note: &str,
+    draw: bool,
 ) -> anyhow::Result<String> {
     let curves = curves(results, noise, knob_name);
     let Some(target) = target.or_else(|| default_target(&curves)) else {
@@ -35,7 +36,13 @@ pub fn write(
     let (at_target, rows) = at_target(&curves, &reaches, target);
     at_target.write(&out.join("equal_error.csv"))?;
     let md = section(&curves, knob_name, target, note, &rows);
-    plot(&out.join("cost_curves.png"), &curves, knob_name, note)?;
+    if draw {
+        let named: Vec<(String, Vec<_>)> = curves
+            .iter()
+            .map(|c| (c.name.clone(), c.points.clone()))
+            .collect();
+        plot(&out.join("cost_curves.png"), &named, knob_name, note)?;
+    }
     Ok(md)
 }
 
@@ -137,8 +144,7 @@ fn section(
         "\n## Equal error\n\nEach configuration ran at {knob_name} = {}; the cost at which its \
          per-frame luma RMSE, the reference's own noise taken out, reaches {target:.4} \
          (`--target-rmse`, else the first configuration's error at the middle value), read \
-         off its curve in log-log \
-         (`cost_curves.csv`, `cost_curves.png`, `equal_error.csv`). {note}\n",
+         off its curve in log-log {FILES_SENTENCE}{note}\n",
         curves
             .first()
             .map(|c| {
@@ -162,34 +168,4 @@ fn section(
         rows,
     );
     md
-}
-
-/// `cost_curves.png`: error against time, one curve per configuration, both axes log.
-fn plot(path: &Path, curves: &[Curve], knob_name: &str, note: &str) -> anyhow::Result<()> {
-    let series: Vec<Series> = curves
-        .iter()
-        .enumerate()
-        .map(|(i, c)| Series {
-            name: c.name.clone(),
-            color: color(i),
-            points: c.points.iter().map(|p| (p.ms, p.rmse)).collect(),
-        })
-        .collect();
-    let title = format!("Error against cost over {knob_name}");
-    render_png(path, (1200, 800), |area| {
-        area.fill(&plotters::style::WHITE)?;
-        let area = with_footnote(area, note)?;
-        line_chart(
-            &area,
-            &LineChart {
-                title: &title,
-                x_desc: "median frame time (ms, log)",
-                y_desc: "per-frame luma RMSE (log)",
-                log_x: true,
-                log_y: true,
-                markers_x: &[],
-            },
-            &series,
-        )
-    })
 }

@@ -1,6 +1,6 @@
 //! The crossover map's files (score/map.rs reads the cells): `map.md`, one table per image
 //! size with each configuration's cost ratio to reach the baseline's best error and the
-//! cheapest, and `map.csv`, every reading.
+//! cheapest, `map.csv`, every reading, and `map.png`, drawn from map.csv (map_png.rs).
 
 use std::collections::BTreeMap;
 use std::fmt::Write;
@@ -13,11 +13,12 @@ use super::table::Table;
 use crate::bench::score::equal_error::Reach;
 use crate::bench::score::map::{Cell, winner};
 
-/// Writes `map.md` and `map.csv` into `dir` and prints the markdown.
+/// Writes `map.md`, `map.csv` and `map.png` into `dir` and prints the markdown.
 pub fn write(dir: &Path, cells: &[Cell]) -> anyhow::Result<()> {
     std::fs::write(dir.join("map.md"), markdown(cells))
         .with_context(|| format!("{}: cannot write map.md", dir.display()))?;
     csv_table(cells).write(&dir.join("map.csv"))?;
+    super::map_png::write(dir)?;
     print!("{}", markdown(cells));
     Ok(())
 }

@@ -9,8 +9,6 @@ use plotters::prelude::*;
 use restir_render::LinearImage;
 use restir_render::view::auto_exposure_ev;
 
-use restir_render::Renderer;
-
 use super::plots::canvas::{DrawResult, render_png, text};
 use crate::bench::run::reference_sets::ReferenceSets;
 use crate::bench::score::result::ConfigResult;
@@ -131,25 +129,35 @@ pub fn display_srgb8(rgb: [f32; 3], exposure: f32) -> [u8; 3] {
     })
 }
 
+/// The strip's panel of each configuration: its run's last frame (seed S's, run/seeds.rs),
+/// labelled with that run's error. The renderers hold the last seed's frames once every
+/// seed ran; labelled with seed S's error, those panels showed one run and named another.
+pub fn config_panels(results: &[ConfigResult]) -> Vec<Panel<'_>> {
+    results
+        .iter()
+        .filter_map(|r| {
+            Some(Panel {
+                label: match &r.scores {
+                    Some(s) => format!("{} · RMSE {:.3}", r.config.name, s.mean_luma_rmse),
+                    None => r.config.name.clone(),
+                },
+                image: r.last_frame.as_ref()?,
+            })
+        })
+        .collect()
+}
+
 /// `strip.png`: each configuration's last frame, then the reference (one per bounce count).
 pub fn write_last_frames(
     out: &Path,
     results: &[ConfigResult],
-    renderers: &[Renderer],
     sets: &ReferenceSets,
 ) -> anyhow::Result<()> {
-    let frames: Vec<_> = renderers.iter().map(Renderer::read_radiance).collect();
-    let mut panels: Vec<Panel> = results
-        .iter()
-        .zip(&frames)
-        .map(|(r, image)| Panel {
-            label: match &r.scores {
-                Some(s) => format!("{} · RMSE {:.3}", r.config.name, s.mean_luma_rmse),
-                None => r.config.name.clone(),
-            },
-            image,
-        })
-        .collect();
+    let mut panels = config_panels(results);
+    anyhow::ensure!(
+        panels.len() == results.len(),
+        "strip.png: a configuration's last frame was not kept"
+    );
     for (bounces, refs) in sets.bounces() {
         let label = match bounces {
             1 => format!("reference · {} spp", refs.spp),
@@ -207,5 +215,20 @@ mod tests {
             },
         ];
         assert!(write(&path, &mixed).is_err());
+    }
+
+    #[test]
+    fn each_strip_panel_shows_the_run_its_label_names() {
+        use crate::bench::score::result::planted;
+        // Seed S's run: its error and its own last frame.
+        let first = LinearImage::from_fn(2, 2, |_, _| [1.0, 1.0, 1.0, 1.0]);
+        let mut seed_s = planted("ris", 0.125);
+        seed_s.last_frame = Some(first.clone());
+        let results = [seed_s];
+        let panels = config_panels(&results);
+        assert_eq!(panels[0].label, "ris · RMSE 0.125");
+        assert_eq!(panels[0].image.pixels, first.pixels);
+        // A result without a kept frame has no panel (write_last_frames refuses it).
+        assert!(config_panels(&[planted("ris", 0.1)]).is_empty());
     }
 }

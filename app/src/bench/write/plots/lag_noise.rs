@@ -8,8 +8,10 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
+use super::axes::fit;
 use super::canvas::{
-    Area, DrawResult, TEXT_SIZE, TITLE_SIZE, color, draw_axes, render_png, text, with_footnote,
+    Area, DrawResult, TEXT_SIZE, TITLE_SIZE, color, draw_axes, label_beside, render_png, text,
+    with_footnote,
 };
 use crate::bench::score::lag::EventLag;
 use crate::bench::write::events_csv::recovery_cell;
@@ -62,18 +64,14 @@ pub fn write(path: &Path, note: &str, points: &[LagNoisePoint]) -> anyhow::Resul
 fn draw(area: &Area, note: &str, points: &[LagNoisePoint]) -> DrawResult {
     area.fill(&WHITE)?;
     let area = with_footnote(area, note)?;
-    let max = |f: fn(&LagNoisePoint) -> f64| {
-        points
-            .iter()
-            .map(f)
-            .filter(|v| v.is_finite())
-            .fold(0.0, f64::max)
-    };
-    // Linear axes from 0, padded for the labels: both quantities are ≥ 0 and a zero lag
-    // (M cap 1) is a meaningful point, which a log axis could not show.
-    // Room on the right for the labels.
-    let max_x = max(|p| p.noise).max(1e-6) * 1.6;
-    let max_y = max(|p| p.lag_area).max(1e-6) * 1.25;
+    let shown: Vec<&LagNoisePoint> = points
+        .iter()
+        .filter(|p| p.noise.is_finite() && p.lag_area.is_finite())
+        .collect();
+    // Linear axes spanning the points (axes.rs): a zero lag (M cap 1) is a meaningful
+    // point, which a log axis could not show.
+    let xs = fit(shown.iter().map(|p| p.noise), false);
+    let ys = fit(shown.iter().map(|p| p.lag_area), false);
     let mut chart = ChartBuilder::on(&area)
         .caption(
             "Lag against noise after light events (lower left is better)",
@@ -82,7 +80,7 @@ fn draw(area: &Area, note: &str, points: &[LagNoisePoint]) -> DrawResult {
         .margin(16)
         .x_label_area_size(56)
         .y_label_area_size(90)
-        .build_cartesian_2d(0.0..max_x, 0.0..max_y)?;
+        .build_cartesian_2d(xs.0..xs.1, ys.0..ys.1)?;
     draw_axes(
         &mut chart,
         "steady per-frame luma RMSE after the event (noise)",
@@ -92,24 +90,26 @@ fn draw(area: &Area, note: &str, points: &[LagNoisePoint]) -> DrawResult {
         if !(p.noise.is_finite() && p.lag_area.is_finite()) {
             continue;
         }
-        // Labels right of their point, in its colour; configurations that land on top of
-        // each other (the ratio clamp on and off) stack their labels downwards.
+        // Labels beside their point on the side with room, in its colour; configurations
+        // that land on top of each other (the ratio clamp on and off) stack their labels
+        // downwards.
+        let at = (
+            (p.noise - xs.0) / (xs.1 - xs.0),
+            (p.lag_area - ys.0) / (ys.1 - ys.0),
+        );
         let close = points[..i]
             .iter()
             .filter(|q| {
-                (q.noise - p.noise).abs() < 0.05 * max_x
-                    && (q.lag_area - p.lag_area).abs() < 0.05 * max_y
+                (q.noise - p.noise).abs() < 0.05 * (xs.1 - xs.0)
+                    && (q.lag_area - p.lag_area).abs() < 0.05 * (ys.1 - ys.0)
             })
             .count() as i32;
         let label = format!("{} (recovery {})", p.name, p.recovery);
+        let ink = color(i);
         chart.draw_series(std::iter::once(
             EmptyElement::at((p.noise, p.lag_area))
-                + Circle::new((0, 0), 9, color(i).filled())
-                + Text::new(
-                    label,
-                    (14, -10 + 24 * close),
-                    text(TEXT_SIZE).color(&color(i)),
-                ),
+                + Circle::new((0, 0), 9, ink.filled())
+                + label_beside(label, at, close, text(TEXT_SIZE).color(&ink)),
         ))?;
     }
     Ok(())

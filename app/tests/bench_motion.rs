@@ -134,12 +134,14 @@ fn bad_camera_paths_knobs_and_targets_get_one_line() {
 }
 
 /// A knob the renderer overrides is refused before anything renders: under `auto` the city
-/// samples with the light BVH at most 4 candidates, so `light_candidates=4,8` would measure
-/// one frame twice. Named (`light_sampler=bvh`), the same sweep runs.
+/// samples with the light BVH at most `AUTO_BVH_CANDIDATES`, so a sweep from there to twice
+/// as many would measure one frame twice. Named (`light_sampler=bvh`), the same sweep runs.
 #[test]
 fn a_knob_that_auto_overrides_is_refused_and_a_named_sampler_runs() {
     let out = temp("knob_overridden");
     let o = out.to_str().unwrap();
+    let auto = restir_render::effects::AUTO_BVH_CANDIDATES;
+    let knob = format!("light_candidates={auto},{}", 2 * auto);
     let run = |extra: &[&str]| {
         let mut args = vec![
             "bench",
@@ -156,7 +158,7 @@ fn a_knob_that_auto_overrides_is_refused_and_a_named_sampler_runs() {
             "--configs",
             "ris",
             "--knob",
-            "light_candidates=4,8",
+            &knob,
             "--quiet",
             "--out",
             o,
@@ -171,7 +173,8 @@ fn a_knob_that_auto_overrides_is_refused_and_a_named_sampler_runs() {
         "{err}"
     );
     assert!(
-        err.contains("--knob light_candidates") && err.contains("would render with 4"),
+        err.contains("--knob light_candidates")
+            && err.contains(&format!("would render with {auto}")),
         "{err}"
     );
     let named = run(&["--set", "light_sampler=bvh", "--seeds", "2"]);

@@ -29,11 +29,12 @@ pub const LIGHT_TILES_BREAK_EVEN: usize = 16384;
 /// 6.2 (`many-lights:65536`; `concourse` 4.5); the threshold is their geometric mean.
 pub const LIGHT_BVH_MIN_LOCALITY: f32 = 12.0;
 /// Light candidates per pixel when `auto` takes the BVH (at most: `light_candidates` caps
-/// it). Chosen by equal-time measurement on `city:N` (docs/src/measured/many-lights.md, "Light
-/// samplers at scale"): the count whose walk stays within a tenth of the frame at 2^20 (9.4 %) with
-/// the best equal-time gain over the tiles among those: 6.1× at 2^20, 5.1–6.7× down to 2^10. With 8
-/// the gain is 7.3× but the walk 15 % of the frame; with 32, 8.1× and 40 %.
-pub const AUTO_BVH_CANDIDATES: u32 = 4;
+/// it). Chosen by equal-time gain over the tiles under ReSTIR, over 12 seeds, on `city:N` at
+/// 2^14, 2^17 and 2^20 (docs/src/measured/many-lights.md, "How many candidates auto draws"):
+/// 8 beat 4 in every cell and had the highest geometric mean over them, 16 level with it at
+/// twice the walk. The one-seed figures it was first chosen on (4, at "≥ 5×") did not hold
+/// over seeds.
+pub const AUTO_BVH_CANDIDATES: u32 = 8;
 /// Below this many lights the BVH was not measured against the table; `auto` keeps the
 /// table or the tiles there.
 pub const LIGHT_BVH_MIN_LIGHTS: usize = 1024;

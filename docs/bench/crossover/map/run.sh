@@ -22,7 +22,7 @@ for job in "concourse static" "many-lights:65536 static" "city:131072 static" \
   spp=2048
   case "$job" in dynamic:*|*pan:*) spp=256 ;; esac
   # The city samples with the light BVH at the swept candidate count. Named, not left to
-  # auto: auto's BVH draws at most AUTO_BVH_CANDIDATES (4), which would void the sweep.
+  # auto: auto's BVH draws at most AUTO_BVH_CANDIDATES (4 when this ran, 8 now), which would void the sweep.
   extra=""
   case "$job" in city:*) extra="--set light_sampler=bvh" ;; esac
   size=${SIZE:-384x256}

@@ -4,7 +4,7 @@
 
 use restir_render::metrics::seeds::Interval;
 
-use crate::bench::score::equal_time_gain::Gain;
+use crate::bench::score::equal_time_gain::{Gain, SeedCosts};
 use crate::bench::score::seed_figures::SeedFigures;
 
 /// The `results.csv` columns of the figures over seeds (the `_ci95` columns are the 95 %
@@ -71,16 +71,52 @@ pub fn seed_cells(f: Option<&SeedFigures>) -> Vec<String> {
     cells
 }
 
-/// The equal-time gain's columns.
-pub const GAIN_COLUMNS: [&str; 3] = [
+/// The equal-time gain's columns, and the two means over seeds it is made of (per-frame
+/// MSE less the reference noise², ms/frame of the seeds' medians) with their 95 % half-widths:
+/// results.md's "Equal time over K seeds" table, as data.
+pub const GAIN_COLUMNS: [&str; 7] = [
     "equal_time_gain_vs_first",
     "equal_time_gain_low",
     "equal_time_gain_high",
+    "seeds_frame_mse_mean",
+    "seeds_frame_mse_ci95",
+    "seeds_frame_ms_mean",
+    "seeds_frame_ms_ci95",
 ];
 
-pub fn gain_cells(gain: Option<Gain>) -> Vec<String> {
-    match gain {
+pub fn gain_cells(gain: Option<Gain>, costs: Option<SeedCosts>) -> Vec<String> {
+    let mut cells = match gain {
         Some(g) => [g.value, g.low, g.high].map(|x| x.to_string()).to_vec(),
-        None => vec![String::new(); GAIN_COLUMNS.len()],
+        None => vec![String::new(); 3],
+    };
+    for i in costs.iter().flat_map(|c| [c.mse(), c.ms()]) {
+        cells.extend([i.mean, i.half_width].map(|x| {
+            if i.samples >= 2 { x.to_string() } else { String::new() }
+        }));
+    }
+    cells.resize(GAIN_COLUMNS.len(), String::new());
+    cells
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The means the gain is made of come out as data beside it, the reference noise taken
+    /// out of the MSE; one seed has no interval to state, so its cells stay empty.
+    #[test]
+    fn the_gain_columns_hold_the_means_it_is_made_of() {
+        let costs = |rmse, ms| SeedCosts {
+            frame_luma_rmse: rmse,
+            frame_ms: ms,
+            reference_noise: 0.03,
+        };
+        let cells = gain_cells(None, Some(costs(&[0.05, 0.05], &[10.0, 12.0])));
+        let n = |i: usize| cells[i].parse::<f64>().unwrap();
+        assert!((n(3) - (0.0025 - 0.0009)).abs() < 1e-12 && n(4).abs() < 1e-12);
+        assert_eq!((n(5), cells.len()), (11.0, GAIN_COLUMNS.len()));
+        let one = gain_cells(None, Some(costs(&[0.05], &[10.0])));
+        assert!(one.iter().all(String::is_empty), "{one:?}");
+        assert!(gain_cells(None, None).iter().all(String::is_empty));
     }
 }

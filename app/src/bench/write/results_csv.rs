@@ -10,7 +10,7 @@ use super::figure_columns::{GAIN_COLUMNS, SEED_COLUMNS, gain_cells, seed_cells};
 use super::info::BenchInfo;
 use super::passes::{pass_cells, pass_columns, pass_names};
 use super::table::{Table, num};
-use crate::bench::score::equal_time_gain::gains_vs_first;
+use crate::bench::score::equal_time_gain::{SeedCosts, gains_vs_first};
 use crate::bench::score::frame_figures::ScoreSummary;
 use crate::bench::score::result::ConfigResult;
 
@@ -62,7 +62,7 @@ pub fn write_results(
         cells.extend(run_cells(r, &s));
         cells.extend(bench_cells(info));
         cells.extend(seed_cells(r.over_seeds.as_ref()));
-        cells.extend(gain_cells(gain));
+        cells.extend(gain_cells(gain, SeedCosts::of(r)));
         for lag in lag_rows(info.event_source, &r.lag) {
             let mut row = cells.clone();
             row.extend(lag);

@@ -52,6 +52,7 @@ pub const COMMAND_FILE: &str = "command.txt";
 pub fn is_timing_column(name: &str) -> bool {
     name.ends_with("_ms")
         || name.starts_with("ms_")
+        || name.contains("_ms_")
         || name.starts_with("time_vs_")
         || name.starts_with("budget_")
         || name.starts_with("equal_time_gain")

@@ -56,7 +56,15 @@ pub fn check_page(page: &Page, tables: &mut Tables, root: &Path) -> Report {
             row: None,
         };
         let values = evaluate(&mut scope, &link.formula).map_err(|e| e.to_string());
-        compare(&mut report, &printed, values, &fail, &link.formula, &link.file, root);
+        compare(
+            &mut report,
+            &printed,
+            values,
+            &fail,
+            &link.formula,
+            &link.file,
+            root,
+        );
     }
     for link in &others {
         if is_quote_or_declared(&link.target) {
@@ -164,10 +172,16 @@ fn select_row(
     file: &Path,
     selector: &str,
 ) -> Result<(Rc<crate::data::Table>, usize), String> {
-    let (path, filters) = match [".csv:", ".json:"].iter().find_map(|ext| selector.find(ext).map(|i| i + ext.len())) {
+    let (path, filters) = match [".csv:", ".json:"]
+        .iter()
+        .find_map(|ext| selector.find(ext).map(|i| i + ext.len()))
+    {
         Some(split) => (
             crate::data::normalise(
-                &file.parent().unwrap_or(Path::new(".")).join(selector[..split - 1].trim()),
+                &file
+                    .parent()
+                    .unwrap_or(Path::new("."))
+                    .join(selector[..split - 1].trim()),
             ),
             &selector[split..],
         ),
@@ -180,10 +194,16 @@ fn select_row(
         file: path.clone(),
         row: None,
     };
-    let rows = scope.matching(&table, &filters).map_err(|e| e.to_string())?;
+    let rows = scope
+        .matching(&table, &filters)
+        .map_err(|e| e.to_string())?;
     match rows.as_slice() {
         [row] => Ok((table, *row)),
-        rows => Err(format!("{} rows of {} match, not one", rows.len(), path.display())),
+        rows => Err(format!(
+            "{} rows of {} match, not one",
+            rows.len(),
+            path.display()
+        )),
     }
 }
 
@@ -264,10 +284,14 @@ fn command_missing(file: &Path, root: &Path) -> Option<String> {
         if d == stop || !d.starts_with(&stop) {
             break;
         }
-        let has = std::fs::read_dir(d).into_iter().flatten().flatten().any(|e| {
-            let n = e.file_name().to_string_lossy().to_string();
-            n == "command.txt" || (n.starts_with("run") && n.ends_with(".sh"))
-        });
+        let has = std::fs::read_dir(d)
+            .into_iter()
+            .flatten()
+            .flatten()
+            .any(|e| {
+                let n = e.file_name().to_string_lossy().to_string();
+                n == "command.txt" || (n.starts_with("run") && n.ends_with(".sh"))
+            });
         if has {
             return None;
         }
@@ -280,14 +304,20 @@ fn command_missing(file: &Path, root: &Path) -> Option<String> {
 }
 
 fn shown_path(file: &Path, root: &Path) -> String {
-    file.strip_prefix(root).unwrap_or(file).display().to_string()
+    file.strip_prefix(root)
+        .unwrap_or(file)
+        .display()
+        .to_string()
 }
 
 fn significant(v: f64) -> String {
     if v != 0.0 && (v.abs() < 1e-3 || v.abs() >= 1e6) {
         format!("{v:.4e}")
     } else {
-        format!("{:.6}", v).trim_end_matches('0').trim_end_matches('.').to_string()
+        format!("{:.6}", v)
+            .trim_end_matches('0')
+            .trim_end_matches('.')
+            .to_string()
     }
 }
 

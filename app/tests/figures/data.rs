@@ -24,7 +24,10 @@ impl Table {
         } else if name.ends_with(".csv") {
             Table::from_csv(path, &text)
         } else {
-            Err(format!("{}: a figure's data is a .csv or .json file", path.display()))
+            Err(format!(
+                "{}: a figure's data is a .csv or .json file",
+                path.display()
+            ))
         }
     }
 
@@ -33,8 +36,14 @@ impl Table {
         let columns = records
             .next()
             .ok_or_else(|| format!("{}: empty", path.display()))?;
-        let rows: Vec<Vec<String>> = records.filter(|r| r.iter().any(|c| !c.is_empty())).collect();
-        if let Some((i, r)) = rows.iter().enumerate().find(|(_, r)| r.len() != columns.len()) {
+        let rows: Vec<Vec<String>> = records
+            .filter(|r| r.iter().any(|c| !c.is_empty()))
+            .collect();
+        if let Some((i, r)) = rows
+            .iter()
+            .enumerate()
+            .find(|(_, r)| r.len() != columns.len())
+        {
             return Err(format!(
                 "{}: row {} has {} cells, the header {}",
                 path.display(),

@@ -122,7 +122,7 @@ impl Twin {
         let root = std::env::temp_dir().join(format!("figures-twin-{}-{name}", std::process::id()));
         let data = root.join("docs/bench/showcase");
         std::fs::create_dir_all(&data).unwrap();
-                std::fs::write(
+        std::fs::write(
             data.join("results.csv"),
             "config,median_frame_ms,mean_luma_rmse,black_pixel_fraction\n\
              nee,31.77,0.4824,0.6503\nris,70.14,0.1030,0.1866\n\
@@ -174,13 +174,41 @@ fn figures_twin_that_agrees_has_no_findings() {
 #[test]
 fn figures_planted_edits_are_caught_with_their_line() {
     let cases = [
-        ("[3.59×]", "[3.95×]", "twin.md:3: prints 3.95, the data give 3.5946"),
-        ("[0.10×]", "[0.12×]", "twin.md:4: prints 0.12, the data give 0.1024"),
-        ("| 7.94× |", "| 7.49× |", "twin.md:12: prints 7.49, the data give 7.9361"),
-        ("| 65.0 % |", "| 56.0 % |", "twin.md:11: prints 56.0, the data give 65.03"),
-        ("Showcase", "Showcase at 2.5× the cost", "twin.md:1: `2.5× the cost"),
-        ("[config=ris]\")", "[config=nee]\")", "twin.md:3: prints 3.59, the data give 7.9361"),
-        ("| never |", "| always |", "twin.md:13: prints `always`, the data say `never`"),
+        (
+            "[3.59×]",
+            "[3.95×]",
+            "twin.md:3: prints 3.95, the data give 3.5946",
+        ),
+        (
+            "[0.10×]",
+            "[0.12×]",
+            "twin.md:4: prints 0.12, the data give 0.1024",
+        ),
+        (
+            "| 7.94× |",
+            "| 7.49× |",
+            "twin.md:12: prints 7.49, the data give 7.9361",
+        ),
+        (
+            "| 65.0 % |",
+            "| 56.0 % |",
+            "twin.md:11: prints 56.0, the data give 65.03",
+        ),
+        (
+            "Showcase",
+            "Showcase at 2.5× the cost",
+            "twin.md:1: `2.5× the cost",
+        ),
+        (
+            "[config=ris]\")",
+            "[config=nee]\")",
+            "twin.md:3: prints 3.59, the data give 7.9361",
+        ),
+        (
+            "| never |",
+            "| always |",
+            "twin.md:13: prints `always`, the data say `never`",
+        ),
     ];
     for (from, to, expected) in cases {
         let twin = Twin::new("edited", &TWIN_PAGE.replacen(from, to, 1), true);
@@ -197,7 +225,10 @@ fn figures_without_their_command_are_caught() {
     let twin = Twin::new("no-command", TWIN_PAGE, false);
     let found = twin.findings();
     assert!(
-        !found.is_empty() && found.iter().all(|f| f.contains("has no command.txt or run*.sh")),
+        !found.is_empty()
+            && found
+                .iter()
+                .all(|f| f.contains("has no command.txt or run*.sh")),
         "{found:#?}"
     );
 }
@@ -214,7 +245,9 @@ fn figures_planted_in_the_real_book_are_caught() {
         // hold after the edit).
         let Some((link, first)) = figures.iter().find_map(|link| {
             let printed = text::numbers(&page.text[link.text.clone()]);
-            let first = printed.into_iter().find(|p| p.claim == text::Claim::Equals)?;
+            let first = printed
+                .into_iter()
+                .find(|p| p.claim == text::Claim::Equals)?;
             Some((link, first))
         }) else {
             continue;
@@ -229,7 +262,9 @@ fn figures_planted_in_the_real_book_are_caught() {
         text.replace_range(at..at + 1, &((d + 3) % 10).to_string());
         let edited = Page::new(&name, page.path.clone(), text);
         let line = edited.line_of(link.text.start);
-        let before = check_page(&page, &mut Tables::default(), &root).findings.len();
+        let before = check_page(&page, &mut Tables::default(), &root)
+            .findings
+            .len();
         let after = check_page(&edited, &mut Tables::default(), &root).findings;
         let prefix = format!("{name}:{line}: prints");
         assert!(
@@ -238,5 +273,8 @@ fn figures_planted_in_the_real_book_are_caught() {
         );
         planted += 1;
     }
-    assert!(planted >= 5, "only {planted} pages bind a figure to plant an edit in");
+    assert!(
+        planted >= 5,
+        "only {planted} pages bind a figure to plant an edit in"
+    );
 }

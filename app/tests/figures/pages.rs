@@ -94,7 +94,9 @@ impl Page {
                 continue;
             };
             let rest = &t[i + 2..];
-            let dest_len = rest.find(|c: char| c.is_whitespace() || c == ')').unwrap_or(rest.len());
+            let dest_len = rest
+                .find(|c: char| c.is_whitespace() || c == ')')
+                .unwrap_or(rest.len());
             let dest = &rest[..dest_len];
             let after = rest[dest_len..].trim_start();
             let title = after
@@ -104,7 +106,9 @@ impl Page {
             let close = match title {
                 Some(f) => {
                     let title_at = i + 2 + dest_len + (rest[dest_len..].len() - after.len()) + 1;
-                    t[title_at + f.len()..].find(')').map(|c| title_at + f.len() + c + 1)
+                    t[title_at + f.len()..]
+                        .find(')')
+                        .map(|c| title_at + f.len() + c + 1)
                 }
                 None => rest[dest_len..].find(')').map(|c| i + 2 + dest_len + c + 1),
             };
@@ -150,7 +154,9 @@ impl Page {
             };
             match self.bind(at, &self.text[at + "<!-- figures:".len()..end], body) {
                 Ok(table) => out.push(table),
-                Err((what, body)) => broken.push((fail(&what), body.into_iter().flatten().collect())),
+                Err((what, body)) => {
+                    broken.push((fail(&what), body.into_iter().flatten().collect()))
+                }
             }
         }
         (out, broken)
@@ -171,7 +177,12 @@ impl Page {
                 .filter_map(|k| spec[start..].find(k))
                 .min()
                 .map_or(spec.len(), |s| start + s);
-            Some(spec[start..stop].split_whitespace().collect::<Vec<_>>().join(" "))
+            Some(
+                spec[start..stop]
+                    .split_whitespace()
+                    .collect::<Vec<_>>()
+                    .join(" "),
+            )
         };
         let first_field = ["rows:", "key:", "columns:"]
             .iter()
@@ -214,7 +225,9 @@ impl Page {
         let mut start = from + self.text[from..].find('\n').map_or(0, |n| n + 1);
         let mut seen_table = false;
         while start < self.text.len() {
-            let end = self.text[start..].find('\n').map_or(self.text.len(), |n| start + n);
+            let end = self.text[start..]
+                .find('\n')
+                .map_or(self.text.len(), |n| start + n);
             let line = &self.text[start..end];
             if line.trim_start().starts_with('|') {
                 seen_table = true;
@@ -249,8 +262,12 @@ impl Page {
     /// Prose ranges that print a ratio (`1.3×`) or a time (`12 ms`) outside code, figure
     /// links, quotes from elsewhere (an http link) and `skip` (bound table cells).
     pub fn unbound_figures(&self, skip: &[Range<usize>]) -> Vec<Range<usize>> {
-        let mut covered: Vec<bool> =
-            self.code.iter().zip(&self.comment).map(|(a, b)| *a || *b).collect();
+        let mut covered: Vec<bool> = self
+            .code
+            .iter()
+            .zip(&self.comment)
+            .map(|(a, b)| *a || *b)
+            .collect();
         for r in skip {
             covered[r.clone()].iter_mut().for_each(|b| *b = true);
         }
@@ -267,8 +284,8 @@ impl Page {
                     .trim_start()
                     .starts_with(|c: char| c.is_ascii_digit());
             let after = next.trim_start_matches([' ', '\u{a0}', '\u{2009}']);
-            let time = after.starts_with("ms")
-                && !after[2..].starts_with(|c: char| c.is_alphanumeric());
+            let time =
+                after.starts_with("ms") && !after[2..].starts_with(|c: char| c.is_alphanumeric());
             if ratio || time {
                 out.push(p.span);
             }

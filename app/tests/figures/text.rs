@@ -205,7 +205,11 @@ pub fn reprint(p: &Printed, value: f64) -> Option<String> {
             }
             g.push(c);
         }
-        s = if frac.is_empty() { g } else { format!("{g}.{frac}") };
+        s = if frac.is_empty() {
+            g
+        } else {
+            format!("{g}.{frac}")
+        };
     }
     if let Some(e) = f.exponent {
         s = format!("{s}e{e}");
@@ -215,7 +219,14 @@ pub fn reprint(p: &Printed, value: f64) -> Option<String> {
         s.insert(0, if f.unicode_minus { '−' } else { '-' });
     } else if f.plus || (value < 0.0 && p.value < 0.0) {
         // `+0.02 %` stays signed; a printed `−0.0` of a tiny negative stays `−0.0`.
-        s.insert(0, if value < 0.0 { if f.unicode_minus { '−' } else { '-' } } else { '+' });
+        s.insert(
+            0,
+            if value < 0.0 {
+                if f.unicode_minus { '−' } else { '-' }
+            } else {
+                '+'
+            },
+        );
     }
     Some(s)
 }
@@ -232,7 +243,10 @@ mod tests {
     fn figures_printed_numbers_are_read_with_their_digits() {
         assert_eq!(values("0.84–1.07× on the others"), vec![0.84, 1.07]);
         assert_eq!(values("11 of 12 cells"), vec![11.0, 12.0]);
-        assert_eq!(values("1,328 emissive triangles, −0.5 %"), vec![1328.0, -0.5]);
+        assert_eq!(
+            values("1,328 emissive triangles, −0.5 %"),
+            vec![1328.0, -0.5]
+        );
         assert_eq!(values("2^20 lights"), vec![1_048_576.0]);
         assert_eq!(values("`bvh-4` at 6.13 on x86_64"), vec![6.13]);
         assert_eq!(values("1.2-1.7×"), vec![1.2, 1.7]);

@@ -146,9 +146,10 @@ fn check_table(
             };
             let shown = page.text[cell.clone()].replace(['`', '*'], "");
             let values = match evaluate(&mut scope, formula) {
-                // A cell that prints no number for an empty data cell agrees with it, and
-                // one that prints a text cell's text (`never`) too.
-                Err(EvalError::Missing(_)) if printed.is_empty() => continue,
+                // A cell that prints no number agrees with an empty data cell or a filter that
+                // matches no row (a baseline's own interval), and one that prints a text
+                // cell's text (`never`) with it.
+                Err(EvalError::Missing(_) | EvalError::NoRow(_)) if printed.is_empty() => continue,
                 Err(EvalError::Text { cell, .. }) if printed.is_empty() => {
                     if shown.trim() != cell {
                         let at = shown_path(&file.path, root);

@@ -64,8 +64,13 @@ fn with_jitter_on_the_bench_scores_each_frame_against_its_own_offset() {
     let frame_noise = value("restir-pairwise", "frame_reference_noise_luma_rmse");
     let antialiased_noise = value("restir-pairwise", "reference_noise_luma_rmse");
     let restir = value("restir-pairwise", "mean_luma_rmse");
-    eprintln!("noise {frame_noise:.4} per phase, {antialiased_noise:.4} antialiased; restir {restir:.4}");
-    assert!(frame_noise < restir, "per-phase noise {frame_noise} ≥ restir's {restir}");
+    eprintln!(
+        "noise {frame_noise:.4} per phase, {antialiased_noise:.4} antialiased; restir {restir:.4}"
+    );
+    assert!(
+        frame_noise < restir,
+        "per-phase noise {frame_noise} ≥ restir's {restir}"
+    );
     assert!(
         antialiased_noise > restir,
         "the antialiased reference's noise {antialiased_noise} no longer exceeds restir's \

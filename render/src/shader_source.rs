@@ -52,7 +52,19 @@ pub fn shader_file(path: &str) -> Result<String, ShaderSourceError> {
 }
 
 /// Composes `entry` with its includes for the given set of defines.
+///
+/// The `// Defines:` line names only the defines this pass's files test, not the whole
+/// set: two effect sets that give a pass the same code then give it the same text. Debug
+/// builds hand wgpu the text as the SPIR-V's debug source (wgpu's `InstanceFlags::DEBUG`),
+/// which the driver's shader cache keys on, so a define that only some passes test
+/// (a planted error, a PT shift) no longer recompiles all the others: on lavapipe with an
+/// empty cache that was about a third of the test suite's shader compiles
+/// (docs/src/getting-started.md, "How long the tests take").
 pub fn compose(entry: &str, defines: &BTreeSet<String>) -> Result<String, ShaderSourceError> {
+    let mut body = String::new();
+    let mut included = BTreeSet::new();
+    let mut tested = BTreeSet::new();
+    append_file(entry, defines, &mut included, &mut tested, &mut body)?;
     // WGSL wants `enable` directives before any declaration.
     let mut out = if defines.contains(crate::tracing::RAY_QUERY_DEFINE) {
         String::from("enable wgpu_ray_query;\n")
@@ -60,22 +72,23 @@ pub fn compose(entry: &str, defines: &BTreeSet<String>) -> Result<String, Shader
         String::new()
     };
     out.push_str(&wgsl_prelude());
-    let mut defines_line = String::from("// Defines:");
-    for d in defines {
-        defines_line.push(' ');
-        defines_line.push_str(d);
+    out.push_str("// Defines:");
+    for d in defines.iter().filter(|d| tested.contains(d.as_str())) {
+        out.push(' ');
+        out.push_str(d);
     }
-    out.push_str(&defines_line);
     out.push('\n');
-    let mut included = BTreeSet::new();
-    append_file(entry, defines, &mut included, &mut out)?;
+    out.push_str(&body);
     Ok(out)
 }
 
+/// Appends `path` (and its includes, each once) to `out` with the `#ifdef` branches that
+/// `defines` selects; `tested` collects the names of `defines` that a directive tested.
 fn append_file(
     path: &str,
     defines: &BTreeSet<String>,
     included: &mut BTreeSet<String>,
+    tested: &mut BTreeSet<String>,
     out: &mut String,
 ) -> Result<(), ShaderSourceError> {
     if !included.insert(path.to_string()) {
@@ -102,11 +115,14 @@ fn append_file(
                         .and_then(|a| a.strip_prefix('"')?.strip_suffix('"'))
                         .ok_or_else(|| syntax(number, "#include needs a quoted path"))?;
                     if active {
-                        append_file(name, defines, included, out)?;
+                        append_file(name, defines, included, tested, out)?;
                     }
                 }
                 "ifdef" | "ifndef" => {
                     let name = arg.ok_or_else(|| syntax(number, "#ifdef needs a name"))?;
+                    if active && defines.contains(name) {
+                        tested.insert(name.to_string());
+                    }
                     let truth = defines.contains(name) == (directive == "ifdef");
                     stack.push((truth, truth));
                 }
@@ -211,11 +227,32 @@ mod tests {
     }
 
     #[test]
+    fn the_text_names_only_the_defines_its_files_test() {
+        let brdf = compose("common/brdf.wgsl", &defines(&["SPECULAR"])).unwrap();
+        assert!(brdf.contains("// Defines: SPECULAR\n"), "{brdf}");
+        // A define no file of the pass tests (here a planted error of PT's) leaves the
+        // text, and so the driver's cached compile of it, as it was.
+        let planted = compose(
+            "common/brdf.wgsl",
+            &defines(&["SPECULAR", "PLANTED_PT_NO_JACOBIAN"]),
+        )
+        .unwrap();
+        assert_eq!(brdf, planted);
+    }
+
+    #[test]
     fn missing_file_is_named() {
-        let mut included = BTreeSet::new();
+        let (mut included, mut tested) = (BTreeSet::new(), BTreeSet::new());
         let mut out = String::new();
         // A missing file is reported by name.
-        let err = append_file("no/such.wgsl", &defines(&[]), &mut included, &mut out).unwrap_err();
+        let err = append_file(
+            "no/such.wgsl",
+            &defines(&[]),
+            &mut included,
+            &mut tested,
+            &mut out,
+        )
+        .unwrap_err();
         assert!(err.to_string().contains("no/such.wgsl"));
     }
 }

@@ -2,7 +2,7 @@
 //! is lit by a few nearby lights among many. It loads at a million emissive triangles and
 //! renders finite from both cameras, with one light, and through the reference.
 
-mod common;
+use crate::common;
 
 use restir_render::Mode;
 

@@ -3,7 +3,7 @@
 //! finite on the hard scenes, and is neither compiled nor run when off. Each property's
 //! planted twin (a `PLANTED_*` define in the WGSL) is caught.
 
-mod common;
+use crate::common;
 
 use glam::Vec3;
 use restir_render::denoise::model::{self, Frame, Params, Pixel, Planted};

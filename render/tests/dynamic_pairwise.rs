@@ -9,7 +9,7 @@
 //!
 //! Sizes are tiny (lavapipe on two cores); tolerances are justified where they are set.
 
-mod common;
+use crate::common;
 
 use restir_render::timeline::AnimatedScene;
 use restir_render::{LinearImage, Mode, Renderer, Settings, load_scene};

@@ -4,7 +4,7 @@
 //!
 //! Sizes are tiny (lavapipe on two cores); tolerances are justified where they are set.
 
-mod common;
+use crate::common;
 
 use restir_render::di::constants::*;
 use restir_render::effects::Effect;

@@ -5,7 +5,7 @@
 //! whose brightest texel is 10⁶ times its mean. Tiny images on lavapipe; every tolerance
 //! is justified where it is asserted.
 
-mod common;
+use crate::common;
 
 use std::sync::Arc;
 

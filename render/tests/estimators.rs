@@ -1,7 +1,7 @@
 //! The estimators (docs/src/ris.md) agree with closed forms and with each other.
 //! All run on lavapipe at tiny sizes; every threshold is justified next to it.
 
-mod common;
+use crate::common;
 
 use glam::Vec3;
 use restir_render::metrics::{luma_rmse, rgb_rmse};

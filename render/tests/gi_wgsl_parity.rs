@@ -4,7 +4,7 @@
 //! target and a small 1/M merge for random and singular configurations, and the results are
 //! compared with the Rust functions'. Runs on any adapter (lavapipe here).
 
-mod common;
+use crate::common;
 
 use std::collections::BTreeSet;
 

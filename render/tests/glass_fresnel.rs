@@ -16,7 +16,7 @@
 //! origin's offset away) a smooth pane's highlight scattered by ±15 % a frame
 //! (`PLANTED_BSDF_F_TOWARD_HIT`, shading_point.wgsl).
 
-mod common;
+use crate::common;
 
 use common::scene_parts::{material, rect};
 use glam::Vec3;

@@ -3,7 +3,7 @@
 //! meaningful comparison exists, close to the reference or to the same scene at another scale.
 //! Tolerances are justified next to each case.
 
-mod common;
+use crate::common;
 
 use restir_render::shader_constants::*;
 use restir_render::stats::FrameReport;

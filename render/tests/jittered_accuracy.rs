@@ -5,7 +5,7 @@
 //! against the antialiased reference, as the viewer once did, and must find the two nearly
 //! equal. GPU test: fails with a clear message when there is no adapter.
 
-mod common;
+use crate::common;
 
 use restir_render::metrics::luma_rmse;
 use restir_render::phase_references::{PhaseReferences, reference_for_frame};

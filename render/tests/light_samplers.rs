@@ -3,7 +3,7 @@
 //! the orientation term the walk uses, ReGIR slots whose weights are not divided out — is
 //! caught. Bad parameter values and degenerate light sets stay safe.
 
-mod common;
+use crate::common;
 
 use common::blocks::{BLOCK, block_means, worst_block};
 use common::scene_parts::{every_kind_of_light, floor_and_wall, material, rect};

@@ -154,7 +154,7 @@ fn a_real_models_load_phases_are_timed_and_unread_images_are_not_decoded() {
     }
 }
 
-mod common;
+use crate::common;
 
 use restir_render::load_phases::LoadEvent;
 use restir_render::{Mode, PipelineCompile, Renderer, Settings, load_scene};

@@ -6,7 +6,7 @@
 //!
 //! Sizes are tiny (lavapipe on two cores); every tolerance says where it comes from.
 
-mod common;
+use crate::common;
 
 use restir_render::{LinearImage, Mode, Renderer, Scene, Settings, load_scene};
 

@@ -11,7 +11,7 @@
 //! sampler picks and a surface the BSDF ray hits, so an emitter counted twice or not at all by MIS
 //! shows as a wrong level.
 
-mod common;
+use crate::common;
 
 use std::collections::BTreeSet;
 

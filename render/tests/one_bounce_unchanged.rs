@@ -7,7 +7,7 @@
 //! adapter or driver is held to the recorded mean luminance within 1e-3 (rounding only: a
 //! changed estimator moves it more).
 
-mod common;
+use crate::common;
 
 use restir_render::reference_cache::Fnv64;
 use restir_render::{LinearImage, Mode, load_scene};

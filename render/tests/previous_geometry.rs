@@ -12,7 +12,7 @@
 //! per-frame references, for both backends. Needs a device with ray queries
 //! (docs/src/getting-started.md, "A machine without a GPU").
 
-mod common;
+use crate::common;
 
 use restir_render::timeline::AnimatedScene;
 use restir_render::{LinearImage, Mode, Renderer, Settings, load_scene};

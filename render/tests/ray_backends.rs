@@ -10,7 +10,7 @@
 //! machine without a GPU"); without one they fail saying so. Sizes are tiny (lavapipe on two
 //! cores); every tolerance says where it comes from.
 
-mod common;
+use crate::common;
 
 use common::scene_parts::{material, rect};
 use glam::{Vec3, Vec4};

@@ -5,7 +5,7 @@
 //! `gi=false` frame exactly, and (gi on − gi off) is the indirect estimate, compared with
 //! (2-bounce reference − 1-bounce reference).
 
-mod common;
+use crate::common;
 
 use common::indirect::mean_luma;
 use glam::Vec3;

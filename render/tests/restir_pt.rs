@@ -5,7 +5,7 @@
 //! own random streams and never touch DI's buffers, so (pt on − pt off) is the indirect
 //! estimate, compared with (max_bounces reference − 1-bounce reference).
 
-mod common;
+use crate::common;
 
 use common::indirect::mean_luma;
 use glam::Vec3;

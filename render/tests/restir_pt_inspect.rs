@@ -2,7 +2,7 @@
 //! rebuilt paths and the debug records behind the PT views, checked against the path records they
 //! describe.
 
-mod common;
+use crate::common;
 
 use common::indirect::render_planted;
 use restir_render::pt::constants::*;

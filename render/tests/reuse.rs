@@ -6,7 +6,7 @@
 //! radii chosen per width — 8 px at 128, 6 px at 96 — before the radius followed the
 //! height by itself; the tests set exactly those effective radii (common::radius_px).
 
-mod common;
+use crate::common;
 
 use restir_render::di::constants::*;
 use restir_render::gpu_types::GpuPixelDebug;

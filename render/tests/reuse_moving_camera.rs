@@ -4,7 +4,7 @@
 //! happen only where the previous camera could not see the point (checked on the CPU with
 //! an independent BVH traversal) or next to an edge.
 
-mod common;
+use crate::common;
 
 use restir_render::shader_constants::*;
 use restir_render::{Mode, Renderer};

@@ -72,8 +72,9 @@ fn copies_in(pass_shader: &str, function: &str) -> usize {
 
 /// (shader, copies of `trace`, copies of `sample_texture`) for the general effect set,
 /// counted before the driver folds constants (a copy in a branch a pass never takes still
-/// counts). Measured when the shapes were made one call site each: bench-load on
-/// StainedGlassLamp went from 148 s to 33 s (docs/src/measured/compile-and-load.md "Compile time").
+/// counts). Making the shapes one call site each cut bench-load's compile of StainedGlassLamp
+/// from minutes to about half a minute (docs/src/measured/compile-and-load.md "Compile time",
+/// with the data).
 const BUDGETS: &[(&str, usize, usize)] = &[
     ("gbuffer_resolve.wgsl", 3, 32),
     ("lights/presample_lights.wgsl", 0, 1),

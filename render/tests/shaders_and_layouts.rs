@@ -123,10 +123,20 @@ fn every_planted_switch_is_registered_and_its_twins_validate() {
             assert!(text.contains(p.name), "{test} does not plant {}", p.name);
         }
         let mut changed = 0;
-        // Every effect with either backend, and no optional effect at all.
-        for base_set in 0..3 {
+        // Every effect with either backend, no optional effect at all, and the general set
+        // with each light sampler that `EffectSet::all` leaves out (a planted ReGIR or tree
+        // error lives behind its sampler's define).
+        let with_sampler = |sampler: &[&str]| {
+            let mut set = EffectSet::all().defines();
+            set.remove("LIGHT_TILES");
+            set.extend(sampler.iter().map(|d| d.to_string()));
+            set
+        };
+        for base_set in 0..5 {
             let mut base = match base_set {
                 2 => BTreeSet::new(),
+                3 => with_sampler(&["REGIR", "REGIR_FROM_BVH"]),
+                4 => with_sampler(&["LIGHT_BVH", "VERTEX_LIGHT_BVH"]),
                 _ => EffectSet::all().defines(),
             };
             if base_set == 1 {

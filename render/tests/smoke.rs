@@ -1,4 +1,4 @@
-mod common;
+use crate::common;
 
 use restir_render::{Mode, Settings};
 

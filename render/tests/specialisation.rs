@@ -2,7 +2,7 @@
 //! specialised pipeline renders what the general one does, and a diffuse scene's compiled shaders
 //! contain no code for effects it does not have.
 
-mod common;
+use crate::common;
 
 use std::collections::BTreeSet;
 

@@ -11,7 +11,7 @@
 //!
 //! 48 × 32 pixels, a few dozen frames each (lavapipe on two cores).
 
-mod common;
+use crate::common;
 
 use std::collections::BTreeSet;
 

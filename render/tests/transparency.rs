@@ -8,7 +8,7 @@
 //!
 //! Sizes are tiny (lavapipe on two cores); every tolerance says where it comes from.
 
-mod common;
+use crate::common;
 
 use common::scene_parts::{material, rect};
 use glam::{Vec3, Vec4};
@@ -428,9 +428,9 @@ fn bulb_pixels(image: &LinearImage) -> usize {
 /// the reference, and its few bright pixels would decide the mean and its noise), and the
 /// bulb pixels of the image and of the reference.
 fn khronos_lamp_lit_ratio(planted: &[&str]) -> (f64, usize, usize) {
-    // The power table, as measured below: `auto` takes the light BVH with 4 candidates here
-    // (the bulb's 5,986 emissive triangles, probe 15.4), which reads 1.028 at 128 frames
-    // and 1.002 at 1024: unbiased, but too noisy for this bar at this length.
+    // The power table, as measured below: `auto` takes the light BVH here (the bulb's 5,986
+    // emissive triangles, probe 15.4), which with 4 candidates read 1.028 at 128 frames and
+    // 1.002 at 1024: unbiased, but too noisy for this bar at this length.
     let settings = common::settings(&["jitter=false", "light_sampler=power"]);
     let mut r = Renderer::new(common::gpu(), &khronos_lamp(), 36, 48, settings).unwrap();
     let reference = common::reference(&mut r, 16, 64);

@@ -7,7 +7,7 @@
 //!
 //! Sizes are tiny (lavapipe on two cores); every tolerance says where it comes from.
 
-mod common;
+use crate::common;
 
 use std::sync::Arc;
 

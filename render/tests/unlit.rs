@@ -3,7 +3,7 @@
 //! lights nothing. The planted twin (`PLANTED_UNLIT_AS_LIT`) shades it as a lit surface, as the
 //! loader did before the extension was read.
 
-mod common;
+use crate::common;
 
 use common::scene_parts::{material, rect};
 use glam::{Vec3, Vec4};

@@ -10,7 +10,7 @@
 //!
 //! Sizes are tiny (lavapipe on two cores); every tolerance says where it comes from.
 
-mod common;
+use crate::common;
 
 use common::blocks::{block_means, worst_block};
 use common::indirect::mean_luma;

@@ -201,7 +201,10 @@ fn fetch(
     };
     let (luma, rgb) = match kind {
         Kind::Shot => (&mut refs.noise_luma_rmse, &mut refs.noise_rgb_rmse),
-        Kind::Phase => (&mut refs.phase_noise_luma_rmse, &mut refs.phase_noise_rgb_rmse),
+        Kind::Phase => (
+            &mut refs.phase_noise_luma_rmse,
+            &mut refs.phase_noise_rgb_rmse,
+        ),
     };
     *luma = max(*luma, reference.meta.noise_luma_rmse);
     *rgb = max(*rgb, reference.meta.noise_rgb_rmse);

@@ -154,7 +154,11 @@ mod tests {
         let g = equal_time_gain(&noisy(&b), &noisy(&r)).unwrap();
         assert!((g.value - 4.0).abs() < 1e-9, "{}", g.value);
         let planted = equal_time_gain(&costs(&b, &ms), &costs(&r, &ms)).unwrap();
-        assert!((planted.value - 0.0025 / 0.0013).abs() < 1e-9, "{}", planted.value);
+        assert!(
+            (planted.value - 0.0025 / 0.0013).abs() < 1e-9,
+            "{}",
+            planted.value
+        );
         // An error within the reference's own noise has no gain to state.
         let lost = SeedCosts {
             frame_luma_rmse: &[0.02; 3],

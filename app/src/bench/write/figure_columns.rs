@@ -91,7 +91,11 @@ pub fn gain_cells(gain: Option<Gain>, costs: Option<SeedCosts>) -> Vec<String> {
     };
     for i in costs.iter().flat_map(|c| [c.mse(), c.ms()]) {
         cells.extend([i.mean, i.half_width].map(|x| {
-            if i.samples >= 2 { x.to_string() } else { String::new() }
+            if i.samples >= 2 {
+                x.to_string()
+            } else {
+                String::new()
+            }
         }));
     }
     cells.resize(GAIN_COLUMNS.len(), String::new());

@@ -57,9 +57,9 @@ pub fn shader_file(path: &str) -> Result<String, ShaderSourceError> {
 /// set: two effect sets that give a pass the same code then give it the same text. Debug
 /// builds hand wgpu the text as the SPIR-V's debug source (wgpu's `InstanceFlags::DEBUG`),
 /// which the driver's shader cache keys on, so a define that only some passes test
-/// (a planted error, a PT shift) no longer recompiles all the others: on lavapipe with an
-/// empty cache that was about a third of the test suite's shader compiles
-/// (docs/src/getting-started.md, "How long the tests take").
+/// (a planted error, a PT shift) no longer makes a new text of all the others; on lavapipe
+/// a first run's compiles are most of the test suite's time (docs/src/getting-started.md,
+/// "How long the tests take").
 pub fn compose(entry: &str, defines: &BTreeSet<String>) -> Result<String, ShaderSourceError> {
     let mut body = String::new();
     let mut included = BTreeSet::new();

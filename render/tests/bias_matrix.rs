@@ -171,21 +171,35 @@ fn ris_and_gi_are_unbiased() {
 /// own random streams, so the direct light of both runs is the same frame exactly and its
 /// noise cancels (render/tests/restir_pt.rs measures the same way): a bias of a few % in
 /// the indirect part is then resolved where the whole image's noise would hide it.
-fn indirect_bias(cell: &Cell, off: &Cell, planted: Option<&str>) -> Interval {
-    let direct = Cell {
-        assignments: &["max_bounces=1"],
-        ..*off
-    };
-    let direct_reference = direct.reference().mean_luminance();
-    let indirect_reference = cell.reference().mean_luminance() - direct_reference;
-    let on = cell.means(planted);
-    let off_means = off.means(None);
-    let ratios: Vec<f64> = on
-        .iter()
-        .zip(&off_means)
-        .map(|(a, b)| (a - b) / indirect_reference)
-        .collect();
-    cell.report(Interval::of(&ratios).shifted(1.0), planted)
+/// The run with it off and both references are made once and serve every `planted` twin.
+struct IndirectBias<'a> {
+    cell: Cell<'a>,
+    indirect_reference: f64,
+    off_means: Vec<f64>,
+}
+
+impl<'a> IndirectBias<'a> {
+    fn new(cell: Cell<'a>, off: &Cell) -> Self {
+        let direct = Cell {
+            assignments: &["max_bounces=1"],
+            ..*off
+        };
+        let direct_reference = direct.reference().mean_luminance();
+        IndirectBias {
+            cell,
+            indirect_reference: cell.reference().mean_luminance() - direct_reference,
+            off_means: off.means(None),
+        }
+    }
+
+    fn of(&self, planted: Option<&str>) -> Interval {
+        let ratios: Vec<f64> = (self.cell.means(planted).iter())
+            .zip(&self.off_means)
+            .map(|(a, b)| (a - b) / self.indirect_reference)
+            .collect();
+        self.cell
+            .report(Interval::of(&ratios).shifted(1.0), planted)
+    }
 }
 
 #[test]
@@ -210,14 +224,11 @@ fn pt_is_unbiased_and_a_missing_jacobian_is_caught() {
         assignments: &[PT[0], PT[1], PT[2], PT[3], "pt=false"],
         ..pt
     };
+    let indirect = IndirectBias::new(pt, &off);
     // ±2 % of power: half the planted error.
-    assert_unbiased(
-        &indirect_bias(&pt, &off, None),
-        0.02,
-        "glossy restir+pt, indirect",
-    );
+    assert_unbiased(&indirect.of(None), 0.02, "glossy restir+pt, indirect");
     assert_caught(
-        &indirect_bias(&pt, &off, Some("PLANTED_PT_NO_JACOBIAN")),
+        &indirect.of(Some("PLANTED_PT_NO_JACOBIAN")),
         "a missing PT Jacobian",
     );
 }

@@ -193,8 +193,8 @@ impl<'a> IndirectBias<'a> {
     }
 
     fn of(&self, planted: Option<&str>) -> Interval {
-        let ratios: Vec<f64> = (self.cell.means(planted).iter())
-            .zip(&self.off_means)
+        let on = self.cell.means(planted);
+        let ratios: Vec<f64> = (on.iter().zip(&self.off_means))
             .map(|(a, b)| (a - b) / self.indirect_reference)
             .collect();
         self.cell

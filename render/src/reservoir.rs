@@ -241,6 +241,8 @@ pub(crate) fn clamp_unit(x: f32) -> f32 {
 }
 
 #[cfg(test)]
+mod history_reset_tests;
+#[cfg(test)]
 mod tests;
 
 /// Deterministic randomness and goodness-of-fit checks shared by the crate's statistical

@@ -10,17 +10,13 @@
 //! price is a GPU measurement on scenes, not a claim this model can settle.
 
 use super::test_support::{Rng, mean_and_se};
+use super::tests::{INTEGRAL, f, ris};
 use super::*;
 
-const INTEGRAL: f64 = 1.0 / 3.0;
 const M_CAP: f32 = 20.0;
 const CANDIDATES: u32 = 2;
 const FRAMES: u32 = 24;
 const RESET_EVERY: u32 = 4;
-
-fn f(x: f32) -> f32 {
-    x * x
-}
 
 /// A target that differs from the integrand (p̂ = x against f = x²), so each estimate
 /// depends on the sample selected and a rule that looks at the sample can move the mean.
@@ -38,23 +34,13 @@ enum Reset {
     PlantedKeepsConfidence,
 }
 
-fn initial(rng: &mut Rng) -> Reservoir<f32> {
-    let mut r = Reservoir::empty();
-    for _ in 0..CANDIDATES {
-        let x = rng.f32();
-        r.update(x, target(x) / CANDIDATES as f32, target(x), rng.f32());
-    }
-    r.finalize_initial();
-    r
-}
-
 /// The last frame's estimate f(Y)·W of a chain of `FRAMES` frames, each an initial
 /// reservoir merged (1/M, M capped) with the history unless `reset` drops it.
 fn chain(rng: &mut Rng, reset: Reset) -> f64 {
     let mut history: Option<Reservoir<f32>> = None;
     let mut current = Reservoir::empty();
     for frame in 1..=FRAMES {
-        current = initial(rng);
+        current = ris(rng, CANDIDATES, target);
         if let Some(h) = history.filter(|h| !h.is_null()) {
             let m_prev = h.m.min(M_CAP);
             if reset == Reset::Never || frame % RESET_EVERY != 0 {

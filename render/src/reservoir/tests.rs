@@ -7,9 +7,9 @@ use proptest::prelude::*;
 use super::test_support::{Rng, assert_chi_square, mean_and_se};
 use super::*;
 
-const INTEGRAL: f64 = 1.0 / 3.0;
+pub(super) const INTEGRAL: f64 = 1.0 / 3.0;
 
-fn f(x: f32) -> f32 {
+pub(super) fn f(x: f32) -> f32 {
     x * x
 }
 
@@ -19,7 +19,7 @@ fn half_support(x: f32) -> f32 {
 }
 
 /// Initial RIS with `n` uniform candidates, in the project convention w = p̂ / (N · p_src).
-fn ris(rng: &mut Rng, n: u32, target: fn(f32) -> f32) -> Reservoir<f32> {
+pub(super) fn ris(rng: &mut Rng, n: u32, target: fn(f32) -> f32) -> Reservoir<f32> {
     let mut r = Reservoir::empty();
     for _ in 0..n {
         let x = rng.f32();
